@@ -1,0 +1,75 @@
+# The two commands: `make run` and `make test`. Both install the Debian
+# packages that are missing, configure a Release build and build it.
+SHELL := /bin/bash
+BUILD ?= build
+ASAN_BUILD ?= build-sanitize
+FUZZ_BUILD ?= build-fuzz
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+SHARED_DATA ?= $(abspath ../shared/data)
+
+DEBIAN_PACKAGES := cmake make g++ pkg-config ccache xz-utils \
+  libcgal-dev libeigen3-dev libopenmesh-dev libdraco-dev libboost-program-options-dev \
+  nlohmann-json3-dev libssl-dev zlib1g-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev
+FUZZ_PACKAGES := clang libclang-rt-14-dev
+
+CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
+
+.PHONY: all deps fuzz-deps configure build run test test-sanitize fuzz format format-check clean
+
+all: build
+
+# Installs what is missing, non-interactively (sudo when not root).
+deps:
+	@missing=$$(for p in $(DEBIAN_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "lodbake: installing Debian packages:" $$missing; \
+	  SUDO=; [ "$$(id -u)" -eq 0 ] || SUDO=sudo; \
+	  $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+	  $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+fuzz-deps:
+	@$(MAKE) --no-print-directory deps DEBIAN_PACKAGES="$(DEBIAN_PACKAGES) $(FUZZ_PACKAGES)"
+
+configure: deps
+	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) > $(BUILD).configure.log 2>&1 || { cat $(BUILD).configure.log; exit 1; }
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+# Bakes the embedded sample end to end and prints a summary.
+run: build
+	@LODBAKE_BIN=$(BUILD)/tools samples/bake.sh $(BUILD)/sample
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Unit and fuzz-corpus tests under AddressSanitizer + UndefinedBehaviorSanitizer.
+test-sanitize: deps
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DLODBAKE_SANITIZE=ON \
+	  -DLODBAKE_BENCHMARKS=OFF -DLODBAKE_SHARED_DATA=$(SHARED_DATA) > $(ASAN_BUILD).configure.log 2>&1 \
+	  || { cat $(ASAN_BUILD).configure.log; exit 1; }
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j $(JOBS) -L 'unit|fuzz'
+
+# Real libFuzzer binaries (clang); run one with e.g.
+#   build-fuzz/tests/fuzz/fuzz_container tests/fuzz/corpus/container
+fuzz: fuzz-deps
+	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DCMAKE_C_COMPILER=clang -DLODBAKE_LIBFUZZER=ON -DLODBAKE_SANITIZE=ON -DLODBAKE_BENCHMARKS=OFF \
+	  -DLODBAKE_SHARED_DATA=$(SHARED_DATA) > $(FUZZ_BUILD).configure.log 2>&1 \
+	  || { cat $(FUZZ_BUILD).configure.log; exit 1; }
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.h')
+
+format-check:
+	clang-format --dry-run -Werror $$(git ls-files '*.cpp' '*.h')
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(BUILD).configure.log $(ASAN_BUILD).configure.log
