@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "formats/support/byte_reader.h"
 #include "formats/support/file_io.h"
 
 namespace lodbake {
@@ -56,6 +57,42 @@ TEST(FileIo, SizeLimitIsEnforced) {
   Result<Bytes> r = read_file(path, 10);
   ASSERT_FALSE(r.is_ok());
   EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput);
+}
+
+TEST(ByteReader, ReadsBothEndiansAndStopsAtTheEnd) {
+  const uint8_t bytes[] = {0x01, 0x02, 0x03, 0x04, 0x05};
+  ByteReader reader(bytes, sizeof(bytes));
+  uint32_t little = 0;
+  ASSERT_TRUE(reader.read(&little));
+  EXPECT_EQ(little, 0x04030201u);
+  uint32_t more = 0;
+  EXPECT_FALSE(reader.read(&more));  // only one byte left
+  EXPECT_EQ(reader.position(), 4u);
+  ASSERT_TRUE(reader.seek(0));
+  uint16_t big = 0;
+  ASSERT_TRUE(reader.read(&big, Endian::kBig));
+  EXPECT_EQ(big, 0x0102u);
+  EXPECT_FALSE(reader.seek(6));
+  EXPECT_FALSE(reader.skip(4));
+  EXPECT_TRUE(reader.skip(3));
+  EXPECT_TRUE(reader.at_end());
+}
+
+TEST(ByteWriter, WritesLittleEndian) {
+  std::vector<uint8_t> out;
+  ByteWriter writer(&out);
+  writer.write<uint32_t>(0x0A0B0C0Du);
+  writer.write<float>(1.0f);
+  ASSERT_EQ(out.size(), 8u);
+  EXPECT_EQ(out[0], 0x0D);
+  EXPECT_EQ(out[3], 0x0A);
+  ByteReader reader(out.data(), out.size());
+  uint32_t a = 0;
+  float b = 0;
+  ASSERT_TRUE(reader.read(&a));
+  ASSERT_TRUE(reader.read(&b));
+  EXPECT_EQ(a, 0x0A0B0C0Du);
+  EXPECT_EQ(b, 1.0f);
 }
 
 }  // namespace
