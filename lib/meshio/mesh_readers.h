@@ -32,11 +32,6 @@ Result<TriangleMesh> parse_ply(const uint8_t* data, size_t size, ImportReport* r
 // with exactly equal positions are welded into one vertex.
 Result<TriangleMesh> parse_stl(const uint8_t* data, size_t size, ImportReport* report);
 
-// glTF 2.0 (.gltf with embedded or data: URIs) and GLB, through Draco's glTF
-// decoder: all triangle primitives of the default scene, node transforms applied.
-Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report);
-
-// A Draco-compressed mesh (.drc).
-Result<TriangleMesh> parse_draco(const uint8_t* data, size_t size, ImportReport* report);
+// glTF, GLB and Draco (.drc) are read by lib/dracoio/draco_io.h.
 
 }  // namespace lodbake

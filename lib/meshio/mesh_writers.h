@@ -22,8 +22,7 @@ bool drops_attributes(const std::string& path, const TriangleMesh& mesh);
 // Binary little-endian PLY with per-vertex normals and texture coordinates
 // (per-corner attributes are split into per-vertex ones by duplicating vertices).
 Result<Bytes> write_ply(const TriangleMesh& mesh);
-// GLB (binary glTF 2.0) through Draco's glTF encoder, uncompressed.
-Result<Bytes> write_glb(const TriangleMesh& mesh);
+// GLB output is lib/dracoio/draco_io.h's write_glb().
 
 // Picks the writer by `path`'s extension (.obj, .off, .ply, .glb).
 Result<Bytes> write_mesh_for_path(const std::string& path, const TriangleMesh& mesh);
