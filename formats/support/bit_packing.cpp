@@ -1,0 +1,77 @@
+// Fixed-width LSB-first bit packing (the order of DEFLATE's bit stream):
+// simple to specify for an independent reader and free of byte-order
+// questions. Values are at most 32 bits wide, so a 64-bit accumulator never
+// overflows while a value is merged in.
+#include "formats/support/bit_packing.h"
+
+#include <cassert>
+
+namespace lodbake {
+
+int bits_for_count(uint64_t count) {
+  if (count <= 1) return 0;
+  uint64_t max_index = count - 1;
+  int bits = 0;
+  while (max_index != 0) {
+    ++bits;
+    max_index >>= 1;
+  }
+  return bits;
+}
+
+uint64_t packed_size_bytes(uint64_t values, int bits) {
+  if (bits <= 0 || values == 0) return 0;
+  const uint64_t width = static_cast<uint64_t>(bits);
+  if (values > (UINT64_MAX - 7) / width) return UINT64_MAX;
+  return (values * width + 7) / 8;
+}
+
+void BitWriter::write(uint32_t value, int bits) {
+  assert(bits >= 0 && bits <= 32);
+  if (bits == 0) return;
+  assert(bits == 32 || value < (uint64_t{1} << bits));
+  buffer_ |= static_cast<uint64_t>(value) << buffered_;
+  buffered_ += bits;
+  while (buffered_ >= 8) {
+    out_->push_back(static_cast<uint8_t>(buffer_ & 0xFFu));
+    buffer_ >>= 8;
+    buffered_ -= 8;
+  }
+}
+
+void BitWriter::finish() {
+  if (buffered_ > 0) out_->push_back(static_cast<uint8_t>(buffer_ & 0xFFu));
+  buffer_ = 0;
+  buffered_ = 0;
+}
+
+bool BitReader::read(int bits, uint32_t* out) {
+  if (bits < 0 || bits > 32) return false;
+  const uint64_t total_bits = static_cast<uint64_t>(size_) * 8;
+  if (static_cast<uint64_t>(bits) > total_bits - bit_pos_) return false;
+  uint64_t value = 0;
+  int got = 0;
+  uint64_t pos = bit_pos_;
+  while (got < bits) {
+    const uint64_t byte_index = pos >> 3;
+    const int bit_in_byte = static_cast<int>(pos & 7u);
+    const int take = (8 - bit_in_byte) < (bits - got) ? (8 - bit_in_byte) : (bits - got);
+    const uint64_t chunk =
+        (static_cast<uint64_t>(data_[byte_index]) >> bit_in_byte) & ((uint64_t{1} << take) - 1);
+    value |= chunk << got;
+    got += take;
+    pos += static_cast<uint64_t>(take);
+  }
+  bit_pos_ = pos;
+  *out = static_cast<uint32_t>(value);
+  return true;
+}
+
+bool BitReader::padding_is_zero() const {
+  const int bit_in_byte = static_cast<int>(bit_pos_ & 7u);
+  if (bit_in_byte == 0) return true;
+  const uint8_t last = data_[bit_pos_ >> 3];
+  return (last >> bit_in_byte) == 0;
+}
+
+}  // namespace lodbake
