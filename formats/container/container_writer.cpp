@@ -1,0 +1,75 @@
+// Container writer: lays sections out in call order at 8-byte aligned
+// offsets with minimal zero padding, then appends the table. This is the
+// only layout the strict reader accepts (docs/format.md "Layout"), which is
+// what makes a file's bytes a function of its sections alone.
+#include "formats/container/container_writer.h"
+
+#include <algorithm>
+#include <new>
+
+#include "formats/container/container_errors.h"
+#include "formats/support/crc32c.h"
+
+namespace lodbake {
+
+Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool required) {
+  if (!is_valid_tag(tag)) {
+    return container_error(ContainerError::kBadTag,
+                           "section tag \"" + printable_tag(tag) +
+                               "\" is not 4 printable ASCII characters (0x21..0x7E)");
+  }
+  for (const Pending& pending : sections_) {
+    if (pending.tag == tag) {
+      return container_error(ContainerError::kDuplicateTag,
+                             "section " + std::string(tag) + " was already added");
+    }
+  }
+  sections_.push_back(Pending{std::string(tag), std::move(payload), required});
+  return Status::ok();
+}
+
+Result<Bytes> ContainerWriter::finish() const {
+  if (sections_.size() > UINT32_MAX) {
+    return runtime_error("too many sections for one container table");
+  }
+  try {
+    std::vector<SectionEntry> entries;
+    entries.reserve(sections_.size());
+    uint64_t end = kHeaderSize;
+    for (const Pending& pending : sections_) {
+      SectionEntry entry;
+      entry.tag = pending.tag;
+      entry.codec = static_cast<uint16_t>(SectionCodec::kRaw);
+      entry.flags = pending.required ? kSectionFlagRequired : 0;
+      entry.offset = align_up8(end);
+      entry.stored_size = pending.payload.size();
+      entry.decoded_size = pending.payload.size();
+      entry.crc32c = crc32c(pending.payload.data(), pending.payload.size());
+      end = entry.offset + entry.stored_size;
+      entries.push_back(std::move(entry));
+    }
+    ContainerHeader header;
+    header.table_offset = align_up8(end);
+    header.section_count = static_cast<uint32_t>(entries.size());
+    header.file_size = header.table_offset + entries.size() * kTableEntrySize;
+
+    Bytes out(static_cast<size_t>(header.file_size), 0);
+    for (size_t i = 0; i < entries.size(); ++i) {
+      const Bytes& payload = sections_[i].payload;
+      if (!payload.empty()) {
+        std::copy(payload.begin(), payload.end(),
+                  out.begin() + static_cast<std::ptrdiff_t>(entries[i].offset));
+      }
+      encode_entry(entries[i],
+                   out.data() + static_cast<size_t>(header.table_offset) + i * kTableEntrySize);
+    }
+    header.table_crc32c = crc32c(out.data() + static_cast<size_t>(header.table_offset),
+                                 entries.size() * kTableEntrySize);
+    encode_header(header, out.data());
+    return out;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory while assembling the container");
+  }
+}
+
+}  // namespace lodbake

@@ -1,0 +1,51 @@
+// Building a lodbake container in memory. Write the result to disk with
+// write_file_atomic() (formats/support/file_io.h), so a failed run never
+// leaves a partial file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "formats/container/container_layout.h"
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+
+/// Collects sections and lays them out as a format 1.0 container.
+///
+/// Output is a pure function of the sections added and their order: sections
+/// appear in the order of add_section() calls, each at the next 8-byte
+/// aligned offset after the header or the previous section with zero
+/// padding, then the section table, which ends the file. No timestamps, no
+/// pointer-dependent data, so two writers fed the same calls produce
+/// byte-identical files. All sections use the raw codec.
+class ContainerWriter {
+ public:
+  /// Adds a section. `required` sets flag bit 0: a reader that does not know
+  /// `tag` must then refuse the whole file (use it for sections whose absence
+  /// would make the file mean something else; META is optional, BASE required).
+  /// \return LBK-E016 when `tag` is not 4 characters in 0x21..0x7E, LBK-E017
+  ///         when a section with that tag was already added; nothing is added then.
+  Status add_section(std::string_view tag, Bytes payload, bool required);
+
+  /// Number of sections added so far.
+  size_t section_count() const { return sections_.size(); }
+
+  /// The complete container. Does not change the writer (call it again for
+  /// the same bytes). Fails with kRuntime only when memory runs out or the
+  /// sections exceed the 2^32 - 1 entries a table can hold.
+  Result<Bytes> finish() const;
+
+ private:
+  struct Pending {
+    std::string tag;
+    Bytes payload;
+    bool required;
+  };
+  std::vector<Pending> sections_;
+};
+
+}  // namespace lodbake

@@ -1,0 +1,27 @@
+// The registry is a fixed list rather than a self-registration scheme so
+// that what a build accepts is visible in one place and independent of link
+// order.
+#include "formats/container/section_registry.h"
+
+namespace lodbake {
+
+const std::vector<SectionKind>& known_section_kinds() {
+  static const std::vector<SectionKind> kinds = {
+      {kMetaTag, "provenance: tool, version, options, input, counts (JSON)"},
+      {kBaseTag, "base triangle mesh: positions, triangles, normals, texture coordinates"},
+  };
+  return kinds;
+}
+
+bool is_known_section(std::string_view tag) {
+  return section_description(tag) != nullptr;
+}
+
+const char* section_description(std::string_view tag) {
+  for (const SectionKind& kind : known_section_kinds()) {
+    if (tag == kind.tag) return kind.description;
+  }
+  return nullptr;
+}
+
+}  // namespace lodbake

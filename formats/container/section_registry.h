@@ -1,0 +1,29 @@
+// The section tags this build of lodbake knows how to read. The reader uses
+// the list to decide "unknown required section" (LBK-E022); inspect uses the
+// descriptions. A tag is added here in the same change that adds its decoder
+// under formats/sections/.
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+namespace lodbake {
+
+inline constexpr char kMetaTag[] = "META";  ///< JSON provenance (formats/sections/meta.h)
+inline constexpr char kBaseTag[] = "BASE";  ///< base triangle mesh (formats/sections/base.h)
+
+struct SectionKind {
+  const char* tag;          ///< 4 printable ASCII characters
+  const char* description;  ///< one line, for listings
+};
+
+/// Every known section kind, in a fixed order (the order inspect lists them).
+const std::vector<SectionKind>& known_section_kinds();
+
+/// True when `tag` is in known_section_kinds().
+bool is_known_section(std::string_view tag);
+
+/// The description of a known tag, or nullptr.
+const char* section_description(std::string_view tag);
+
+}  // namespace lodbake
