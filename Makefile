@@ -15,7 +15,7 @@ FUZZ_PACKAGES := clang libclang-rt-14-dev
 
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
 
-.PHONY: all deps fuzz-deps configure build run test test-sanitize fuzz format format-check clean
+.PHONY: all deps fuzz-deps configure build run test test-sanitize fuzz bench format format-check clean
 
 all: build
 
@@ -64,6 +64,15 @@ fuzz: fuzz-deps
 	  -DLODBAKE_SHARED_DATA=$(SHARED_DATA) > $(FUZZ_BUILD).configure.log 2>&1 \
 	  || { cat $(FUZZ_BUILD).configure.log; exit 1; }
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
+
+# Import speed against CGAL, OpenMesh and Draco on the full dragon and
+# mid-size meshes (prints ratios; timings are never asserted in tests).
+BENCH_MESHES := $(BUILD)/data/dragon_vrip.ply $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
+  $(SHARED_DATA)/meshes/igl_armadillo.obj $(SHARED_DATA)/meshes/cgal_bunny00.off \
+  $(SHARED_DATA)/meshes/draco_bunny.stl
+bench: build
+	cmake --build $(BUILD) --target dragon_data bench_import
+	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

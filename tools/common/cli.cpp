@@ -1,0 +1,130 @@
+#include "tools/common/cli.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <new>
+
+#include "formats/support/version.h"
+
+namespace lodbake::cli {
+
+const char* exit_code_help() {
+  return "Exit codes:\n"
+         "  0  success\n"
+         "  1  usage error (unknown option, missing or extra argument)\n"
+         "  2  I/O error (a file cannot be read or written)\n"
+         "  3  invalid input (malformed file, or a mesh the tool cannot take)\n"
+         "  4  runtime error (an algorithm failed, out of memory)\n"
+         "  5  unsupported (newer format version, unknown codec or format)\n"
+         "  7  validation failed (--validate or --strict found problems)\n";
+}
+
+Tool::Tool(std::string name, std::string synopsis, std::string description)
+    : name_(std::move(name)),
+      synopsis_(std::move(synopsis)),
+      description_(std::move(description)),
+      options_("Options"),
+      hidden_("Hidden") {
+  options_.add_options()("help,h", "print this help and exit")(
+      "version", "print the lodbake version and exit")("json",
+                                                       "print the report as JSON on stdout")(
+      "quiet,q", "print no progress, notes or warnings on stderr");
+}
+
+void Tool::positional(const std::string& name, int max_count) {
+  hidden_.add_options()(name.c_str(), po::value<std::vector<std::string>>(), "");
+  positional_.add(name.c_str(), max_count);
+}
+
+std::vector<std::string> Tool::positionals(const std::string& name) const {
+  if (!vm_.count(name)) return {};
+  return vm_[name].as<std::vector<std::string>>();
+}
+
+std::optional<int> Tool::parse(int argc, char** argv) {
+  po::options_description all;
+  all.add(options_).add(hidden_);
+  try {
+    po::store(
+        po::command_line_parser(argc, argv)
+            .options(all)
+            .positional(positional_)
+            .style(po::command_line_style::unix_style ^ po::command_line_style::allow_guessing)
+            .run(),
+        vm_);
+    if (vm_.count("help")) {
+      print_help();
+      return 0;
+    }
+    if (vm_.count("version")) {
+      std::cout << name_ << " " << kLodbakeVersion << "\n";
+      return 0;
+    }
+    po::notify(vm_);
+  } catch (const po::error& e) {
+    return usage_error(e.what());
+  }
+  json_ = vm_.count("json") != 0;
+  quiet_ = vm_.count("quiet") != 0;
+  return std::nullopt;
+}
+
+void Tool::print_help() const {
+  std::cout << "Usage: " << name_ << " " << synopsis_ << "\n\n" << description_ << "\n\n";
+  std::cout << options_ << "\n";
+  if (!epilog_.empty()) std::cout << epilog_ << "\n";
+  std::cout << exit_code_help();
+}
+
+int Tool::fail(const std::string& file, const Status& status) const {
+  std::cerr << name_ << ": error: " << (file.empty() ? "" : file + ": ") << status.message()
+            << "\n";
+  int code = static_cast<int>(status.kind());
+  return code == 0 ? static_cast<int>(ErrorKind::kRuntime) : code;
+}
+
+int Tool::usage_error(const std::string& message) const {
+  std::cerr << name_ << ": error: " << message << ". See '" << name_ << " --help'.\n";
+  return static_cast<int>(ErrorKind::kUsage);
+}
+
+void Tool::warn(const std::string& file, const std::string& message) const {
+  if (quiet_) return;
+  std::cerr << name_ << ": warning: " << (file.empty() ? "" : file + ": ") << message << "\n";
+}
+
+void Tool::info(const std::string& file, const std::string& message) const {
+  if (quiet_) return;
+  std::cerr << name_ << ": " << (file.empty() ? "" : file + ": ") << message << "\n";
+}
+
+int Tool::run(const std::function<int()>& body) const {
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    return fail("", runtime_error("out of memory"));
+  } catch (const std::exception& e) {
+    return fail("", runtime_error(std::string("internal error: ") + e.what()));
+  }
+}
+
+Progress::Progress(const Tool& tool, std::string label)
+    : enabled_(!tool.quiet() && ::isatty(STDERR_FILENO) == 1), label_(std::move(label)) {}
+
+Progress::~Progress() {
+  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r\033[K");
+}
+
+void Progress::update(double fraction) {
+  if (!enabled_) return;
+  int percent = static_cast<int>(fraction * 100.0);
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
+  std::fflush(stderr);
+}
+
+}  // namespace lodbake::cli

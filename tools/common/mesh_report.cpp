@@ -1,0 +1,109 @@
+#include "tools/common/mesh_report.h"
+
+#include <charconv>
+#include <iomanip>
+
+namespace lodbake::cli {
+
+std::string format_float(float value) {
+  char buffer[32];
+  auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+nlohmann::json to_json(const Vec3f& v) {
+  return nlohmann::json::array({v[0], v[1], v[2]});
+}
+
+nlohmann::json to_json(const MeshCheckReport& r) {
+  nlohmann::json j;
+  j["vertices"] = r.vertices;
+  j["triangles"] = r.triangles;
+  j["bbox"] = {{"min", to_json(r.bbox_min)}, {"max", to_json(r.bbox_max)}};
+  j["components"] = r.components;
+  j["edges"] = r.edges;
+  j["boundary_edges"] = r.boundary_edges;
+  j["boundary_loops"] = r.boundary_loops;
+  j["closed"] = r.closed();
+  j["manifold"] = r.manifold();
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["non_manifold_vertices"] = r.non_manifold_vertices;
+  j["degenerate_triangles"] = r.degenerate_triangles;
+  j["repeated_index_triangles"] = r.repeated_index_triangles;
+  j["zero_area_triangles"] = r.zero_area_triangles;
+  j["duplicate_triangles"] = r.duplicate_triangles;
+  j["unreferenced_vertices"] = r.unreferenced_vertices;
+  j["inconsistent_orientation_edges"] = r.inconsistent_orientation_edges;
+  j["non_finite_coordinates"] = r.non_finite_coordinates;
+  j["out_of_range_triangles"] = r.out_of_range_triangles;
+  j["genus"] = r.genus >= 0 ? nlohmann::json(r.genus) : nlohmann::json(nullptr);
+  j["problems"] = r.problems();
+  return j;
+}
+
+nlohmann::json to_json(const ImportReport& r) {
+  return {{"format", r.format},
+          {"file_faces", r.file_faces},
+          {"polygons_triangulated", r.polygons_triangulated},
+          {"welded_vertices", r.welded_vertices},
+          {"notes", r.notes}};
+}
+
+nlohmann::json to_json(const RepairReport& r) {
+  return {{"removed_non_finite_triangles", r.removed_non_finite_triangles},
+          {"removed_degenerate_triangles", r.removed_degenerate_triangles},
+          {"removed_duplicate_triangles", r.removed_duplicate_triangles},
+          {"removed_unreferenced_vertices", r.removed_unreferenced_vertices},
+          {"split_non_manifold_edges", r.split_non_manifold_edges},
+          {"split_non_manifold_vertices", r.split_non_manifold_vertices},
+          {"added_vertices", r.added_vertices},
+          {"flipped_triangles", r.flipped_triangles},
+          {"actions", r.actions()}};
+}
+
+namespace {
+
+void line(std::ostream& out, const char* label, const std::string& value) {
+  out << std::left << std::setw(14) << label << value << "\n";
+}
+
+std::string vec(const Vec3f& v) {
+  return "(" + format_float(v[0]) + ", " + format_float(v[1]) + ", " + format_float(v[2]) + ")";
+}
+
+}  // namespace
+
+void print_check(std::ostream& out, const MeshCheckReport& r) {
+  line(out, "vertices", std::to_string(r.vertices));
+  line(out, "triangles", std::to_string(r.triangles));
+  line(out, "bounding box", vec(r.bbox_min) + " .. " + vec(r.bbox_max));
+  line(out, "components", std::to_string(r.components));
+  line(out, "edges", std::to_string(r.edges));
+  line(out, "boundary",
+       r.closed() ? std::string("none (closed)")
+                  : std::to_string(r.boundary_edges) + " edges in " +
+                        std::to_string(r.boundary_loops) + " loops");
+  line(out, "manifold",
+       r.manifold() ? std::string("yes")
+                    : "no (" + std::to_string(r.non_manifold_edges) + " edges, " +
+                          std::to_string(r.non_manifold_vertices) + " vertices)");
+  if (r.genus >= 0) line(out, "genus", std::to_string(r.genus));
+  std::vector<std::string> problems = r.problems();
+  line(out, "problems", problems.empty() ? std::string("none") : std::to_string(problems.size()));
+  for (const std::string& p : problems)
+    out << "  - " << p << "\n";
+}
+
+void print_import_notes(const Tool& tool, const std::string& file, const ImportReport& report) {
+  for (const std::string& note : report.notes)
+    tool.info(file, note);
+}
+
+void print_repair_actions(const Tool& tool, const std::string& file, const RepairReport& report) {
+  std::vector<std::string> actions = report.actions();
+  if (actions.empty()) tool.info(file, "repair: nothing to repair");
+  for (const std::string& action : actions)
+    tool.info(file, "repair: " + action);
+}
+
+}  // namespace lodbake::cli

@@ -1,0 +1,316 @@
+// lodbake-inspect: looks inside a .lbk container (header, sections,
+// checksums, counts; --validate, --extract) or lints a mesh file (the import
+// check report; --strict). Thin: every check lives in formats/ and lib/.
+#include <cstring>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "formats/container/container_layout.h"
+#include "formats/container/container_listing.h"
+#include "formats/container/container_reader.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/meta.h"
+#include "formats/sections/section_validation.h"
+#include "formats/support/file_io.h"
+#include "lib/ingest/load_mesh.h"
+#include "lib/meshio/file_name.h"
+#include "lib/meshio/mesh_writers.h"
+#include "tools/common/cli.h"
+#include "tools/common/mesh_report.h"
+
+namespace lodbake::cli {
+namespace {
+
+constexpr const char* kContainerSchema = "lodbake.inspect.container/1";
+constexpr const char* kMeshSchema = "lodbake.inspect.mesh/1";
+
+struct InspectOptions {
+  bool validate = false;
+  bool strict = false;
+  std::string extract;
+};
+
+bool is_container(const Bytes& bytes) {
+  return bytes.size() >= sizeof(kContainerMagic) &&
+         std::memcmp(bytes.data(), kContainerMagic, sizeof(kContainerMagic)) == 0;
+}
+
+std::string hex32(uint32_t value) {
+  char text[9];
+  std::snprintf(text, sizeof(text), "%08x", value);
+  return text;
+}
+
+const char* binding_name(AttributeBinding binding) {
+  switch (binding) {
+    case AttributeBinding::kNone:
+      return "none";
+    case AttributeBinding::kPerVertex:
+      return "per-vertex";
+    case AttributeBinding::kPerCorner:
+      return "per-corner";
+  }
+  return "?";
+}
+
+nlohmann::json listing_json(const ContainerListing& listing) {
+  nlohmann::json j;
+  j["file_bytes"] = listing.actual_size;
+  j["magic_ok"] = listing.magic_ok;
+  if (listing.header_read) {
+    const ContainerHeader& h = listing.header;
+    j["header"] = {{"version", std::to_string(h.major) + "." + std::to_string(h.minor)},
+                   {"flags", h.flags},
+                   {"file_size", h.file_size},
+                   {"table_offset", h.table_offset},
+                   {"section_count", h.section_count},
+                   {"checksum_ok", listing.header_crc_ok}};
+  }
+  j["table_checksum_ok"] = listing.table_crc_ok;
+  nlohmann::json sections = nlohmann::json::array();
+  for (const SectionListing& s : listing.sections) {
+    nlohmann::json js = {{"tag", s.display_tag},
+                         {"codec", s.entry.codec == 0 ? "raw" : std::to_string(s.entry.codec)},
+                         {"required", s.entry.required()},
+                         {"known", s.known},
+                         {"offset", s.entry.offset},
+                         {"stored_bytes", s.entry.stored_size},
+                         {"decoded_bytes", s.entry.decoded_size},
+                         {"crc32c", hex32(s.entry.crc32c)}};
+    js["checksum_ok"] = s.crc_checked ? nlohmann::json(s.crc_ok) : nlohmann::json(nullptr);
+    sections.push_back(std::move(js));
+  }
+  j["sections"] = std::move(sections);
+  return j;
+}
+
+void print_listing(std::ostream& out, const std::string& path, const ContainerListing& listing) {
+  out << "file          " << path << " (" << listing.actual_size << " bytes)\n";
+  if (!listing.header_read) return;
+  const ContainerHeader& h = listing.header;
+  out << "format        lodbake container " << h.major << "." << h.minor << ", flags " << h.flags
+      << ", header checksum " << (listing.header_crc_ok ? "ok" : "BAD") << "\n";
+  out << "sections      " << h.section_count << " (table at byte " << h.table_offset
+      << ", checksum " << (listing.table_crc_ok ? "ok" : "BAD") << ")\n";
+  if (listing.sections.empty()) return;
+  out << "  tag   codec  offset      stored     decoded     crc32c    checksum\n";
+  for (const SectionListing& s : listing.sections) {
+    char row[160];
+    std::snprintf(row, sizeof(row), "  %-5s %-6s %-11llu %-10llu %-11llu %s  %s%s\n",
+                  s.display_tag.c_str(), s.entry.codec == 0 ? "raw" : "?",
+                  static_cast<unsigned long long>(s.entry.offset),
+                  static_cast<unsigned long long>(s.entry.stored_size),
+                  static_cast<unsigned long long>(s.entry.decoded_size),
+                  hex32(s.entry.crc32c).c_str(), !s.crc_checked ? "-" : (s.crc_ok ? "ok" : "BAD"),
+                  s.known ? "" : (s.entry.required() ? " (unknown, required)" : " (unknown)"));
+    out << row;
+  }
+}
+
+// What each known section holds, without decoding whole arrays.
+nlohmann::json section_contents(const Container& container) {
+  nlohmann::json contents = nlohmann::json::object();
+  for (const Section& section : container.sections) {
+    if (section.tag() == kMetaTag) {
+      Result<nlohmann::json> meta = decode_meta_json(section.data, section.size);
+      contents[kMetaTag] = meta.is_ok() ? meta.value() : nlohmann::json(meta.status().message());
+    } else if (section.tag() == kBaseTag) {
+      Result<BaseSummary> base = read_base_summary(section.data, section.size);
+      if (!base.is_ok()) {
+        contents[kBaseTag] = base.status().message();
+        continue;
+      }
+      const BaseSummary& b = base.value();
+      nlohmann::json jb = {{"vertices", b.vertex_count},
+                           {"triangles", b.triangle_count},
+                           {"index_bits", b.index_bits},
+                           {"normals", binding_name(b.normals_binding)},
+                           {"texcoords", binding_name(b.texcoords_binding)}};
+      if (b.position_encoding == PositionEncoding::kQuantized) {
+        jb["positions"] = "quantized";
+        jb["quantization_bits"] = b.quantization_bits;
+        jb["box"] = {{"min", to_json(b.box_min)}, {"max", to_json(b.box_max)}};
+      } else {
+        jb["positions"] = "float32";
+      }
+      contents[kBaseTag] = std::move(jb);
+    }
+  }
+  return contents;
+}
+
+void print_contents(std::ostream& out, const nlohmann::json& contents) {
+  if (contents.contains(kMetaTag)) {
+    const nlohmann::json& m = contents[kMetaTag];
+    out << "META          ";
+    if (m.is_object()) {
+      out << m.value("tool", "?") << " " << m.value("version", "?");
+      if (m.contains("input") && m["input"].is_object())
+        out << ", input " << m["input"].value("file", "?") << " ("
+            << m["input"].value("bytes", uint64_t{0}) << " bytes, sha256 "
+            << m["input"].value("sha256", "?").substr(0, 16) << "...)";
+      out << "\n";
+    } else {
+      out << m.get<std::string>() << "\n";
+    }
+  }
+  if (contents.contains(kBaseTag)) {
+    const nlohmann::json& b = contents[kBaseTag];
+    out << "BASE          ";
+    if (!b.is_object()) {
+      out << b.get<std::string>() << "\n";
+      return;
+    }
+    out << b["vertices"].get<uint64_t>() << " vertices, " << b["triangles"].get<uint64_t>()
+        << " triangles, positions " << b["positions"].get<std::string>();
+    if (b.contains("quantization_bits"))
+      out << " (" << b["quantization_bits"].get<int>() << " bits)";
+    out << ", indices " << b["index_bits"].get<int>() << " bits, normals "
+        << b["normals"].get<std::string>() << ", texcoords " << b["texcoords"].get<std::string>()
+        << "\n";
+  }
+}
+
+int extract_base(const Tool& tool, const std::string& path, const Container& container,
+                 const std::string& out_path, nlohmann::json* report) {
+  Result<const Section*> base = container.require(kBaseTag);
+  if (!base.is_ok()) return tool.fail(path, base.status());
+  Result<TriangleMesh> mesh = decode_base(base.value()->data, base.value()->size);
+  if (!mesh.is_ok()) return tool.fail(path, mesh.status());
+  if (drops_attributes(out_path, mesh.value()))
+    tool.warn(out_path,
+              "this format cannot store the mesh's normals or texture coordinates; "
+              "they are not written");
+  Result<Bytes> bytes = write_mesh_for_path(out_path, mesh.value());
+  if (!bytes.is_ok()) return tool.fail(out_path, bytes.status());
+  Status written = write_file_atomic(out_path, bytes.value());
+  if (!written.is_ok()) return tool.fail(out_path, written);
+  (*report)["extracted"] = {{"file", out_path}, {"bytes", bytes.value().size()}};
+  return 0;
+}
+
+int inspect_container(const Tool& tool, const std::string& path, const Bytes& bytes,
+                      const InspectOptions& options) {
+  ContainerListing listing = list_container(bytes.data(), bytes.size());
+  nlohmann::json report = {{"schema", kContainerSchema}, {"file", path}};
+  report["container"] = listing_json(listing);
+  if (!listing.status.is_ok()) {
+    report["error"] = listing.status.message();
+    if (tool.json()) {
+      std::cout << report.dump(2) << "\n";
+    } else {
+      print_listing(std::cout, path, listing);
+    }
+    return tool.fail(path, listing.status);
+  }
+  Result<Container> container = read_container(bytes.data(), bytes.size());
+  if (!container.is_ok()) return tool.fail(path, container.status());
+  report["contents"] = section_contents(container.value());
+
+  std::vector<SectionFinding> findings;
+  if (options.validate || options.strict) {
+    findings = validate_sections(container.value());
+    nlohmann::json jf = nlohmann::json::array();
+    for (const SectionFinding& f : findings)
+      jf.push_back({{"section", f.tag}, {"message", f.message}});
+    report["validation"] = {{"ok", findings.empty()}, {"findings", jf}};
+  }
+  int code = 0;
+  if (!options.extract.empty() && findings.empty())
+    code = extract_base(tool, path, container.value(), options.extract, &report);
+
+  if (tool.json()) {
+    std::cout << report.dump(2) << "\n";
+  } else {
+    print_listing(std::cout, path, listing);
+    print_contents(std::cout, report["contents"]);
+    if (report.contains("validation")) {
+      std::cout << "validation    " << (findings.empty() ? "ok" : "FAILED") << "\n";
+      for (const SectionFinding& f : findings)
+        std::cout << "  - " << f.tag << ": " << f.message << "\n";
+    }
+    if (report.contains("extracted"))
+      std::cout << "extracted     " << options.extract << " ("
+                << report["extracted"]["bytes"].get<uint64_t>() << " bytes)\n";
+  }
+  if (!findings.empty()) {
+    return tool.fail(
+        path,
+        Status(ErrorKind::kValidation,
+               "validation failed: " + findings.front().tag + ": " + findings.front().message +
+                   (findings.size() > 1
+                        ? " (and " + std::to_string(findings.size() - 1) + " more findings)"
+                        : "")));
+  }
+  return code;
+}
+
+int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
+                 const InspectOptions& options) {
+  if (!options.extract.empty())
+    return tool.usage_error("--extract needs a .lbk container; '" + path + "' is a mesh file");
+  LoadOptions load;
+  load.policy.reset();  // a linter reports every problem instead of refusing
+  LoadedMesh loaded;
+  Status status = load_mesh_bytes(path, std::move(bytes), load, &loaded);
+  if (!status.is_ok()) return tool.fail(path, status);
+  print_import_notes(tool, path, loaded.import);
+  const MeshCheckReport& check = loaded.check;
+  if (tool.json()) {
+    nlohmann::json report = {{"schema", kMeshSchema},
+                             {"file", path},
+                             {"bytes", loaded.file_bytes},
+                             {"sha256", loaded.sha256},
+                             {"import", to_json(loaded.import)},
+                             {"check", to_json(check)}};
+    std::cout << report.dump(2) << "\n";
+  } else {
+    std::cout << "file          " << path << " (" << loaded.file_bytes << " bytes)\n";
+    std::cout << "format        " << loaded.import.format << "\n";
+    print_check(std::cout, check);
+  }
+  if ((options.strict || options.validate) && check.has_problems()) {
+    std::vector<std::string> problems = check.problems();
+    return tool.fail(path, Status(ErrorKind::kValidation,
+                                  std::to_string(problems.size()) +
+                                      " kinds of problems (--strict): " + problems.front()));
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace lodbake::cli
+
+int main(int argc, char** argv) {
+  using namespace lodbake;
+  using namespace lodbake::cli;
+  Tool tool("lodbake-inspect", "FILE [options]",
+            "Looks inside a lodbake container (.lbk): header, sections with their codecs,\n"
+            "sizes and checksums, and what each section holds. Given a mesh file (.obj .ply\n"
+            ".off .stl .gltf .glb .drc, optionally .gz) instead, prints its mesh check report:\n"
+            "counts, bounding box, components, boundary, non-manifold, degenerate, duplicate\n"
+            "and unreferenced elements, orientation and non-finite coordinates.");
+  InspectOptions options;
+  tool.options().add_options()(
+      "validate", po::bool_switch(&options.validate),
+      "container: decode every section and run its deep checks (exit 7 on findings)")(
+      "strict", po::bool_switch(&options.strict),
+      "mesh: exit 7 when the check finds any problem (a linter for CI); container: as --validate")(
+      "extract", po::value<std::string>(&options.extract)->value_name("OUT"),
+      "container: write the base mesh to OUT (.obj .ply .off .glb)");
+  tool.positional("file", -1);
+  if (std::optional<int> done = tool.parse(argc, argv)) return *done;
+  std::vector<std::string> files = tool.positionals("file");
+  if (files.size() != 1)
+    return tool.usage_error(
+        files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  const std::string& path = files.front();
+  return tool.run([&] {
+    Result<Bytes> bytes = read_file(path);
+    if (!bytes.is_ok()) return tool.fail(path, bytes.status());
+    if (is_container(bytes.value()) || lower_extension(path) == "lbk")
+      return inspect_container(tool, path, bytes.value(), options);
+    return inspect_mesh(tool, path, std::move(bytes).value(), options);
+  });
+}
