@@ -18,7 +18,9 @@
 //   whose signed areas cancel) or not finite, the polygon is fanned.
 // - Strictly convex polygons are fanned from their first corner, (0, i, i+1),
 //   in linear time; so are non-convex polygons of more than
-//   kMaxEarClipCorners corners (bounding the quadratic work per polygon).
+//   kMaxEarClipCorners corners, or whose quadratic cost would exceed the
+//   work budget (kEarClipWorkAllowance plus kEarClipWorkPerCorner per corner
+//   seen), so the total work stays linear in the input.
 // - Ear tips must be strictly convex, so a corner lying on the line through
 //   its neighbours is never the tip of a zero-area triangle while another
 //   choice exists. Vertices at the same position as one of the ear's corners
@@ -86,6 +88,7 @@ Status PolygonTriangulator::triangulate(const uint32_t* corners, size_t n,
     return Status::ok();
   }
   ++counts_.polygons;
+  work_budget_ += kEarClipWorkPerCorner * n;
 
   ring_.clear();
   for (size_t i = 0; i < n; ++i) {
@@ -153,11 +156,13 @@ Status PolygonTriangulator::triangulate(const uint32_t* corners, size_t n,
     fan(ring_, corners, out, corner_slots);
     return Status::ok();
   }
-  if (m > kMaxEarClipCorners) {
+  const uint64_t cost = uint64_t{m} * m;
+  if (m > kMaxEarClipCorners || cost > work_budget_) {
     ++counts_.oversized_fanned;
     fan(ring_, corners, out, corner_slots);
     return Status::ok();
   }
+  work_budget_ -= cost;
   if (has_crossing_edges()) ++counts_.self_intersecting;
   if (ear_clip(corners, out, corner_slots)) {
     ++counts_.ear_clipped;
@@ -341,7 +346,8 @@ void PolygonTriangulator::add_to_report(ImportReport* report) const {
        "were split as a fan, whose triangles may overlap");
   note(counts_.oversized_fanned,
        ("non-convex polygons have more than " + std::to_string(kMaxEarClipCorners) +
-        " corners; they were split as a fan, whose triangles may overlap")
+        " corners or exceed the ear-clipping work limit; they were split as a fan, whose "
+        "triangles may overlap")
            .c_str());
 }
 

@@ -18,6 +18,15 @@ namespace lodbake {
 /// are and counted in oversized_fanned, which bounds the work per polygon.
 constexpr size_t kMaxEarClipCorners = 1024;
 
+/// Ear clipping a non-convex polygon of m corners costs about m * m steps.
+/// A triangulator spends at most this many steps plus kEarClipWorkPerCorner
+/// per polygon corner it has seen; polygons that would exceed that are
+/// fanned and counted in oversized_fanned. This keeps the work linear in the
+/// input size for hostile files (thousands of large star-shaped polygons)
+/// while every real mesh stays far below it.
+constexpr uint64_t kEarClipWorkAllowance = uint64_t{1} << 27;
+constexpr uint64_t kEarClipWorkPerCorner = 64;
+
 /// What happened to the polygons (faces with more than 3 corners) seen so far.
 struct TriangulationCounts {
   uint64_t polygons = 0;          // faces with more than 3 corners
@@ -26,13 +35,17 @@ struct TriangulationCounts {
   uint64_t degenerate = 0;        // zero area or < 3 distinct corners: fanned, triangles degenerate
   uint64_t self_intersecting = 0;  // non-convex with edges that cross: triangles may overlap
   uint64_t fallback_fanned = 0;    // ear clipping got stuck (self-intersecting): rest fanned
-  uint64_t oversized_fanned = 0;   // non-convex with more than kMaxEarClipCorners corners: fanned
+  uint64_t oversized_fanned = 0;   // non-convex, over the corner or work limit: fanned
 };
 
 /// Triangulates polygons one after the other, reusing its scratch memory and
 /// counting outcomes. Not thread-safe; use one per reader.
 class PolygonTriangulator {
  public:
+  /// `work_allowance`: the fixed part of the ear-clipping work budget.
+  explicit PolygonTriangulator(uint64_t work_allowance = kEarClipWorkAllowance)
+      : work_budget_(work_allowance) {}
+
   /// Appends the triangles of the polygon with `n` corners `corners[0..n)`
   /// (vertex indices into `positions`) to `out`, wound like the polygon: n - 2
   /// triangles, or fewer when consecutive corners repeat an index. A convex
@@ -68,6 +81,7 @@ class PolygonTriangulator {
                 std::vector<Triangle>* corner_slots);
 
   TriangulationCounts counts_;
+  uint64_t work_budget_;
   std::vector<uint32_t> ring_;  // input slots after dropping repeated corners
   std::vector<Point2> points_;  // ring_'s positions projected to 2D (counter-clockwise)
   std::vector<uint32_t> prev_, next_;

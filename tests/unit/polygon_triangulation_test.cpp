@@ -257,6 +257,31 @@ TEST(PolygonTriangulation, OversizedConcavePolygonIsFannedAndCounted) {
   EXPECT_EQ(s.counts.oversized_fanned, 1u);
 }
 
+TEST(PolygonTriangulation, WorkBudgetBoundsEarClippingOverAFile) {
+  // A 100-corner star costs 100 * 100 steps and earns 64 * 100. With no
+  // fixed allowance the budget after each polygon runs 6400 (fanned), 2800,
+  // 9200 (fanned), 5600, 2000, 8400 (fanned), 4800, 1200, 7600 (fanned),
+  // 4000: six clipped, four fanned, as the 64 steps per corner pay for.
+  std::vector<Vec3f> p;
+  for (int i = 0; i < 100; ++i) {
+    double a = 2 * M_PI * i / 100;
+    double r = i % 2 == 0 ? 2.0 : 1.0;
+    p.push_back({static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), 0});
+  }
+  std::vector<uint32_t> ring = iota_ring(100);
+  PolygonTriangulator t(0);
+  std::vector<Triangle> out;
+  for (int i = 0; i < 10; ++i)
+    ASSERT_TRUE(t.triangulate(ring.data(), ring.size(), p, &out, nullptr).is_ok());
+  EXPECT_EQ(out.size(), 10u * 98);
+  EXPECT_EQ(t.counts().ear_clipped, 6u);
+  EXPECT_EQ(t.counts().oversized_fanned, 4u);
+  ImportReport report;
+  t.add_to_report(&report);
+  ASSERT_EQ(report.notes.size(), 1u);
+  EXPECT_NE(report.notes[0].find("exceed the ear-clipping work limit"), std::string::npos);
+}
+
 TEST(PolygonTriangulation, RejectsShortFacesAndBadIndices) {
   std::vector<Vec3f> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   std::vector<Triangle> out;
