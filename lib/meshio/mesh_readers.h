@@ -16,20 +16,40 @@
 namespace lodbake {
 
 // Wavefront OBJ: v, vt, vn, f (v, v/t, v//n, v/t/n, negative = relative);
-// polygons triangulated; other statements noted and ignored.
+// polygons triangulated; texture coordinates and normals become per-corner
+// attributes (per-vertex when their indices equal the vertex indices); other
+// statements noted and ignored. UTF-16 with a byte-order mark is decoded.
+// Rejects (kInvalidInput, with the line number where there is one): no
+// faces, NUL bytes, non-finite numbers, index 0 or out of range, faces with
+// fewer than 3 corners, faces mixing corner forms. `report` may be null.
+// Details and choices: obj_reader.cpp.
 Result<TriangleMesh> parse_obj(const uint8_t* data, size_t size, ImportReport* report);
 
-// OFF / COFF / NOFF / STOFF ASCII (comments allowed before the keyword).
+// ASCII OFF and its [ST][C][N][4][n]OFF variants (comments anywhere, also
+// before the keyword); N and ST give per-vertex normals and texture
+// coordinates, colours are noted and skipped. Counts are checked against
+// the file size before allocating. Binary OFF is kUnsupported; malformed
+// input kInvalidInput. `report` may be null. Details: off_reader.cpp.
 Result<TriangleMesh> parse_off(const uint8_t* data, size_t size, ImportReport* report);
 
 // PLY ascii, binary_little_endian, binary_big_endian; `vertex` x y z
-// (+ nx ny nz, u v / s t / texture_u texture_v), `face` vertex_indices or
-// vertex_index lists; other properties noted and skipped.
+// (+ nx ny nz, u v / s t / texture_u texture_v as per-vertex attributes),
+// `face` vertex_indices or vertex_index lists (polygons triangulated),
+// `tristrips` (-1 restarts); elements in any order; other elements and
+// properties noted and skipped. Rejects (kInvalidInput, with the line or
+// byte): bad magic or header, counts the body cannot hold (checked before
+// allocating), truncation, out-of-range indices, faces with fewer than 3
+// corners, non-finite values, a file without faces or strips; kUnsupported
+// for a version other than 1.0. `report` may be null. Details: ply_reader.cpp.
 Result<TriangleMesh> parse_ply(const uint8_t* data, size_t size, ImportReport* report);
 
 // STL ascii or binary (a binary file is recognised by its size matching the
-// 84 + 50 * count layout even when its header starts with "solid"); corners
-// with exactly equal positions are welded into one vertex.
+// 84 + 50 * count layout even when its header starts with "solid"; a file
+// that matches neither is rejected, never guessed at); corners with exactly
+// equal positions are welded into one vertex, numbered by first appearance
+// (report->welded_vertices counts the merged corners); facet normals are
+// noted and ignored; non-finite coordinates are rejected. `report` may be
+// null. Details: stl_reader.cpp.
 Result<TriangleMesh> parse_stl(const uint8_t* data, size_t size, ImportReport* report);
 
 // glTF, GLB and Draco (.drc) are read by lib/dracoio/draco_io.h.

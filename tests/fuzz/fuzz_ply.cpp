@@ -1,0 +1,89 @@
+// Fuzz target for parse_ply. On success it checks what every reader promises
+// (indices in range, finite values, attribute sizes) and that re-encoding
+// the mesh as binary little-endian PLY and reading it back gives the same
+// mesh. On failure the message must be one non-empty line.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "formats/support/file_io.h"
+#include "lib/meshio/mesh_readers.h"
+
+namespace {
+
+using lodbake::AttributeBinding;
+using lodbake::Bytes;
+using lodbake::TriangleMesh;
+
+void require(bool condition) {
+  if (!condition) std::abort();
+}
+
+void append(Bytes* out, const void* p, size_t n) {
+  const auto* b = static_cast<const uint8_t*>(p);
+  out->insert(out->end(), b, b + n);
+}
+
+Bytes encode_binary_ply(const TriangleMesh& mesh) {
+  const bool normals = mesh.normals.present();
+  const bool texcoords = mesh.texcoords.present();
+  std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " +
+                       std::to_string(mesh.positions.size()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (texcoords) header += "property float u\nproperty float v\n";
+  header += "element face " + std::to_string(mesh.triangles.size()) +
+            "\nproperty list uchar uint vertex_indices\nend_header\n";
+  Bytes out(header.begin(), header.end());
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    append(&out, mesh.positions[v].data(), 12);
+    if (normals) append(&out, &mesh.normals.values[3 * v], 12);
+    if (texcoords) append(&out, &mesh.texcoords.values[2 * v], 8);
+  }
+  for (const auto& t : mesh.triangles) {
+    out.push_back(3);
+    append(&out, t.data(), 12);
+  }
+  return out;
+}
+
+void check_attribute(const lodbake::MeshAttribute& a, uint32_t components, size_t vertices) {
+  if (!a.present()) return;
+  require(a.binding == AttributeBinding::kPerVertex);
+  require(a.components == components);
+  require(a.values.size() == components * vertices);
+  for (float f : a.values)
+    require(std::isfinite(f));
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  lodbake::ImportReport report;
+  lodbake::Result<TriangleMesh> result = lodbake::parse_ply(data, size, &report);
+  if (!result.is_ok()) {
+    const std::string& message = result.status().message();
+    require(!message.empty() && message.find('\n') == std::string::npos);
+    return 0;
+  }
+  const TriangleMesh& mesh = result.value();
+  require(report.format.rfind("ply-", 0) == 0);
+  for (const auto& p : mesh.positions) {
+    for (float c : p)
+      require(std::isfinite(c));
+  }
+  for (const auto& t : mesh.triangles) {
+    for (uint32_t v : t)
+      require(v < mesh.positions.size());
+  }
+  check_attribute(mesh.normals, 3, mesh.positions.size());
+  check_attribute(mesh.texcoords, 2, mesh.positions.size());
+
+  Bytes again = encode_binary_ply(mesh);
+  lodbake::Result<TriangleMesh> reread = lodbake::parse_ply(again.data(), again.size(), nullptr);
+  require(reread.is_ok());
+  require(reread.value() == mesh);
+  return 0;
+}
