@@ -7,6 +7,7 @@
 #include "lib/dracoio/draco_convert.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -272,6 +273,15 @@ Status check_mesh_for_export(const TriangleMesh& mesh) {
   const size_t v = mesh.positions.size();
   if (mesh.triangles.empty()) return invalid_input("the mesh has no triangles");
   if (v > 0xFFFFFFFEull) return invalid_input("the mesh has more than 2^32 - 2 vertices");
+  for (size_t i = 0; i < v; ++i) {
+    for (float c : mesh.positions[i]) {
+      // glTF requires POSITION min/max, which JSON cannot hold for NaN or inf.
+      if (!std::isfinite(c)) {
+        return invalid_input("vertex " + str(i) +
+                             " has a non-finite coordinate, which glTF cannot store");
+      }
+    }
+  }
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (uint32_t i : mesh.triangles[t]) {
       if (i >= v) {

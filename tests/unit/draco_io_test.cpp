@@ -276,6 +276,7 @@ TEST(GltfImport, GlbGivesTheSameMeshAsGltf) {
   ASSERT_TRUE(binary.is_ok()) << binary.status().message();
   EXPECT_EQ(text.value(), binary.value());
   EXPECT_EQ(report.format, "glb");
+  maybe_regenerate(corpus_dir() + "gltf/instanced_scene.glb", scene_as_glb(scene_json()));
 }
 
 TEST(GltfImport, WithoutSceneUsesSceneZeroAndWithoutScenesEveryRoot) {
@@ -618,6 +619,7 @@ TEST(DracoImport, TetrahedronRoundTrip) {
 TEST(DracoImport, SeamAttributesBecomePerCorner) {
   const TriangleMesh c = cube();
   const Bytes drc = encode_drc(c);
+  maybe_regenerate(corpus_dir() + "draco/cube_normals_texcoords.drc", drc);
   ImportReport report;
   auto r = parse_draco(drc.data(), drc.size(), &report);
   ASSERT_TRUE(r.is_ok()) << r.status().message();
@@ -640,7 +642,9 @@ TEST(DracoImport, PointCloudAndGarbageAreRefused) {
   draco::Encoder encoder;
   draco::EncoderBuffer buffer;
   ASSERT_TRUE(encoder.EncodePointCloudToBuffer(*cloud, &buffer).ok());
-  auto r = parse_draco(reinterpret_cast<const uint8_t*>(buffer.data()), buffer.size(), nullptr);
+  const Bytes cloud_bytes(buffer.data(), buffer.data() + buffer.size());
+  maybe_regenerate(corpus_dir() + "draco/point_cloud.drc", cloud_bytes);
+  auto r = parse_draco(cloud_bytes.data(), cloud_bytes.size(), nullptr);
   expect_error(r, ErrorKind::kUnsupported, "holds a point cloud, not a triangle mesh");
 
   const Bytes garbage = to_bytes("this is not a Draco file at all");
@@ -714,6 +718,11 @@ TEST(GlbExport, InvalidMeshesAreRefused) {
   auto n = write_glb(bad_normals);
   ASSERT_FALSE(n.is_ok());
   EXPECT_EQ(n.status().message(), "normals are per vertex but have 1 values for 4 vertices");
+  TriangleMesh nan = tetrahedron();
+  nan.positions[3][1] = std::nanf("");
+  auto f = write_glb(nan);
+  ASSERT_FALSE(f.is_ok());
+  EXPECT_EQ(f.status().message(), "vertex 3 has a non-finite coordinate, which glTF cannot store");
 }
 
 }  // namespace
