@@ -24,8 +24,14 @@ std::string att_name(const draco::PointAttribute& att) {
   return draco::GeometryAttribute::TypeToString(att.attribute_type());
 }
 
-// Every point's mapping leads to a stored value.
+// The attribute holds numbers, and every point's mapping leads to a stored
+// value. DT_BOOL is refused before any read: Draco's ConvertValue loads it as
+// a C++ bool, which is undefined for decoded bytes other than 0 and 1.
 Status check_mapping(const draco::PointAttribute& att, uint32_t num_points) {
+  if (att.data_type() < draco::DT_INT8 || att.data_type() > draco::DT_FLOAT64) {
+    return invalid_input("Draco " + att_name(att) + " attribute has data type " +
+                         str(static_cast<uint64_t>(att.data_type())) + ", not a number type");
+  }
   if (att.is_mapping_identity()) {
     if (att.size() < num_points) {
       return invalid_input("Draco " + att_name(att) + " attribute has " + str(att.size()) +

@@ -1,30 +1,24 @@
 // Draco (.drc) import: draco::Decoder on the bytes, then the conversion of
 // draco_convert.h. Draco validates its own bitstream (header, version,
-// connectivity); the conversion then range-checks everything it reads, and
-// every exception is caught here. Point clouds are refused: lodbake needs
-// triangles.
+// connectivity) once draco_header.cpp has refused legacy bitstream versions;
+// the conversion then range-checks everything it reads, and every exception
+// is caught here. Point clouds are refused: lodbake needs triangles.
 #include <new>
 #include <string>
 
 #include "draco/compression/decode.h"
 #include "draco/core/decoder_buffer.h"
 #include "lib/dracoio/draco_convert.h"
+#include "lib/dracoio/draco_header.h"
 #include "lib/dracoio/draco_io.h"
 
 namespace lodbake {
 namespace {
 
 Result<TriangleMesh> parse_draco_unchecked(const uint8_t* data, size_t size, ImportReport* report) {
+  LODBAKE_RETURN_IF_ERROR(dracoio::check_draco_header(data, size));
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(data), size);
-  const auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
-  if (!type.ok()) return invalid_input("not a Draco file: " + type.status().error_msg_string());
-  if (type.value() == draco::POINT_CLOUD) {
-    return unsupported("the Draco file holds a point cloud, not a triangle mesh");
-  }
-  if (type.value() != draco::TRIANGULAR_MESH) {
-    return invalid_input("the Draco file holds an unknown geometry type");
-  }
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) {

@@ -29,8 +29,14 @@
 //   has them; otherwise they are dropped with a note.
 // - Instancing can multiply geometry: the total of decoded and instanced
 //   vertices and triangles is capped at max(2^22, 64 x input bytes).
+// - Draco itself is not bounded in time: a crafted 200-byte Draco stream can
+//   keep its texture-coordinate prediction decoder busy for seconds (it
+//   loops over an orientation count read from the stream). Each compressed
+//   bufferView is therefore decoded at most once.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <new>
 #include <string>
 #include <utility>
@@ -39,6 +45,7 @@
 #include "draco/compression/decode.h"
 #include "draco/core/decoder_buffer.h"
 #include "lib/dracoio/draco_convert.h"
+#include "lib/dracoio/draco_header.h"
 #include "lib/dracoio/draco_io.h"
 #include "lib/dracoio/gltf_accessors.h"
 #include "lib/dracoio/gltf_document.h"
@@ -55,7 +62,7 @@ using dracoio::RawMesh;
 
 constexpr uint64_t kMinBudget = uint64_t{1} << 22;
 constexpr uint64_t kBudgetPerInputByte = 64;
-constexpr int64_t kModeTriangles = 4, kModeStrip = 5, kModeFan = 6;
+constexpr int64_t kModeTriangles = 4, kModeStrip = 5;  // 6 is TRIANGLE_FAN
 
 std::string str(uint64_t v) {
   return std::to_string(v);
@@ -105,6 +112,7 @@ class GltfImporter {
   uint64_t used_ = 0;
   std::vector<std::vector<std::unique_ptr<Primitive>>> cache_;
   std::vector<std::string> notes_;
+  std::map<uint64_t, std::shared_ptr<const draco::Mesh>> draco_meshes_;  // by bufferView
   RawMesh out_;
   bool normals_all_ = true, normals_any_ = false;
   bool texcoords_all_ = true, texcoords_any_ = false;
@@ -222,19 +230,22 @@ Status GltfImporter::decode_draco_primitive(const Json& ext, int64_t normal, int
   if (position_id < 0) return invalid_input(ext_where + " has no POSITION attribute id");
   LODBAKE_ASSIGN_OR_RETURN(const int64_t normal_id, id_of("NORMAL"));
   LODBAKE_ASSIGN_OR_RETURN(const int64_t texcoord_id, id_of("TEXCOORD_0"));
-  draco::DecoderBuffer buffer;
-  buffer.Init(reinterpret_cast<const char*>(bytes.data), bytes.size);
-  const auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
-  if (!type.ok() || type.value() != draco::TRIANGULAR_MESH) {
-    return invalid_input(ext_where + ": the bufferView is not a Draco triangle mesh");
+  // Each compressed bufferView is decoded once however many primitives use
+  // it: Draco's decoders can spend seconds on a few crafted bytes.
+  std::shared_ptr<const draco::Mesh>& mesh = draco_meshes_[view];
+  if (mesh == nullptr) {
+    const Status header = dracoio::check_draco_header(bytes.data, bytes.size);
+    if (!header.is_ok()) return Status(header.kind(), ext_where + ": " + header.message());
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(bytes.data), bytes.size);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok()) {
+      return invalid_input(ext_where +
+                           ": Draco decoding failed: " + decoded.status().error_msg_string());
+    }
+    mesh = std::shared_ptr<const draco::Mesh>(std::move(decoded).value());
   }
-  draco::Decoder decoder;
-  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok()) {
-    return invalid_input(ext_where +
-                         ": Draco decoding failed: " + decoded.status().error_msg_string());
-  }
-  const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
   LODBAKE_RETURN_IF_ERROR(
       charge(uint64_t{mesh->num_points()} + mesh->num_faces(), where + " (Draco-compressed)"));
   LODBAKE_ASSIGN_OR_RETURN(

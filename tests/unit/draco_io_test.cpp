@@ -419,6 +419,28 @@ TEST(GltfImport, DracoCompressedPrimitive) {
   }
 }
 
+TEST(GltfImport, PrimitivesSharingACompressedBufferView) {
+  // Two primitives over one Draco bufferView (decoded once, used twice).
+  const Bytes glb = read_data("cube_draco.glb");
+  uint32_t json_length = 0;
+  std::memcpy(&json_length, &glb[12], 4);
+  Json j = Json::parse(glb.begin() + 20, glb.begin() + 20 + json_length);
+  const Bytes bin(glb.begin() + 20 + json_length + 8, glb.end());
+  j["meshes"][0]["primitives"].push_back(j["meshes"][0]["primitives"][0]);
+  j["meshes"][0]["primitives"][1]["attributes"].erase("NORMAL");
+  j["meshes"][0]["primitives"][1]["extensions"]["KHR_draco_mesh_compression"]["attributes"].erase(
+      "NORMAL");
+  ImportReport report;
+  auto r = gltf(make_glb(j.dump(), bin), &report);
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  EXPECT_EQ(r.value().triangles.size(), 24u);
+  EXPECT_EQ(r.value().positions.size(), 8u);
+  EXPECT_FALSE(r.value().normals.present());
+  EXPECT_TRUE(has_note(report, "ignored NORMAL: only some triangle primitives have it"));
+}
+
+// Hostile glTF.
+
 TEST(GltfHostile, IndexOutOfRange) {
   Bytes bin = scene_buffer();
   bin[48] = 200;  // first index
@@ -654,6 +676,28 @@ TEST(DracoImport, PointCloudAndGarbageAreRefused) {
   for (size_t len = 0; len < drc.size(); ++len) {
     EXPECT_FALSE(parse_draco(drc.data(), len, nullptr).is_ok()) << len;
   }
+}
+
+TEST(DracoImport, LegacyBitstreamVersionsAreRefusedBeforeDecoding) {
+  // Found by fuzz_draco: 34 bytes claiming bitstream 1.61 made Draco's
+  // legacy edgebreaker path allocate and fill about 24 GB.
+  auto f = read_file(corpus_dir() + "draco/legacy_v1_huge_corner_table.drc");
+  ASSERT_TRUE(f.is_ok()) << f.status().message();
+  expect_error(parse_draco(f.value().data(), f.value().size(), nullptr), ErrorKind::kUnsupported,
+               "Draco mesh bitstream version 1.61 is not supported (only 2.2");
+  Bytes drc = encode_drc(tetrahedron());
+  drc[6] = 1;  // 2.1
+  expect_error(parse_draco(drc.data(), drc.size(), nullptr), ErrorKind::kUnsupported,
+               "bitstream version 2.1 is not supported");
+}
+
+TEST(DracoImport, BoolAttributeIsRefusedBeforeItIsRead) {
+  // Found by fuzz_draco: a POSITION of Draco type DT_BOOL holding 0xFF made
+  // Draco's ConvertValue load an invalid bool (undefined behaviour).
+  auto f = read_file(corpus_dir() + "draco/crash_bool_attribute.drc");
+  ASSERT_TRUE(f.is_ok()) << f.status().message();
+  expect_error(parse_draco(f.value().data(), f.value().size(), nullptr), ErrorKind::kInvalidInput,
+               "attribute has data type 11, not a number type");
 }
 
 // ---------------------------------------------------------------- GLB export
