@@ -1,0 +1,65 @@
+// Internal to lib/dracoio: a glTF 2.0 asset loaded from memory, with its
+// container checked (GLB header and chunks, JSON nesting) and every buffer
+// resolved to bytes (GLB BIN chunk or base64 data: URI), plus typed JSON
+// accessors that turn a wrong type or an out-of-range index into a one-line
+// Status naming the object ("node 3: 'mesh' 7 out of range (2 meshes)").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+namespace dracoio {
+
+using Json = nlohmann::json;
+
+struct ByteSpan {
+  const uint8_t* data = nullptr;
+  size_t size = 0;
+};
+
+struct GltfDocument {
+  Json root;                      // the top-level JSON object
+  bool binary = false;            // read from a GLB container
+  std::vector<ByteSpan> buffers;  // buffers[i].size == buffers[i].byteLength
+  std::vector<Bytes> decoded;     // storage behind data: URI buffers
+};
+
+// Deepest JSON nesting accepted; real assets stay far below it, and the bound
+// keeps every JSON walk (ours and the library's) shallow.
+constexpr size_t kMaxJsonDepth = 64;
+
+// Parses a .gltf (JSON text) or .glb (binary container) held in memory.
+// External buffer URIs are refused: there is no file system context.
+Result<GltfDocument> load_gltf_document(const uint8_t* data, size_t size);
+
+// Members of `object` named `key`. Absent members give an empty array / the
+// default; a member of the wrong type or out of range is an error naming
+// `where` and `key`.
+Result<const Json*> member_array(const Json& object, const char* key, const std::string& where);
+Result<const Json*> member_object(const Json& object, const char* key, const std::string& where);
+// An index into an array of `limit` elements called `what`; -1 when absent.
+Result<int64_t> member_index(const Json& object, const char* key, size_t limit, const char* what,
+                             const std::string& where);
+// A non-negative integer no larger than `max`; `default_value` when absent.
+Result<uint64_t> member_uint(const Json& object, const char* key, uint64_t default_value,
+                             uint64_t max, const std::string& where);
+// Exactly `count` finite numbers; empty when absent.
+Result<std::vector<double>> member_numbers(const Json& object, const char* key, size_t count,
+                                           const std::string& where);
+// The value of an array element or member as an index (integral number).
+Result<int64_t> as_index(const Json& value, size_t limit, const char* what,
+                         const std::string& where);
+
+// The length of the named top-level array (0 when absent or not an array).
+size_t top_level_count(const Json& root, const char* key);
+
+}  // namespace dracoio
+}  // namespace lodbake
