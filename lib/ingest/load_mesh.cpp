@@ -1,6 +1,7 @@
 #include "lib/ingest/load_mesh.h"
 
 #include "lib/core/sha256.h"
+#include "lib/core/unreferenced_vertices.h"
 #include "lib/meshio/mesh_import.h"
 
 namespace lodbake {
@@ -25,8 +26,11 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
     loaded->check_after_repair = check_mesh(loaded->mesh);
     final_check = &*loaded->check_after_repair;
   }
-  if (!options.policy) return Status::ok();
-  return check_usable(*final_check, *options.policy);
+  LODBAKE_RETURN_IF_ERROR(options.policy ? check_usable(*final_check, *options.policy)
+                                         : Status::ok());
+  if (options.drop_unreferenced && final_check->out_of_range_triangles == 0)
+    loaded->dropped_unreferenced = remove_unreferenced_vertices(loaded->mesh);
+  return Status::ok();
 }
 
 }  // namespace lodbake

@@ -19,6 +19,9 @@ namespace lodbake {
 
 struct LoadOptions {
   bool repair = false;  // run repair_mesh() before the policy is applied
+  // Drop vertices no triangle uses (after repair, before the policy), for
+  // tools that store the mesh: they would only widen its bounding box.
+  bool drop_unreferenced = false;
   // What the calling tool cannot take; nothing means "accept any mesh the
   // reader could parse" (the linter's choice).
   std::optional<UsePolicy> policy = UsePolicy();
@@ -30,6 +33,7 @@ struct LoadedMesh {
   MeshCheckReport check;               // of the mesh as imported
   std::optional<RepairReport> repair;  // when LoadOptions::repair
   std::optional<MeshCheckReport> check_after_repair;
+  uint64_t dropped_unreferenced = 0;  // by LoadOptions::drop_unreferenced
   uint64_t file_bytes = 0;
   std::string sha256;  // of the file's bytes
 };

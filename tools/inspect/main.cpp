@@ -272,9 +272,10 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
   }
   if ((options.strict || options.validate) && check.has_problems()) {
     std::vector<std::string> problems = check.problems();
-    return tool.fail(path, Status(ErrorKind::kValidation,
-                                  std::to_string(problems.size()) +
-                                      " kinds of problems (--strict): " + problems.front()));
+    std::string more = problems.size() == 1 ? std::string()
+                                            : " (and " + std::to_string(problems.size() - 1) +
+                                                  " more kinds of problems)";
+    return tool.fail(path, Status(ErrorKind::kValidation, "--strict: " + problems.front() + more));
   }
   return 0;
 }

@@ -33,6 +33,7 @@ std::string base_name(const std::string& path) {
 int pack(const Tool& tool, const std::string& input, const PackOptions& options) {
   LoadOptions load;
   load.repair = options.repair;
+  load.drop_unreferenced = true;
   LoadedMesh loaded;
   Status status = load_mesh(input, load, &loaded);
   print_import_notes(tool, input, loaded.import);
@@ -40,8 +41,13 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   if (!status.is_ok()) return tool.fail(input, status);
   const MeshCheckReport& final_check =
       loaded.check_after_repair ? *loaded.check_after_repair : loaded.check;
-  for (const std::string& problem : final_check.problems())
-    tool.warn(input, "kept as it is: " + problem + " (use --repair to fix)");
+  for (MeshProblem problem : kAllMeshProblems) {
+    if (problem == MeshProblem::kUnreferencedVertices || final_check.count(problem) == 0) continue;
+    tool.warn(input, "kept as it is: " + final_check.describe(problem) + " (use --repair to fix)");
+  }
+  if (loaded.dropped_unreferenced != 0)
+    tool.info(input, "dropped " + std::to_string(loaded.dropped_unreferenced) +
+                         " unreferenced vertices (no triangle uses them)");
 
   MetaSection meta = make_meta("lodbake-pack");
   meta.options = {
@@ -67,6 +73,7 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
                            {"import", to_json(loaded.import)},
                            {"check", to_json(loaded.check)}};
   if (loaded.repair) report["repair"] = to_json(*loaded.repair);
+  report["dropped_unreferenced_vertices"] = loaded.dropped_unreferenced;
   if (encoding.quantize) {
     Result<QuantizationReport> q = measure_quantization(loaded.mesh.positions, encoding.bits);
     if (!q.is_ok()) return tool.fail(input, q.status());
