@@ -1,6 +1,10 @@
-// Mesh import and export through Draco: glTF 2.0 / GLB (Draco's glTF
-// decoder and encoder, built on tinygltf) and Draco-compressed .drc meshes.
-// The only translation unit of the import path that includes Draco headers.
+// Mesh import and export for glTF 2.0 / GLB and Draco-compressed .drc
+// meshes. glTF is parsed by lodbake's own bounded reader (nlohmann-json;
+// Draco 1.5.5's glTF decoder is unsafe on hostile input and ignores the
+// default scene, see gltf_import.cpp); Draco decodes .drc files and
+// KHR_draco_mesh_compression primitives, and its glTF encoder writes GLB.
+// Draco headers stay inside lib/dracoio. No function throws; all parse from
+// memory and never touch the file system.
 #pragma once
 
 #include <cstddef>
@@ -19,12 +23,14 @@ namespace lodbake {
 // equal positions are welded (report->welded_vertices); attributes that then
 // disagree become per-corner. Texture v is flipped to a bottom-left origin.
 // Points and lines primitives, other attributes, materials and the like are
-// skipped with one note each. External (non data:) buffer URIs are refused.
+// skipped with one note each. External (non data:) buffer URIs are refused
+// (kUnsupported). report->format is "gltf" or "glb".
 Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report);
 
 // A Draco-compressed mesh (.drc): one vertex per Draco POSITION value (not
-// welded further), the first NORMAL and TEX_COORD per vertex or per corner.
-// Point clouds are refused (kUnsupported).
+// welded further), the first NORMAL and TEX_COORD per vertex or per corner
+// (texture coordinates as stored). Point clouds and bitstream versions other
+// than 2.2 are refused (kUnsupported). report->format is "draco".
 Result<TriangleMesh> parse_draco(const uint8_t* data, size_t size, ImportReport* report);
 
 // GLB (binary glTF 2.0), uncompressed, with normals and texture coordinates

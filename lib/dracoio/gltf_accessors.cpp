@@ -187,7 +187,7 @@ Result<std::vector<float>> read_float_accessor(const GltfDocument& doc, int64_t 
   size_t out = 0;
   for (uint64_t i = 0; i < a.count; ++i, element += a.stride) {
     for (uint32_t c = 0; c < components; ++c) {
-      values[out++] = component_as_float(a, element + c * a.component_size);
+      values[out++] = component_as_float(a, element + size_t{c} * a.component_size);
     }
   }
   return values;

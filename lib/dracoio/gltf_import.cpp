@@ -69,8 +69,8 @@ std::string str(uint64_t v) {
 }
 
 const char* mode_name(int64_t mode) {
-  static const char* const kNames[] = {"POINTS",    "LINES",          "LINE_LOOP",   "LINE_STRIP",
-                                       "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+  static constexpr const char* kNames[] = {
+      "POINTS", "LINES", "LINE_LOOP", "LINE_STRIP", "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
   return kNames[mode];
 }
 
@@ -164,10 +164,10 @@ Status GltfImporter::check_extensions() {
 }
 
 void GltfImporter::note_ignored_top_level() {
-  const char* const kKinds[][2] = {{"materials", "material"},   {"textures", "texture"},
-                                   {"images", "image"},         {"samplers", "sampler"},
-                                   {"animations", "animation"}, {"skins", "skin"},
-                                   {"cameras", "camera"}};
+  static constexpr const char* kKinds[][2] = {{"materials", "material"},   {"textures", "texture"},
+                                              {"images", "image"},         {"samplers", "sampler"},
+                                              {"animations", "animation"}, {"skins", "skin"},
+                                              {"cameras", "camera"}};
   for (const auto& kind : kKinds) {
     const size_t n = dracoio::top_level_count(doc_.root, kind[0]);
     if (n > 0) note("ignored " + str(n) + " " + (n == 1 ? kind[1] : kind[0]));
@@ -394,7 +394,7 @@ Status GltfImporter::append_instance(const RawMesh& prim, const Mat4& m) {
   if (has_normals && normals_all_) {
     // Inverse transpose of the linear part, up to the factor 1/det: the
     // cofactor matrix, with det's sign so mirrored normals point outward.
-    auto a = [&](int r, int c) { return m[static_cast<size_t>(c * 4 + r)]; };
+    auto a = [&](int r, int c) { return m[static_cast<size_t>(c) * 4 + static_cast<size_t>(r)]; };
     const double sign = det < 0 ? -1.0 : 1.0;
     const double cof[3][3] = {
         {a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2),

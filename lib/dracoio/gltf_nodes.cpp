@@ -23,7 +23,7 @@ std::string str(uint64_t v) {
 
 // Column-major index of row r, column c.
 constexpr size_t at(int r, int c) {
-  return static_cast<size_t>(c * 4 + r);
+  return static_cast<size_t>(c) * 4 + static_cast<size_t>(r);
 }
 
 Result<Mat4> node_transform(const Json& node, const std::string& where) {
