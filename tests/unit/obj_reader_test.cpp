@@ -3,7 +3,6 @@
 // in-memory files for each feature and failure.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -100,22 +99,6 @@ TEST(ObjReader, BeetleNotesItsIgnoredStatements) {
   EXPECT_TRUE(has_note(report, "ignored 1 'mtllib' statements (materials)")) << all_notes(report);
   EXPECT_TRUE(has_note(report, "ignored 1 'o' statements (object names)")) << all_notes(report);
   EXPECT_TRUE(has_note(report, "ignored 1 's' statements (smoothing groups)")) << all_notes(report);
-}
-
-TEST(ObjReader, ArmadilloImportsQuickly) {
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
-  Bytes bytes = shared_file("meshes/igl_armadillo.obj");
-  auto start = std::chrono::steady_clock::now();
-  Result<TriangleMesh> mesh = parse_obj(bytes.data(), bytes.size(), nullptr);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_TRUE(mesh.is_ok());
-  // 4 MB, 86k triangles: tens of milliseconds; the bound leaves room for a
-  // busy machine while catching an accidentally quadratic reader.
-  EXPECT_LT(seconds, 0.5) << bytes.size() << " bytes";
-  std::printf("igl_armadillo.obj: %.1f ms\n", seconds * 1e3);
-#else
-  GTEST_SKIP() << "timing only in optimized builds without sanitizers";
-#endif
 }
 
 struct BadCase {

@@ -3,7 +3,6 @@
 // in-memory files for each header variant and failure.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -87,20 +86,6 @@ TEST(OffReader, PolygonsAreFannedAndCounted) {
   ImportReport mpi_report;
   ASSERT_TRUE(parse_shared("meshes/cgal_mpi.off", &mpi_report).is_ok());
   EXPECT_EQ(mpi_report.polygons_triangulated, 52u - 13u);
-}
-
-TEST(OffReader, RefinedElephantImportsQuickly) {
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
-  Bytes bytes = shared_file("meshes/cgal_refined_elephant.off");
-  auto start = std::chrono::steady_clock::now();
-  Result<TriangleMesh> mesh = parse_off(bytes.data(), bytes.size(), nullptr);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_TRUE(mesh.is_ok());
-  EXPECT_LT(seconds, 0.5) << bytes.size() << " bytes";
-  std::printf("cgal_refined_elephant.off: %.1f ms\n", seconds * 1e3);
-#else
-  GTEST_SKIP() << "timing only in optimized builds without sanitizers";
-#endif
 }
 
 struct BadCase {
