@@ -1,0 +1,60 @@
+// The QEM edge-collapse engine (Garland & Heckbert 1997) and the progressive
+// mesh it records (Hoppe 1996). The entry point every tool and benchmark uses.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include "formats/mesh/progressive_mesh.h"
+#include "formats/mesh/triangle_mesh.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+
+enum class Placement {
+  kHalf,     // the surviving vertex keeps one endpoint's position (PM, streaming, strips)
+  kOptimal,  // the quadric's minimiser (Eigen 3x3 solve), endpoint/midpoint when singular
+};
+
+struct SimplifyOptions {
+  Placement placement = Placement::kHalf;
+  // Stop criteria: simplification stops at the first one reached. With none
+  // set it runs until no legal collapse is left.
+  std::optional<uint64_t> target_triangles;  // stop at or below this many triangles
+  std::optional<double> target_ratio;        // of the input triangles, in (0, 1]
+  std::optional<double> max_error;           // largest collapse error allowed, relative to the
+                                    // bounding-box diagonal (like meshoptimizer's target_error)
+  double boundary_weight = 1.0;  // weight of the perpendicular boundary constraint quadrics
+  bool lock_border = false;      // never move or remove boundary vertices
+  double max_normal_change_degrees = 150.0;  // refuse collapses turning a face normal more
+  bool permissive = false;                   // allow collapses across texture seams
+  bool record_pm = false;                    // also record the progressive mesh
+  // Called now and then with the fraction done (0..1); may be empty.
+  std::function<void(double)> progress;
+};
+
+struct SimplifyStats {
+  uint64_t input_triangles = 0;
+  uint64_t output_triangles = 0;
+  uint64_t collapses = 0;
+  uint64_t refused_link = 0;      // would make the mesh non-manifold
+  uint64_t refused_flip = 0;      // would flip or nearly flip a face normal
+  uint64_t refused_other = 0;     // pockets, locked border, seams
+  double max_collapse_error = 0;  // largest collapse cost applied, relative to the diagonal
+};
+
+struct SimplifyResult {
+  TriangleMesh mesh;                  // the simplified mesh (unused vertices removed)
+  std::optional<ProgressiveMesh> pm;  // when SimplifyOptions::record_pm
+  SimplifyStats stats;
+};
+
+// Simplifies `input`.
+// \pre input passed check_usable(): finite, no out-of-range index, edge-manifold
+//      (the engine refuses non-manifold edges with kInvalidInput otherwise).
+// Deterministic: same input and options, identical result (ties broken by
+// vertex index, no pointer order, no unordered iteration in the result).
+Result<SimplifyResult> simplify(const TriangleMesh& input, const SimplifyOptions& options);
+
+}  // namespace lodbake
