@@ -17,62 +17,62 @@ void put(uint8_t* out, size_t offset, T value) {
 }
 
 template <typename T>
-T get(const uint8_t* data, size_t offset) {
-  T value;
-  std::memcpy(&value, data + offset, sizeof(T));
-  return value;
+void get(const uint8_t* data, size_t offset, T* value) {
+  std::memcpy(value, data + offset, sizeof(T));
+}
+
+// The byte offset of every fixed-width field, listed once so that encoding
+// and decoding cannot disagree. `Header` is ContainerHeader, const or not;
+// the magic (bytes 0..7) and the header CRC (bytes 44..47, computed when
+// encoding) are handled by the callers.
+template <typename Header, typename Visit>
+void header_fields(Header& header, Visit visit) {
+  visit(8, header.major);
+  visit(10, header.minor);
+  visit(12, header.flags);
+  visit(16, header.file_size);
+  visit(24, header.table_offset);
+  visit(32, header.section_count);
+  visit(36, header.table_crc32c);
+  visit(40, header.reserved);
+}
+
+// The same for a section-table entry; the tag (bytes 0..3) is the callers'.
+template <typename Entry, typename Visit>
+void entry_fields(Entry& entry, Visit visit) {
+  visit(4, entry.codec);
+  visit(6, entry.flags);
+  visit(8, entry.offset);
+  visit(16, entry.stored_size);
+  visit(24, entry.decoded_size);
+  visit(32, entry.crc32c);
+  visit(36, entry.reserved);
 }
 
 }  // namespace
 
 void encode_header(const ContainerHeader& header, uint8_t* out) {
   std::memcpy(out, kContainerMagic, sizeof(kContainerMagic));
-  put<uint16_t>(out, 8, header.major);
-  put<uint16_t>(out, 10, header.minor);
-  put<uint32_t>(out, 12, header.flags);
-  put<uint64_t>(out, 16, header.file_size);
-  put<uint64_t>(out, 24, header.table_offset);
-  put<uint32_t>(out, 32, header.section_count);
-  put<uint32_t>(out, 36, header.table_crc32c);
-  put<uint32_t>(out, 40, header.reserved);
+  header_fields(header, [out](size_t offset, auto value) { put(out, offset, value); });
   put<uint32_t>(out, 44, crc32c(out, kHeaderChecksummedBytes));
 }
 
 ContainerHeader decode_header(const uint8_t* data) {
   ContainerHeader header;
-  header.major = get<uint16_t>(data, 8);
-  header.minor = get<uint16_t>(data, 10);
-  header.flags = get<uint32_t>(data, 12);
-  header.file_size = get<uint64_t>(data, 16);
-  header.table_offset = get<uint64_t>(data, 24);
-  header.section_count = get<uint32_t>(data, 32);
-  header.table_crc32c = get<uint32_t>(data, 36);
-  header.reserved = get<uint32_t>(data, 40);
-  header.header_crc32c = get<uint32_t>(data, 44);
+  header_fields(header, [data](size_t offset, auto& field) { get(data, offset, &field); });
+  get(data, 44, &header.header_crc32c);
   return header;
 }
 
 void encode_entry(const SectionEntry& entry, uint8_t* out) {
   std::memcpy(out, entry.tag.data(), 4);
-  put<uint16_t>(out, 4, entry.codec);
-  put<uint16_t>(out, 6, entry.flags);
-  put<uint64_t>(out, 8, entry.offset);
-  put<uint64_t>(out, 16, entry.stored_size);
-  put<uint64_t>(out, 24, entry.decoded_size);
-  put<uint32_t>(out, 32, entry.crc32c);
-  put<uint32_t>(out, 36, entry.reserved);
+  entry_fields(entry, [out](size_t offset, auto value) { put(out, offset, value); });
 }
 
 SectionEntry decode_entry(const uint8_t* data) {
   SectionEntry entry;
   entry.tag.assign(reinterpret_cast<const char*>(data), 4);
-  entry.codec = get<uint16_t>(data, 4);
-  entry.flags = get<uint16_t>(data, 6);
-  entry.offset = get<uint64_t>(data, 8);
-  entry.stored_size = get<uint64_t>(data, 16);
-  entry.decoded_size = get<uint64_t>(data, 24);
-  entry.crc32c = get<uint32_t>(data, 32);
-  entry.reserved = get<uint32_t>(data, 36);
+  entry_fields(entry, [data](size_t offset, auto& field) { get(data, offset, &field); });
   return entry;
 }
 

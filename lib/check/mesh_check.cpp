@@ -40,8 +40,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
+#include "lib/check/disjoint_sets.h"
 #include "lib/check/exact_predicates.h"
 
 namespace lodbake {
@@ -55,39 +55,6 @@ template <typename T>
 void add_sample(std::vector<T>* samples, const T& value) {
   if (samples->size() < kMaxSamples) samples->push_back(value);
 }
-
-// Union-find with path halving and union by size; iterative, so input depth
-// cannot overflow the stack.
-class DisjointSets {
- public:
-  explicit DisjointSets(size_t n) { reset(n); }
-  size_t find(size_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  // Returns false when a and b were already in one set.
-  bool unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    if (size_[a] < size_[b]) std::swap(a, b);
-    parent_[b] = a;
-    size_[a] += size_[b];
-    return true;
-  }
-  void reset(size_t n) {
-    parent_.resize(n);
-    size_.assign(n, 1);
-    std::iota(parent_.begin(), parent_.end(), size_t{0});
-  }
-
- private:
-  std::vector<size_t> parent_;
-  std::vector<size_t> size_;
-};
 
 // Bucket offsets for a counting sort: offsets[k]..offsets[k+1] is bucket k.
 std::vector<uint64_t> prefix_offsets(const std::vector<uint64_t>& counts) {

@@ -95,29 +95,19 @@ Result<Bytes> write_obj(const TriangleMesh& mesh) {
   out.text("# written by lodbake\n");
   for (const Vec3f& p : mesh.positions) {
     out.text("v ");
-    out.real(p[0]);
-    out.ch(' ');
-    out.real(p[1]);
-    out.ch(' ');
-    out.real(p[2]);
+    out.reals(p.data(), 3);
     out.ch('\n');
   }
   const std::vector<float>& uv = mesh.texcoords.values;
   for (size_t i = 0; mesh.texcoords.present() && i + 1 < uv.size(); i += 2) {
     out.text("vt ");
-    out.real(uv[i]);
-    out.ch(' ');
-    out.real(uv[i + 1]);
+    out.reals(&uv[i], 2);
     out.ch('\n');
   }
   const std::vector<float>& n = mesh.normals.values;
   for (size_t i = 0; mesh.normals.present() && i + 2 < n.size(); i += 3) {
     out.text("vn ");
-    out.real(n[i]);
-    out.ch(' ');
-    out.real(n[i + 1]);
-    out.ch(' ');
-    out.real(n[i + 2]);
+    out.reals(&n[i], 3);
     out.ch('\n');
   }
   const bool has_uv = mesh.texcoords.present();
@@ -153,23 +143,14 @@ Result<Bytes> write_off(const TriangleMesh& mesh) {
   out.integer(mesh.triangles.size());
   out.text(" 0\n");
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    const Vec3f& p = mesh.positions[i];
-    out.real(p[0]);
-    out.ch(' ');
-    out.real(p[1]);
-    out.ch(' ');
-    out.real(p[2]);
+    out.reals(mesh.positions[i].data(), 3);
     if (normals) {
-      for (int k = 0; k < 3; ++k) {
-        out.ch(' ');
-        out.real(mesh.normals.values[i * 3 + k]);
-      }
+      out.ch(' ');
+      out.reals(&mesh.normals.values[i * 3], 3);
     }
     if (st) {
-      for (int k = 0; k < 2; ++k) {
-        out.ch(' ');
-        out.real(mesh.texcoords.values[i * 2 + k]);
-      }
+      out.ch(' ');
+      out.reals(&mesh.texcoords.values[i * 2], 2);
     }
     out.ch('\n');
   }

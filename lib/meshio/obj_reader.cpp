@@ -31,14 +31,13 @@
 #include <cstring>
 #include <limits>
 #include <map>
-#include <new>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "lib/meshio/mesh_readers.h"
 #include "lib/meshio/polygon_triangulation.h"
+#include "lib/meshio/text_mesh_reading.h"
 #include "lib/meshio/text_scanner.h"
 
 namespace lodbake {
@@ -424,20 +423,7 @@ Result<TriangleMesh> ObjReader::read() {
 }  // namespace
 
 Result<TriangleMesh> parse_obj(const uint8_t* data, size_t size, ImportReport* report) {
-  ImportReport local;
-  if (report == nullptr) report = &local;
-  try {
-    std::vector<uint8_t> decoded;
-    std::string note;
-    LODBAKE_RETURN_IF_ERROR(prepare_text(&data, &size, &decoded, &note));
-    if (!note.empty()) report->notes.push_back(note);
-    ObjReader reader(data, size, report);
-    return reader.read();
-  } catch (const std::bad_alloc&) {
-    return runtime_error("out of memory while reading the OBJ file");
-  } catch (const std::length_error&) {
-    return runtime_error("out of memory while reading the OBJ file");
-  }
+  return read_text_mesh<ObjReader>(data, size, report, "OBJ");
 }
 
 }  // namespace lodbake

@@ -25,14 +25,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <new>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "lib/meshio/mesh_readers.h"
 #include "lib/meshio/polygon_triangulation.h"
+#include "lib/meshio/text_mesh_reading.h"
 #include "lib/meshio/text_scanner.h"
 
 namespace lodbake {
@@ -341,20 +340,7 @@ Result<TriangleMesh> OffReader::read() {
 }  // namespace
 
 Result<TriangleMesh> parse_off(const uint8_t* data, size_t size, ImportReport* report) {
-  ImportReport local;
-  if (report == nullptr) report = &local;
-  try {
-    std::vector<uint8_t> decoded;
-    std::string note;
-    LODBAKE_RETURN_IF_ERROR(prepare_text(&data, &size, &decoded, &note));
-    if (!note.empty()) report->notes.push_back(note);
-    OffReader reader(data, size, report);
-    return reader.read();
-  } catch (const std::bad_alloc&) {
-    return runtime_error("out of memory while reading the OFF file");
-  } catch (const std::length_error&) {
-    return runtime_error("out of memory while reading the OFF file");
-  }
+  return read_text_mesh<OffReader>(data, size, report, "OFF");
 }
 
 }  // namespace lodbake

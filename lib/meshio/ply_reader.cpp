@@ -139,7 +139,11 @@ class PlyBodyReader {
     return Status::ok();
   }
 
-  Status read_faces(const PlyElementPlan& e) {
+  // Calls read_list(i, p, mark, n) for the index list of each item of the
+  // element once its length n is read and bounded (mark: where the length
+  // stands); every other property is skipped.
+  template <class ReadList>
+  Status for_each_index_list(const PlyElementPlan& e, ReadList read_list) {
     const PlyElement& element = *e.element;
     const auto& properties = element.properties;
     for (uint64_t i = 0; i < element.count; ++i) {
@@ -152,76 +156,76 @@ class PlyBodyReader {
         const auto mark = src_.mark();
         uint64_t n = 0;
         LODBAKE_RETURN_IF_ERROR(read_list_length(element, i, p, mark, &n));
-        if (n < 3) {
-          return invalid_input(src_.where(mark) + ": " + item(element, i) + " has " +
-                               std::to_string(n) + " corners; a face needs at least 3");
-        }
-        if (n > kMaxFaceCorners) {
-          return invalid_input(src_.where(mark) + ": " + item(element, i) + " has " +
-                               std::to_string(n) + " corners, more than the " +
-                               std::to_string(kMaxFaceCorners) + " lodbake accepts");
-        }
-        corners_.resize(static_cast<size_t>(n));
-        for (size_t c = 0; c < corners_.size(); ++c) {
-          LODBAKE_RETURN_IF_ERROR(read_index(element, i, p, &corners_[c]));
-        }
-        if (n == 3) {
-          mesh_.triangles.push_back({corners_[0], corners_[1], corners_[2]});
-        } else {
-          polygons_.push_back(
-              {mesh_.triangles.size(), polygon_corners_.size(), static_cast<uint32_t>(n)});
-          polygon_corners_.insert(polygon_corners_.end(), corners_.begin(), corners_.end());
-        }
+        LODBAKE_RETURN_IF_ERROR(read_list(i, p, mark, n));
       }
     }
     return Status::ok();
   }
 
+  Status read_faces(const PlyElementPlan& e) {
+    const PlyElement& element = *e.element;
+    return for_each_index_list(
+        e, [&](uint64_t i, const PlyProperty& p, uint64_t mark, uint64_t n) -> Status {
+          if (n < 3) {
+            return invalid_input(src_.where(mark) + ": " + item(element, i) + " has " +
+                                 std::to_string(n) + " corners; a face needs at least 3");
+          }
+          if (n > kMaxFaceCorners) {
+            return invalid_input(src_.where(mark) + ": " + item(element, i) + " has " +
+                                 std::to_string(n) + " corners, more than the " +
+                                 std::to_string(kMaxFaceCorners) + " lodbake accepts");
+          }
+          corners_.resize(static_cast<size_t>(n));
+          for (size_t c = 0; c < corners_.size(); ++c) {
+            LODBAKE_RETURN_IF_ERROR(read_index(element, i, p, &corners_[c]));
+          }
+          if (n == 3) {
+            mesh_.triangles.push_back({corners_[0], corners_[1], corners_[2]});
+          } else {
+            polygons_.push_back(
+                {mesh_.triangles.size(), polygon_corners_.size(), static_cast<uint32_t>(n)});
+            polygon_corners_.insert(polygon_corners_.end(), corners_.begin(), corners_.end());
+          }
+          return Status::ok();
+        });
+  }
+
   Status read_strips(const PlyElementPlan& e) {
     const PlyElement& element = *e.element;
-    const auto& properties = element.properties;
-    for (uint64_t i = 0; i < element.count; ++i) {
-      for (size_t k = 0; k < properties.size(); ++k) {
-        const PlyProperty& p = properties[k];
-        if (e.slots[k] != kSlotIndices) {
-          if (!skip_property(p)) return list_or_read_failure(element, i, p);
-          continue;
-        }
-        const auto mark = src_.mark();
-        uint64_t n = 0;
-        LODBAKE_RETURN_IF_ERROR(read_list_length(element, i, p, mark, &n));
-        uint32_t window[2] = {0, 0};
-        int have = 0;
-        bool odd = false;
-        for (uint64_t j = 0; j < n; ++j) {
-          const uint64_t at = src_.mark();
-          int64_t raw = 0;
-          if (!src_.read_int(p.type, &raw)) return src_.read_failure(item_property(element, i, p));
-          if (raw == -1) {
-            have = 0;
-            odd = false;
-            continue;
+    return for_each_index_list(
+        e, [&](uint64_t i, const PlyProperty& p, uint64_t /*mark*/, uint64_t n) -> Status {
+          uint32_t window[2] = {0, 0};
+          int have = 0;
+          bool odd = false;
+          for (uint64_t j = 0; j < n; ++j) {
+            const uint64_t at = src_.mark();
+            int64_t raw = 0;
+            if (!src_.read_int(p.type, &raw))
+              return src_.read_failure(item_property(element, i, p));
+            if (raw == -1) {
+              have = 0;
+              odd = false;
+              continue;
+            }
+            LODBAKE_RETURN_IF_ERROR(check_index(element, i, at, raw));
+            const auto index = static_cast<uint32_t>(raw);
+            if (have < 2) {
+              window[have++] = index;
+              continue;
+            }
+            Triangle t =
+                odd ? Triangle{window[1], window[0], index} : Triangle{window[0], window[1], index};
+            if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) {
+              mesh_.triangles.push_back(t);
+            } else {
+              ++strip_degenerates_;
+            }
+            window[0] = window[1];
+            window[1] = index;
+            odd = !odd;
           }
-          LODBAKE_RETURN_IF_ERROR(check_index(element, i, at, raw));
-          const auto index = static_cast<uint32_t>(raw);
-          if (have < 2) {
-            window[have++] = index;
-            continue;
-          }
-          Triangle t =
-              odd ? Triangle{window[1], window[0], index} : Triangle{window[0], window[1], index};
-          if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) {
-            mesh_.triangles.push_back(t);
-          } else {
-            ++strip_degenerates_;
-          }
-          window[0] = window[1];
-          window[1] = index;
-          odd = !odd;
-        }
-      }
-    }
-    return Status::ok();
+          return Status::ok();
+        });
   }
 
   Status skip_element(const PlyElementPlan& e) {

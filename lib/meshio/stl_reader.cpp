@@ -25,6 +25,7 @@
 #include "formats/support/byte_reader.h"
 #include "lib/meshio/mesh_readers.h"
 #include "lib/meshio/position_welder.h"
+#include "lib/meshio/text_mesh_reading.h"
 #include "lib/meshio/text_scanner.h"
 
 namespace lodbake {
@@ -190,9 +191,7 @@ class AsciiStlParser {
 
 Result<TriangleMesh> parse_ascii(const uint8_t* data, size_t size, ImportReport* report) {
   std::vector<uint8_t> decoded;
-  std::string note;
-  LODBAKE_RETURN_IF_ERROR(prepare_text(&data, &size, &decoded, &note));
-  if (!note.empty()) report->notes.push_back(note);
+  LODBAKE_RETURN_IF_ERROR(prepare_text_into_report(&data, &size, &decoded, report));
   return AsciiStlParser(data, size).parse(report);
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <charconv>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -30,6 +31,13 @@ class TextOut {
     char buf[32];
     auto r = std::to_chars(buf, buf + sizeof(buf), f);
     out_->insert(out_->end(), buf, r.ptr);
+  }
+  /// `count` floats as real() prints them, separated by single spaces.
+  void reals(const float* values, size_t count) {
+    for (size_t i = 0; i < count; ++i) {
+      if (i != 0) ch(' ');
+      real(values[i]);
+    }
   }
   void integer(uint64_t v) {
     char buf[24];

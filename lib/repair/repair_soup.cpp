@@ -17,6 +17,7 @@
 #include <numeric>
 #include <string>
 
+#include "lib/check/disjoint_sets.h"
 #include "lib/check/exact_predicates.h"
 #include "lib/repair/repair_soup.h"
 
@@ -57,28 +58,6 @@ Status check_attribute(const MeshAttribute& attribute, const char* name, const T
   }
   return Status::ok();
 }
-
-class DisjointSets {
- public:
-  explicit DisjointSets(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  size_t find(size_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  // The smaller root wins, so a piece's root is its first triangle.
-  void unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a < b) parent_[b] = a;
-    if (b < a) parent_[a] = b;
-  }
-
- private:
-  std::vector<size_t> parent_;
-};
 
 double signed_volume_term(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
   const double ax = a[0], ay = a[1], az = a[2];
@@ -237,6 +216,7 @@ void choose_piece_orientation(RepairSoup* soup) {
   }
 
   struct Piece {
+    size_t first = 0;  // the piece's first triangle
     uint64_t size = 0;
     uint64_t reversed = 0;
     bool closed = true;
@@ -245,6 +225,7 @@ void choose_piece_orientation(RepairSoup* soup) {
   std::vector<Piece> stats(m);
   for (size_t t = 0; t < m; ++t) {
     Piece& piece = stats[pieces.find(t)];
+    if (piece.size == 0) piece.first = t;
     ++piece.size;
     if (soup->reversed(t)) ++piece.reversed;
     if (has_boundary[t]) piece.closed = false;
@@ -261,7 +242,7 @@ void choose_piece_orientation(RepairSoup* soup) {
     } else if (2 * piece.reversed != piece.size) {
       flip[root] = 2 * piece.reversed > piece.size;
     } else {
-      flip[root] = soup->reversed(root);  // the root is the piece's first triangle
+      flip[root] = soup->reversed(piece.first);
     }
   }
   for (size_t t = 0; t < m; ++t) {

@@ -2,14 +2,13 @@
 // (indices in range, finite values, attribute sizes) and that re-encoding
 // the mesh as binary little-endian PLY and reading it back gives the same
 // mesh. On failure the message must be one non-empty line.
-#include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 
 #include "formats/support/file_io.h"
 #include "lib/meshio/mesh_readers.h"
+#include "tests/fuzz/mesh_invariants.h"
 
 namespace {
 
@@ -17,9 +16,7 @@ using lodbake::AttributeBinding;
 using lodbake::Bytes;
 using lodbake::TriangleMesh;
 
-void require(bool condition) {
-  if (!condition) std::abort();
-}
+using lodbake::fuzz::require;
 
 void append(Bytes* out, const void* p, size_t n) {
   const auto* b = static_cast<const uint8_t*>(p);
@@ -49,37 +46,22 @@ Bytes encode_binary_ply(const TriangleMesh& mesh) {
   return out;
 }
 
-void check_attribute(const lodbake::MeshAttribute& a, uint32_t components, size_t vertices) {
-  if (!a.present()) return;
-  require(a.binding == AttributeBinding::kPerVertex);
-  require(a.components == components);
-  require(a.values.size() == components * vertices);
-  for (float f : a.values)
-    require(std::isfinite(f));
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lodbake::ImportReport report;
   lodbake::Result<TriangleMesh> result = lodbake::parse_ply(data, size, &report);
   if (!result.is_ok()) {
-    const std::string& message = result.status().message();
-    require(!message.empty() && message.find('\n') == std::string::npos);
+    lodbake::fuzz::check_error(result.status());
     return 0;
   }
   const TriangleMesh& mesh = result.value();
   require(report.format.rfind("ply-", 0) == 0);
-  for (const auto& p : mesh.positions) {
-    for (float c : p)
-      require(std::isfinite(c));
-  }
-  for (const auto& t : mesh.triangles) {
-    for (uint32_t v : t)
-      require(v < mesh.positions.size());
-  }
-  check_attribute(mesh.normals, 3, mesh.positions.size());
-  check_attribute(mesh.texcoords, 2, mesh.positions.size());
+  lodbake::fuzz::check_finite(mesh);
+  lodbake::fuzz::check_indices(mesh);
+  // PLY attributes are vertex properties.
+  for (const lodbake::MeshAttribute* a : {&mesh.normals, &mesh.texcoords})
+    require(!a->present() || a->binding == AttributeBinding::kPerVertex);
 
   Bytes again = encode_binary_ply(mesh);
   lodbake::Result<TriangleMesh> reread = lodbake::parse_ply(again.data(), again.size(), nullptr);

@@ -4,15 +4,14 @@
 // same mesh (same first-appearance vertex order). On failure the message
 // must be one non-empty line.
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "formats/support/file_io.h"
 #include "lib/meshio/mesh_readers.h"
+#include "tests/fuzz/mesh_invariants.h"
 
 namespace {
 
@@ -20,9 +19,7 @@ using lodbake::Bytes;
 using lodbake::TriangleMesh;
 using lodbake::Vec3f;
 
-void require(bool condition) {
-  if (!condition) std::abort();
-}
+using lodbake::fuzz::require;
 
 Bytes encode_binary_stl(const TriangleMesh& mesh) {
   Bytes out(80, 'x');
@@ -59,22 +56,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lodbake::ImportReport report;
   lodbake::Result<TriangleMesh> result = lodbake::parse_stl(data, size, &report);
   if (!result.is_ok()) {
-    const std::string& message = result.status().message();
-    require(!message.empty() && message.find('\n') == std::string::npos);
+    lodbake::fuzz::check_error(result.status());
     return 0;
   }
   const TriangleMesh& mesh = result.value();
   require(report.file_faces == mesh.triangles.size());
   require(report.welded_vertices + mesh.positions.size() == 3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles) {
-    for (uint32_t v : t)
-      require(v < mesh.positions.size());
-  }
+  lodbake::fuzz::check_indices(mesh);
+  lodbake::fuzz::check_finite(mesh);
   std::vector<Vec3f> sorted = canonical(mesh.positions);
-  for (const auto& p : sorted) {
-    for (float c : p)
-      require(std::isfinite(c));
-  }
   std::sort(sorted.begin(), sorted.end());
   require(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
 

@@ -1,9 +1,11 @@
 // Shared by the mesh-reader fuzz targets: structural invariants every
-// successfully imported TriangleMesh must satisfy, and the error-message
-// contract of a failed import. A violation traps, so the fuzzer (or the
-// corpus replay under the sanitizers) reports it.
+// successfully imported TriangleMesh must satisfy, the finiteness the text,
+// PLY and STL readers promise, and the error-message contract of a failed
+// import. A violation traps, so the fuzzer (or the corpus replay under the
+// sanitizers) reports it.
 #pragma once
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -17,23 +19,26 @@ inline void require(bool condition) {
   if (!condition) __builtin_trap();
 }
 
+// Sizes and indices of one attribute agree with its binding.
 inline void check_attribute(const TriangleMesh& mesh, const MeshAttribute& a, uint32_t components) {
   if (!a.present()) return;
   require(a.components == components);
   require(a.values.size() % components == 0);
   if (a.binding == AttributeBinding::kPerVertex) {
     require(a.value_count() == mesh.positions.size());
-  } else {
-    require(a.corners.size() == mesh.triangles.size());
-    for (const Triangle& t : a.corners) {
-      for (uint32_t i : t)
-        require(i < a.value_count());
-    }
+    require(a.corners.empty());
+    return;
+  }
+  require(a.binding == AttributeBinding::kPerCorner);
+  require(a.corners.size() == mesh.triangles.size());
+  for (const Triangle& t : a.corners) {
+    for (uint32_t i : t)
+      require(i < a.value_count());
   }
 }
 
-inline void check_mesh(const TriangleMesh& mesh) {
-  require(!mesh.triangles.empty());
+// Every index (of the triangles and of the attributes) is in range.
+inline void check_indices(const TriangleMesh& mesh) {
   for (const Triangle& t : mesh.triangles) {
     for (uint32_t i : t)
       require(i < mesh.positions.size());
@@ -42,7 +47,25 @@ inline void check_mesh(const TriangleMesh& mesh) {
   check_attribute(mesh, mesh.texcoords, 2);
 }
 
-// One non-empty line, lower-case start.
+// check_indices() on a mesh that has triangles (readers refuse empty ones).
+inline void check_mesh(const TriangleMesh& mesh) {
+  require(!mesh.triangles.empty());
+  check_indices(mesh);
+}
+
+// Positions and attribute values are all finite.
+inline void check_finite(const TriangleMesh& mesh) {
+  for (const Vec3f& p : mesh.positions) {
+    for (float c : p)
+      require(std::isfinite(c));
+  }
+  for (const MeshAttribute* a : {&mesh.normals, &mesh.texcoords}) {
+    for (float f : a->values)
+      require(std::isfinite(f));
+  }
+}
+
+// One non-empty line.
 inline void check_error(const Status& status) {
   const std::string& m = status.message();
   require(!status.is_ok());

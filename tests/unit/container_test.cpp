@@ -15,13 +15,12 @@
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
 #include "formats/support/crc32c.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
 
-Bytes text_bytes(const std::string& s) {
-  return Bytes(s.begin(), s.end());
-}
+using testing_util::text_bytes;
 
 // META (optional, 13 bytes), BASE (required, 29 bytes), XTRA (optional,
 // unknown, empty): odd sizes so the file has padding, an empty section, and

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -19,36 +18,32 @@
 #include "formats/support/file_io.h"
 #include "lib/dracoio/draco_convert.h"
 #include "lib/dracoio/draco_io.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
 
 using Json = nlohmann::json;
 
-std::string env_or(const char* name, const char* fallback) {
-  const char* v = std::getenv(name);
-  return v != nullptr ? v : fallback;
-}
+using testing_util::env_or;
+using testing_util::expect_error;
+using testing_util::has_note;
+using testing_util::read_bytes;
+using testing_util::text_bytes;
 
 std::string gltf_data_dir() {
   return env_or("LODBAKE_SOURCE_DIR", LODBAKE_TEST_SOURCE_DIR) + "/tests/data/gltf/";
 }
 
 Bytes read_data(const std::string& name) {
-  auto r = read_file(gltf_data_dir() + name);
-  EXPECT_TRUE(r.is_ok()) << name << ": " << r.status().message();
-  return r.is_ok() ? r.value() : Bytes();
-}
-
-Bytes to_bytes(const std::string& s) {
-  return Bytes(s.begin(), s.end());
+  return read_bytes(gltf_data_dir() + name);
 }
 
 Result<TriangleMesh> gltf(const Bytes& b, ImportReport* report = nullptr) {
   return parse_gltf(b.data(), b.size(), report);
 }
 Result<TriangleMesh> gltf(const std::string& s, ImportReport* report = nullptr) {
-  return gltf(to_bytes(s), report);
+  return gltf(text_bytes(s), report);
 }
 
 void put_u32(Bytes* out, uint32_t v) {
@@ -111,23 +106,6 @@ Bytes scene_buffer() {
 Bytes scene_as_glb(Json j) {
   j["buffers"][0].erase("uri");
   return make_glb(j.dump(), scene_buffer());
-}
-
-void expect_error(const Result<TriangleMesh>& r, ErrorKind kind, const std::string& fragment) {
-  ASSERT_FALSE(r.is_ok()) << "expected an error containing: " << fragment;
-  EXPECT_EQ(r.status().kind(), kind) << r.status().message();
-  EXPECT_NE(r.status().message().find(fragment), std::string::npos)
-      << "message: " << r.status().message() << "\nexpected fragment: " << fragment;
-  const std::string& m = r.status().message();
-  EXPECT_EQ(m.find('\n'), std::string::npos);
-  EXPECT_FALSE(m.empty());
-}
-
-bool has_note(const ImportReport& report, const std::string& fragment) {
-  for (const std::string& n : report.notes) {
-    if (n.find(fragment) != std::string::npos) return true;
-  }
-  return false;
 }
 
 // Resolves attribute `a` of `mesh` at corner k of triangle t.
@@ -669,7 +647,7 @@ TEST(DracoImport, PointCloudAndGarbageAreRefused) {
   auto r = parse_draco(cloud_bytes.data(), cloud_bytes.size(), nullptr);
   expect_error(r, ErrorKind::kUnsupported, "holds a point cloud, not a triangle mesh");
 
-  const Bytes garbage = to_bytes("this is not a Draco file at all");
+  const Bytes garbage = text_bytes("this is not a Draco file at all");
   expect_error(parse_draco(garbage.data(), garbage.size(), nullptr), ErrorKind::kInvalidInput,
                "not a Draco file");
   const Bytes drc = encode_drc(tetrahedron());

@@ -6,11 +6,15 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
-#include <cstdlib>
 #include <string>
+
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
+
+using testing_util::expect_rejected;
+using testing_util::shared_file;
 
 Bytes gzip(const Bytes& plain, int level = 6) {
   z_stream zs{};
@@ -41,13 +45,6 @@ Result<Bytes> gunzip_bytes(const Bytes& data, uint64_t max_output = kDefaultGunz
   return gunzip(data.data(), data.size(), max_output);
 }
 
-void expect_rejected(const Result<Bytes>& result, const std::string& phrase) {
-  ASSERT_FALSE(result.is_ok()) << "expected an error containing: " << phrase;
-  EXPECT_EQ(result.status().kind(), ErrorKind::kInvalidInput);
-  EXPECT_NE(result.status().message().find(phrase), std::string::npos)
-      << "message: " << result.status().message();
-}
-
 TEST(Gzip, RecognisesTheMagic) {
   EXPECT_TRUE(is_gzip(Bytes{0x1f, 0x8b}));
   EXPECT_FALSE(is_gzip(Bytes{0x1f}));
@@ -57,14 +54,10 @@ TEST(Gzip, RecognisesTheMagic) {
 }
 
 TEST(Gzip, StanfordPlyGzFilesDecompressToTheirTrailerSize) {
-  const char* root = std::getenv("LODBAKE_SHARED_DATA");
-  ASSERT_NE(root, nullptr) << "LODBAKE_SHARED_DATA is not set (run the tests through ctest)";
   for (const char* name : {"stanford_dragon_vrip_res4.ply.gz", "stanford_dragon_vrip_res3.ply.gz",
                            "stanford_dragon_vrip_res2.ply.gz"}) {
     SCOPED_TRACE(name);
-    Result<Bytes> file = read_file(std::string(root) + "/meshes/" + name);
-    ASSERT_TRUE(file.is_ok()) << file.status().message();
-    const Bytes& packed = file.value();
+    const Bytes packed = shared_file(std::string("meshes/") + name);
     ASSERT_TRUE(is_gzip(packed));
     Result<Bytes> plain = gunzip_bytes(packed);
     ASSERT_TRUE(plain.is_ok()) << plain.status().message();

@@ -11,11 +11,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "lib/check/mesh_check.h"
 #include "lib/meshio/mesh_import.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
@@ -90,15 +90,13 @@ const Expected kManifest[] = {
 // clang-format on
 
 std::string shared_data() {
-  const char* dir = std::getenv("LODBAKE_SHARED_DATA");
-  return dir != nullptr ? dir : "";
+  return testing_util::env_or("LODBAKE_SHARED_DATA", "");
 }
 
 // The full dragon, joined from its two xz parts into the build folder by
 // the dragon_data target (tests/data/CMakeLists.txt).
 std::string joined_dragon() {
-  const char* path = std::getenv("LODBAKE_DRAGON_PLY");
-  return path != nullptr ? path : "";
+  return testing_util::env_or("LODBAKE_DRAGON_PLY", "");
 }
 
 void expect_manifest(const Expected& e, const std::string& path) {

@@ -9,12 +9,14 @@
 #include <vector>
 
 #include "lib/meshio/mesh_readers.h"
-#include "tests/unit/text_mesh_test_util.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
 
 using testing_util::all_notes;
+using testing_util::expect_bad_files_rejected;
+using testing_util::expect_rejected;
 using testing_util::has_note;
 using testing_util::shared_file;
 
@@ -101,30 +103,19 @@ TEST(ObjReader, BeetleNotesItsIgnoredStatements) {
   EXPECT_TRUE(has_note(report, "ignored 1 's' statements (smoothing groups)")) << all_notes(report);
 }
 
-struct BadCase {
-  const char* file;
-  const char* message;  // a phrase the error must contain
-};
-
 TEST(ObjReader, BadFilesAreRejectedWithAClearMessage) {
-  const BadCase cases[] = {
-      {"bad/assimp_empty.obj", "empty file"},
-      {"bad/hw_garbage.obj", "binary data where text was expected: NUL byte at byte"},
-      {"bad/hw_ply_named.obj", "no vertices or faces found (the text starts with 'ply'"},
-      {"bad/hw_nan_coords.obj", "line 3: a vertex coordinate 'NaN' is not finite"},
-      {"bad/draco_inf_nan.obj", "line 1: a vertex coordinate 'inf' is not finite"},
-      {"bad/hw_obj_index_out_of_range.obj", "line 7: vertex index 5 out of range (4 so far)"},
-      {"bad/assimp_malformed.obj", "line 23: vertex index 12 out of range (8 so far)"},
-      {"bad/hw_short_faces.obj", "line 5: face has 2 corners, at least 3 needed"},
-  };
-  for (const BadCase& c : cases) {
-    SCOPED_TRACE(c.file);
-    Result<TriangleMesh> mesh = parse_shared(c.file);
-    ASSERT_FALSE(mesh.is_ok());
-    EXPECT_EQ(mesh.status().kind(), ErrorKind::kInvalidInput);
-    EXPECT_NE(mesh.status().message().find(c.message), std::string::npos)
-        << mesh.status().message();
-  }
+  expect_bad_files_rejected(
+      {
+          {"bad/assimp_empty.obj", "empty file"},
+          {"bad/hw_garbage.obj", "binary data where text was expected: NUL byte at byte"},
+          {"bad/hw_ply_named.obj", "no vertices or faces found (the text starts with 'ply'"},
+          {"bad/hw_nan_coords.obj", "line 3: a vertex coordinate 'NaN' is not finite"},
+          {"bad/draco_inf_nan.obj", "line 1: a vertex coordinate 'inf' is not finite"},
+          {"bad/hw_obj_index_out_of_range.obj", "line 7: vertex index 5 out of range (4 so far)"},
+          {"bad/assimp_malformed.obj", "line 23: vertex index 12 out of range (8 so far)"},
+          {"bad/hw_short_faces.obj", "line 5: face has 2 corners, at least 3 needed"},
+      },
+      [](const char* file) { return parse_shared(file); });
 }
 
 TEST(ObjReader, DegenerateAndNonManifoldBadFilesAreReadAsStored) {
@@ -256,10 +247,8 @@ TEST(ObjReader, MixedAttributePresenceAcrossFacesDropsTheAttribute) {
 }
 
 TEST(ObjReader, MixedFormsWithinAFaceAreRejected) {
-  Result<TriangleMesh> mesh = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3/1\n");
-  ASSERT_FALSE(mesh.is_ok());
-  EXPECT_NE(mesh.status().message().find("line 5: face mixes corners"), std::string::npos)
-      << mesh.status().message();
+  expect_rejected(parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3/1\n"),
+                  "line 5: face mixes corners");
 }
 
 TEST(ObjReader, IndexErrorsNameTheLine) {
@@ -283,10 +272,7 @@ TEST(ObjReader, IndexErrorsNameTheLine) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.face);
-    Result<TriangleMesh> mesh = parse(vertices + c.face + "\n");
-    ASSERT_FALSE(mesh.is_ok());
-    EXPECT_NE(mesh.status().message().find(c.message), std::string::npos)
-        << mesh.status().message();
+    expect_rejected(parse(vertices + c.face + "\n"), c.message);
   }
 }
 
@@ -307,10 +293,7 @@ TEST(ObjReader, VertexErrors) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.text);
-    Result<TriangleMesh> mesh = parse(c.text);
-    ASSERT_FALSE(mesh.is_ok());
-    EXPECT_NE(mesh.status().message().find(c.message), std::string::npos)
-        << mesh.status().message();
+    expect_rejected(parse(c.text), c.message);
   }
 }
 
@@ -343,10 +326,7 @@ TEST(ObjReader, LineEndingsContinuationAndSigns) {
   EXPECT_EQ(mesh.value().triangle_count(), 2u);
   EXPECT_EQ(mesh.value().positions[0], (Vec3f{1, -0.0f, 0.5f}));
   // Errors after a continuation count the joined lines.
-  Result<TriangleMesh> bad = parse("v 0 0 0\nf 1 \\\n 1 \\\n 1 x\n");
-  ASSERT_FALSE(bad.is_ok());
-  EXPECT_NE(bad.status().message().find("line 4: expected a vertex index"), std::string::npos)
-      << bad.status().message();
+  expect_rejected(parse("v 0 0 0\nf 1 \\\n 1 \\\n 1 x\n"), "line 4: expected a vertex index");
 }
 
 TEST(ObjReader, EveryPrefixParsesOrFailsCleanly) {

@@ -8,12 +8,15 @@
 #include <vector>
 
 #include "lib/meshio/mesh_readers.h"
-#include "tests/unit/text_mesh_test_util.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
 
 using testing_util::all_notes;
+using testing_util::expect_bad_files_rejected;
+using testing_util::expect_error;
+using testing_util::expect_rejected;
 using testing_util::has_note;
 using testing_util::shared_file;
 
@@ -88,36 +91,25 @@ TEST(OffReader, PolygonsAreFannedAndCounted) {
   EXPECT_EQ(mpi_report.polygons_triangulated, 52u - 13u);
 }
 
-struct BadCase {
-  const char* file;
-  const char* message;
-};
-
 TEST(OffReader, BadFilesAreRejectedWithAClearMessage) {
-  const BadCase cases[] = {
-      {"bad/assimp_empty.off", "empty file"},
-      {"bad/hw_garbage.off", "binary data where text was expected"},
-      {"bad/hw_huge_count.off",
-       "header declares 2000000000 vertices but the file has room for at most 4"},
-      {"bad/assimp_OutOfMemory.off",
-       "header declares 353535235358 vertices but the file has room for at most 48"},
-      {"bad/hw_negative_count.off", "line 3: negative vertex count -3"},
-      {"bad/hw_non_numeric.off", "line 4: expected a vertex coordinate, found 'zero'"},
-      // Its 3 vertices leave too few bytes for 4 faces: the bound catches it
-      // before the 0-gon is read (a 0-gon on its own is tested below).
-      {"bad/assimp_invalid.off",
-       "header declares 4 faces but the file has room for at most 3 after the vertices"},
-      {"bad/hw_nan_coords.off", "line 5: a vertex coordinate 'nan' is not finite"},
-      {"bad/hw_off_two_vertex_face.off", "line 9: face has 2 corners, at least 3 needed"},
-  };
-  for (const BadCase& c : cases) {
-    SCOPED_TRACE(c.file);
-    Result<TriangleMesh> mesh = parse_shared(c.file);
-    ASSERT_FALSE(mesh.is_ok());
-    EXPECT_EQ(mesh.status().kind(), ErrorKind::kInvalidInput);
-    EXPECT_NE(mesh.status().message().find(c.message), std::string::npos)
-        << mesh.status().message();
-  }
+  expect_bad_files_rejected(
+      {
+          {"bad/assimp_empty.off", "empty file"},
+          {"bad/hw_garbage.off", "binary data where text was expected"},
+          {"bad/hw_huge_count.off",
+           "header declares 2000000000 vertices but the file has room for at most 4"},
+          {"bad/assimp_OutOfMemory.off",
+           "header declares 353535235358 vertices but the file has room for at most 48"},
+          {"bad/hw_negative_count.off", "line 3: negative vertex count -3"},
+          {"bad/hw_non_numeric.off", "line 4: expected a vertex coordinate, found 'zero'"},
+          // Its 3 vertices leave too few bytes for 4 faces: the bound catches it
+          // before the 0-gon is read (a 0-gon on its own is tested below).
+          {"bad/assimp_invalid.off",
+           "header declares 4 faces but the file has room for at most 3 after the vertices"},
+          {"bad/hw_nan_coords.off", "line 5: a vertex coordinate 'nan' is not finite"},
+          {"bad/hw_off_two_vertex_face.off", "line 9: face has 2 corners, at least 3 needed"},
+      },
+      [](const char* file) { return parse_shared(file); });
 }
 
 TEST(OffReader, HandleOrRejectBadFilesAreReadAsStored) {
@@ -211,11 +203,7 @@ TEST(OffReader, HeaderErrors) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.text);
-    Result<TriangleMesh> mesh = parse(c.text);
-    ASSERT_FALSE(mesh.is_ok());
-    EXPECT_EQ(mesh.status().kind(), c.kind);
-    EXPECT_NE(mesh.status().message().find(c.message), std::string::npos)
-        << mesh.status().message();
+    expect_error(parse(c.text), c.kind, c.message);
   }
 }
 
@@ -246,10 +234,7 @@ TEST(OffReader, BodyErrors) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.text);
-    Result<TriangleMesh> mesh = parse(c.text);
-    ASSERT_FALSE(mesh.is_ok());
-    EXPECT_NE(mesh.status().message().find(c.message), std::string::npos)
-        << mesh.status().message();
+    expect_rejected(parse(c.text), c.message);
   }
 }
 

@@ -6,10 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -17,29 +15,24 @@
 #include "formats/support/file_io.h"
 #include "lib/meshio/gzip.h"
 #include "lib/meshio/mesh_readers.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
 
-std::string env_or_fail(const char* name) {
-  const char* value = std::getenv(name);
-  if (value == nullptr) {
-    ADD_FAILURE() << name << " is not set (run the tests through ctest)";
-    return "";
-  }
-  return value;
-}
+using testing_util::env_or_fail;
+using testing_util::expect_rejected;
+using testing_util::has_note;
+using testing_util::read_bytes;
+using testing_util::text_bytes;
 
+// The bytes of `path`, gunzipped when they are gzip data.
 Bytes load(const std::string& path) {
-  Result<Bytes> bytes = read_file(path);
-  EXPECT_TRUE(bytes.is_ok()) << path << ": " << bytes.status().message();
-  if (!bytes.is_ok()) return {};
-  if (is_gzip(bytes.value())) {
-    Result<Bytes> plain = gunzip(bytes.value().data(), bytes.value().size());
-    EXPECT_TRUE(plain.is_ok()) << path << ": " << plain.status().message();
-    return plain.is_ok() ? std::move(plain).value() : Bytes{};
-  }
-  return std::move(bytes).value();
+  Bytes bytes = read_bytes(path);
+  if (!is_gzip(bytes)) return bytes;
+  Result<Bytes> plain = gunzip(bytes.data(), bytes.size());
+  EXPECT_TRUE(plain.is_ok()) << path << ": " << plain.status().message();
+  return plain.is_ok() ? std::move(plain).value() : Bytes{};
 }
 
 Bytes shared(const std::string& relative) {
@@ -52,21 +45,6 @@ Result<TriangleMesh> parse(const std::string& text, ImportReport* report = nullp
 
 Result<TriangleMesh> parse(const Bytes& bytes, ImportReport* report = nullptr) {
   return parse_ply(bytes.data(), bytes.size(), report);
-}
-
-bool has_note(const ImportReport& report, const std::string& text) {
-  for (const std::string& note : report.notes) {
-    if (note.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
-
-void expect_rejected(const Result<TriangleMesh>& result, const std::string& phrase) {
-  ASSERT_FALSE(result.is_ok()) << "expected an error containing: " << phrase;
-  EXPECT_EQ(result.status().kind(), ErrorKind::kInvalidInput);
-  EXPECT_NE(result.status().message().find(phrase), std::string::npos)
-      << "message: " << result.status().message();
-  EXPECT_EQ(result.status().message().find('\n'), std::string::npos);
 }
 
 void expect_valid_indices(const TriangleMesh& mesh) {
@@ -136,25 +114,23 @@ TEST(PlyReaderManifest, FullDragonFromTheBuildFolder) {
 // ------------------------------------------------------------------ bad/*.ply
 
 TEST(PlyReaderBadInputs, EachFileHasItsDocumentedOutcome) {
-  const std::map<std::string, std::string> rejects = {
-      {"bad/assimp_empty.ply", "empty file"},
-      {"bad/hw_garbage.ply", "bad magic"},
-      {"bad/hw_bad_magic.ply", "bad magic"},
-      {"bad/hw_missing_end_header.ply", "no 'end_header' line"},
-      {"bad/hw_truncated_ascii.ply", "element 'vertex' declares 8 items"},
-      {"bad/hw_truncated_binary_le.ply",
-       "the body ends after 80 bytes, but element 'face' declares 4 items, which need at least "
-       "100 bytes"},
-      {"bad/hw_face_list_overrun.ply", "list length 255 overruns the file"},
-      {"bad/hw_huge_count_binary.ply", "element 'vertex' declares 2000000000 items"},
-      {"bad/hw_huge_count_ascii.ply", "element 'vertex' declares 4294967295 items"},
-      {"bad/hw_wrong_endian.ply", "out of range (4 vertices)"},
-      {"bad/hw_nan_inf_binary.ply", "non-finite"},
-  };
-  for (const auto& [file, phrase] : rejects) {
-    SCOPED_TRACE(file);
-    expect_rejected(parse(shared(file)), phrase);
-  }
+  testing_util::expect_bad_files_rejected(
+      {
+          {"bad/assimp_empty.ply", "empty file"},
+          {"bad/hw_garbage.ply", "bad magic"},
+          {"bad/hw_bad_magic.ply", "bad magic"},
+          {"bad/hw_missing_end_header.ply", "no 'end_header' line"},
+          {"bad/hw_truncated_ascii.ply", "element 'vertex' declares 8 items"},
+          {"bad/hw_truncated_binary_le.ply",
+           "the body ends after 80 bytes, but element 'face' declares 4 items, which need at least "
+           "100 bytes"},
+          {"bad/hw_face_list_overrun.ply", "list length 255 overruns the file"},
+          {"bad/hw_huge_count_binary.ply", "element 'vertex' declares 2000000000 items"},
+          {"bad/hw_huge_count_ascii.ply", "element 'vertex' declares 4294967295 items"},
+          {"bad/hw_wrong_endian.ply", "out of range (4 vertices)"},
+          {"bad/hw_nan_inf_binary.ply", "non-finite"},
+      },
+      [](const char* file) { return parse(shared(file)); });
 }
 
 TEST(PlyReaderBadInputs, PlySavedAsObjIsReadByContent) {
@@ -257,10 +233,6 @@ void put(Bytes* out, int type, double value, bool big_endian) {
       std::swap(raw[i], raw[n - 1 - i]);
   }
   out->insert(out->end(), raw, raw + n);
-}
-
-Bytes text_bytes(const std::string& text) {
-  return Bytes(text.begin(), text.end());
 }
 
 const char* kTetraAscii =
@@ -592,10 +564,7 @@ TEST(PlyReader, TriangleStripsRestartAndAlternateWinding) {
 // -------------------------------------------------------------------- failures
 
 std::string tetra_with(const std::string& from, const std::string& to) {
-  std::string text = kTetraAscii;
-  size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
+  return testing_util::replace_once(kTetraAscii, from, to);
 }
 
 TEST(PlyReaderErrors, HeaderProblemsAreNamed) {

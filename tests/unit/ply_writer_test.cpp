@@ -8,7 +8,7 @@
 #include "lib/meshio/corner_split.h"
 #include "lib/meshio/mesh_readers.h"
 #include "lib/meshio/mesh_writers.h"
-#include "tests/unit/text_mesh_test_util.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {

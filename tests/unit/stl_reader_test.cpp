@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -12,40 +11,20 @@
 
 #include "formats/support/file_io.h"
 #include "lib/meshio/mesh_readers.h"
+#include "tests/unit/test_support.h"
 
 namespace lodbake {
 namespace {
 
-Bytes shared(const std::string& relative) {
-  const char* root = std::getenv("LODBAKE_SHARED_DATA");
-  if (root == nullptr) {
-    ADD_FAILURE() << "LODBAKE_SHARED_DATA is not set (run the tests through ctest)";
-    return {};
-  }
-  Result<Bytes> bytes = read_file(std::string(root) + "/" + relative);
-  EXPECT_TRUE(bytes.is_ok()) << relative << ": " << bytes.status().message();
-  return bytes.is_ok() ? std::move(bytes).value() : Bytes{};
-}
+using testing_util::expect_rejected;
+using testing_util::has_note;
+using testing_util::shared_file;
 
 Result<TriangleMesh> parse(const Bytes& bytes, ImportReport* report = nullptr) {
   return parse_stl(bytes.data(), bytes.size(), report);
 }
 Result<TriangleMesh> parse(const std::string& text, ImportReport* report = nullptr) {
   return parse_stl(reinterpret_cast<const uint8_t*>(text.data()), text.size(), report);
-}
-
-bool has_note(const ImportReport& report, const std::string& text) {
-  for (const std::string& note : report.notes) {
-    if (note.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
-
-void expect_rejected(const Result<TriangleMesh>& result, const std::string& phrase) {
-  ASSERT_FALSE(result.is_ok()) << "expected an error containing: " << phrase;
-  EXPECT_EQ(result.status().kind(), ErrorKind::kInvalidInput);
-  EXPECT_NE(result.status().message().find(phrase), std::string::npos)
-      << "message: " << result.status().message();
 }
 
 struct Facet {
@@ -107,7 +86,7 @@ TEST(StlReaderManifest, BinaryMeshesHaveTheManifestCounts) {
        {Row{"meshes/cgal_pig.stl", 8642, 16848}, Row{"meshes/draco_bunny.stl", 34834, 69451}}) {
     SCOPED_TRACE(row.file);
     ImportReport report;
-    Result<TriangleMesh> mesh = parse(shared(row.file), &report);
+    Result<TriangleMesh> mesh = parse(shared_file(row.file), &report);
     ASSERT_TRUE(mesh.is_ok()) << mesh.status().message();
     EXPECT_EQ(mesh.value().vertex_count(), row.vertices);
     EXPECT_EQ(mesh.value().triangle_count(), row.triangles);
@@ -122,11 +101,11 @@ TEST(StlReaderManifest, BinaryMeshesHaveTheManifestCounts) {
 }
 
 TEST(StlReaderBadInputs, EachFileHasItsDocumentedOutcome) {
-  expect_rejected(parse(shared("bad/hw_empty.stl")), "empty file");
-  expect_rejected(parse(shared("bad/hw_garbage.stl")),
+  expect_rejected(parse(shared_file("bad/hw_empty.stl")), "empty file");
+  expect_rejected(parse(shared_file("bad/hw_garbage.stl")),
                   "binary stl header says 2355462449 triangles (117773122534 bytes), but the "
                   "file has 4096 bytes");
-  expect_rejected(parse(shared("bad/hw_stl_count_exceeds_length.stl")),
+  expect_rejected(parse(shared_file("bad/hw_stl_count_exceeds_length.stl")),
                   "binary stl header says 1000000000 triangles (50000000084 bytes), but the file "
                   "has 184 bytes and does not start with 'solid'");
 }
@@ -237,10 +216,7 @@ TEST(StlReader, ManyFacetsGrowTheWelderDeterministically) {
 // -------------------------------------------------------------------- failures
 
 std::string tetra_with(const std::string& from, const std::string& to) {
-  std::string text = kTetraAscii;
-  size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
+  return testing_util::replace_once(kTetraAscii, from, to);
 }
 
 TEST(StlReaderErrors, AsciiProblemsAreNamed) {
