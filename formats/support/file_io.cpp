@@ -38,7 +38,9 @@ class FileDescriptor {
 }  // namespace
 
 Result<Bytes> read_file(const std::string& path, uint64_t max_bytes) {
-  FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer
+  // forever; it is refused below, and regular files ignore the flag.
+  FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
   if (fd.get() < 0) return io_error("cannot open: " + errno_text());
   struct stat st {};
   if (::fstat(fd.get(), &st) != 0) return io_error("cannot stat: " + errno_text());
@@ -64,6 +66,15 @@ Result<Bytes> read_file(const std::string& path, uint64_t max_bytes) {
 }
 
 Status write_file_atomic(const std::string& path, const uint8_t* data, size_t size) {
+  // The rename below would replace whatever is at `path`: refuse anything but
+  // a regular file there, so that `-o /dev/null` run as root or `-o` naming a
+  // FIFO never swaps a device node or pipe for a regular file.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) return io_error("is a directory");
+    if (!S_ISREG(st.st_mode))
+      return io_error("not a regular file; outputs replace regular files only");
+  }
   std::string temp = path + ".tmp-XXXXXX";
   FileDescriptor fd(::mkstemp(temp.data()));
   if (fd.get() < 0) return io_error("cannot create a temporary file beside it: " + errno_text());

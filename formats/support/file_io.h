@@ -19,7 +19,9 @@ Result<Bytes> read_file(const std::string& path, uint64_t max_bytes = uint64_t{1
 
 // Writes `data` to `path` through a temporary file in the same directory that
 // is renamed over `path` only after everything was written and flushed, so a
-// failed run never leaves a partial output behind.
+// failed run never leaves a partial output behind. Fails with kIo, before
+// writing anything, when `path` exists and is not a regular file (a folder, a
+// device such as /dev/null, a FIFO): the rename would replace it.
 Status write_file_atomic(const std::string& path, const uint8_t* data, size_t size);
 inline Status write_file_atomic(const std::string& path, const Bytes& data) {
   return write_file_atomic(path, data.data(), data.size());

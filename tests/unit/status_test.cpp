@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <string>
 
 #include "formats/support/byte_reader.h"
@@ -57,6 +60,38 @@ TEST(FileIo, SizeLimitIsEnforced) {
   Result<Bytes> r = read_file(path, 10);
   ASSERT_FALSE(r.is_ok());
   EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput);
+}
+
+TEST(FileIo, ReadingAFifoFailsInsteadOfWaitingForAWriter) {
+  std::string path = ::testing::TempDir() + "lodbake_file_io_fifo_in";
+  ::unlink(path.c_str());
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  Result<Bytes> r = read_file(path);  // blocked forever before the fix
+  ::unlink(path.c_str());
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().kind(), ErrorKind::kIo);
+  EXPECT_EQ(r.status().message(), "not a regular file");
+}
+
+TEST(FileIo, WritingOverAFifoOrAFolderIsRefusedAndLeavesItInPlace) {
+  std::string fifo = ::testing::TempDir() + "lodbake_file_io_fifo_out";
+  ::unlink(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  Status s = write_file_atomic(fifo, std::string("x"));
+  struct stat st {};
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));  // not replaced by a regular file
+  ::unlink(fifo.c_str());
+  EXPECT_EQ(s.kind(), ErrorKind::kIo);
+  EXPECT_NE(s.message().find("not a regular file"), std::string::npos) << s.message();
+
+  std::string folder = ::testing::TempDir() + "lodbake_file_io_folder_out";
+  ::mkdir(folder.c_str(), 0700);
+  s = write_file_atomic(folder, std::string("x"));
+  EXPECT_EQ(s.kind(), ErrorKind::kIo);
+  EXPECT_EQ(s.message(), "is a directory");
+  ASSERT_EQ(::stat(folder.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISDIR(st.st_mode));
 }
 
 TEST(ByteReader, ReadsBothEndiansAndStopsAtTheEnd) {

@@ -108,17 +108,23 @@ void print_listing(std::ostream& out, const std::string& path, const ContainerLi
   }
 }
 
-// What each known section holds, without decoding whole arrays.
-nlohmann::json section_contents(const Container& container) {
+// What each known section holds, without decoding whole arrays. A section
+// whose summary does not decode shows its error instead, and the first such
+// error is kept in `first_error`.
+nlohmann::json section_contents(const Container& container, Status* first_error) {
   nlohmann::json contents = nlohmann::json::object();
+  auto keep = [&](const Status& status) {
+    if (first_error->is_ok()) *first_error = status;
+    return nlohmann::json(status.message());
+  };
   for (const Section& section : container.sections) {
     if (section.tag() == kMetaTag) {
       Result<nlohmann::json> meta = decode_meta_json(section.data, section.size);
-      contents[kMetaTag] = meta.is_ok() ? meta.value() : nlohmann::json(meta.status().message());
+      contents[kMetaTag] = meta.is_ok() ? meta.value() : keep(meta.status());
     } else if (section.tag() == kBaseTag) {
       Result<BaseSummary> base = read_base_summary(section.data, section.size);
       if (!base.is_ok()) {
-        contents[kBaseTag] = base.status().message();
+        contents[kBaseTag] = keep(base.status());
         continue;
       }
       const BaseSummary& b = base.value();
@@ -198,7 +204,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   if (!listing.status.is_ok()) {
     report["error"] = listing.status.message();
     if (tool.json()) {
-      std::cout << report.dump(2) << "\n";
+      std::cout << dump_json(report) << "\n";
     } else {
       print_listing(std::cout, path, listing);
     }
@@ -206,7 +212,12 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   }
   Result<Container> container = read_container(bytes.data(), bytes.size());
   if (!container.is_ok()) return tool.fail(path, container.status());
-  report["contents"] = section_contents(container.value());
+  Status undecodable;
+  report["contents"] = section_contents(container.value(), &undecodable);
+  // Without --validate a section that does not even decode is still an
+  // invalid file (LBK-E023, exit 3), not a listing that exits 0.
+  const bool validating = options.validate || options.strict;
+  if (!undecodable.is_ok() && !validating) report["error"] = undecodable.message();
 
   std::vector<SectionFinding> findings;
   if (options.validate || options.strict) {
@@ -217,11 +228,11 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
     report["validation"] = {{"ok", findings.empty()}, {"findings", jf}};
   }
   int code = 0;
-  if (!options.extract.empty() && findings.empty())
+  if (!options.extract.empty() && findings.empty() && undecodable.is_ok())
     code = extract_base(tool, path, container.value(), options.extract, &report);
 
   if (tool.json()) {
-    std::cout << report.dump(2) << "\n";
+    std::cout << dump_json(report) << "\n";
   } else {
     print_listing(std::cout, path, listing);
     print_contents(std::cout, report["contents"]);
@@ -243,6 +254,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
                         ? " (and " + std::to_string(findings.size() - 1) + " more findings)"
                         : "")));
   }
+  if (!undecodable.is_ok()) return tool.fail(path, undecodable);
   return code;
 }
 
@@ -264,7 +276,7 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
                              {"sha256", loaded.sha256},
                              {"import", to_json(loaded.import)},
                              {"check", to_json(check)}};
-    std::cout << report.dump(2) << "\n";
+    std::cout << dump_json(report) << "\n";
   } else {
     std::cout << "file          " << path << " (" << loaded.file_bytes << " bytes)\n";
     std::cout << "format        " << loaded.import.format << "\n";
@@ -306,6 +318,8 @@ int main(int argc, char** argv) {
   if (files.size() != 1)
     return tool.usage_error(
         files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  if (tool.has("extract") && options.extract.empty())
+    return tool.usage_error("--extract needs a file name");
   const std::string& path = files.front();
   return tool.run([&] {
     Result<Bytes> bytes = read_file(path);

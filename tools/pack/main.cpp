@@ -55,8 +55,8 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
       {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
                                                    : nlohmann::json(options.quantize_bits)}};
   // The base name, not the path, so that the same input baked from another
-  // folder gives the same bytes.
-  meta.input = MetaInput{base_name(input), loaded.sha256, loaded.file_bytes};
+  // folder gives the same bytes; META is UTF-8, file names are only bytes.
+  meta.input = MetaInput{to_valid_utf8(base_name(input)), loaded.sha256, loaded.file_bytes};
   meta.counts = {{"vertices", loaded.mesh.vertex_count()},
                  {"triangles", loaded.mesh.triangle_count()}};
   Result<Bytes> meta_bytes = encode_meta(meta);
@@ -98,7 +98,7 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   report["counts"] = {{"vertices", loaded.mesh.vertex_count()},
                       {"triangles", loaded.mesh.triangle_count()}};
   if (tool.json()) {
-    std::cout << report.dump(2) << "\n";
+    std::cout << dump_json(report) << "\n";
   } else {
     std::cout << "wrote " << options.output << ": " << loaded.mesh.vertex_count() << " vertices, "
               << loaded.mesh.triangle_count() << " triangles, " << file.value().size()
