@@ -65,6 +65,13 @@ Result<Bytes> read_file(const std::string& path, uint64_t max_bytes) {
   return data;
 }
 
+bool same_file(const std::string& a, const std::string& b) {
+  struct stat sa {
+  }, sb{};
+  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
 Status write_file_atomic(const std::string& path, const uint8_t* data, size_t size) {
   // The rename below would replace whatever is at `path`: refuse anything but
   // a regular file there, so that `-o /dev/null` run as root or `-o` naming a

@@ -17,6 +17,10 @@ using Bytes = std::vector<uint8_t>;
 // pointing a tool at a device or a multi-gigabyte file by mistake).
 Result<Bytes> read_file(const std::string& path, uint64_t max_bytes = uint64_t{1} << 34);
 
+// True when both paths name the same existing file (same device and inode),
+// e.g. an output that would overwrite its own input.
+bool same_file(const std::string& a, const std::string& b);
+
 // Writes `data` to `path` through a temporary file in the same directory that
 // is renamed over `path` only after everything was written and flushed, so a
 // failed run never leaves a partial output behind. Fails with kIo, before

@@ -11,6 +11,10 @@ Result<Bytes> write_mesh_for_path(const std::string& path, const TriangleMesh& m
   if (ext == "off") return write_off(mesh);
   if (ext == "ply") return write_ply(mesh);
   if (ext == "glb") return write_glb(mesh);
+  if (ext.empty())
+    return unsupported(
+        "the output name has no extension to choose the format by (supported: "
+        ".obj .off .ply .glb)");
   return unsupported("cannot write a mesh as '." + ext +
                      "' (supported output formats: .obj .off .ply .glb)");
 }

@@ -410,8 +410,8 @@ Result<TriangleMesh> ObjReader::read() {
                              std::to_string(texcoord_w_lines_) + " 'vt' lines");
   }
   for (const auto& [keyword, count] : ignored_) {
-    report_->notes.push_back("ignored " + std::to_string(count) + " '" + keyword +
-                             "' statements (" + describe_keyword(keyword) + ")");
+    report_->notes.push_back("ignored " + std::to_string(count) + " '" + keyword + "' statement" +
+                             (count == 1 ? "" : "s") + " (" + describe_keyword(keyword) + ")");
   }
   if (unknown_lines_ != 0) {
     report_->notes.push_back("ignored " + std::to_string(unknown_lines_) +

@@ -98,9 +98,9 @@ TEST(ObjReader, SuzanneQuadsAreSplitAndNoted) {
 TEST(ObjReader, BeetleNotesItsIgnoredStatements) {
   ImportReport report;
   ASSERT_TRUE(parse_shared("meshes/c3d_beetle.obj", &report).is_ok());
-  EXPECT_TRUE(has_note(report, "ignored 1 'mtllib' statements (materials)")) << all_notes(report);
-  EXPECT_TRUE(has_note(report, "ignored 1 'o' statements (object names)")) << all_notes(report);
-  EXPECT_TRUE(has_note(report, "ignored 1 's' statements (smoothing groups)")) << all_notes(report);
+  EXPECT_TRUE(has_note(report, "ignored 1 'mtllib' statement (materials)")) << all_notes(report);
+  EXPECT_TRUE(has_note(report, "ignored 1 'o' statement (object names)")) << all_notes(report);
+  EXPECT_TRUE(has_note(report, "ignored 1 's' statement (smoothing groups)")) << all_notes(report);
 }
 
 TEST(ObjReader, BadFilesAreRejectedWithAClearMessage) {
@@ -309,9 +309,9 @@ TEST(ObjReader, ExtrasAreNotedNotErrors) {
   ASSERT_TRUE(mesh.is_ok()) << mesh.status().message();
   EXPECT_EQ(mesh.value().triangle_count(), 1u);
   EXPECT_TRUE(has_note(report, "ignored 2 'g' statements (groups)")) << all_notes(report);
-  EXPECT_TRUE(has_note(report, "ignored 1 'usemtl' statements (materials)"));
-  EXPECT_TRUE(has_note(report, "ignored 1 'l' statements (line elements)"));
-  EXPECT_TRUE(has_note(report, "ignored 1 'p' statements (point elements)"));
+  EXPECT_TRUE(has_note(report, "ignored 1 'usemtl' statement (materials)"));
+  EXPECT_TRUE(has_note(report, "ignored 1 'l' statement (line elements)"));
+  EXPECT_TRUE(has_note(report, "ignored 1 'p' statement (point elements)"));
   EXPECT_TRUE(has_note(report, "(w or a vertex colour) on 2 'v' lines"));
   EXPECT_TRUE(has_note(report, "ignored the values after u v on 1 'vt' lines"));
   EXPECT_TRUE(has_note(report, "ignored 1 texture coordinates ('vt') that no face uses"));

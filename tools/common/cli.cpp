@@ -77,15 +77,31 @@ void Tool::print_help() const {
   std::cout << exit_code_help();
 }
 
+void Tool::print_json(const nlohmann::json& report) const {
+  std::cout << report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  json_printed_ = true;
+}
+
 int Tool::fail(const std::string& file, const Status& status) const {
   std::cerr << name_ << ": error: " << (file.empty() ? "" : file + ": ") << status.message()
             << "\n";
   int code = static_cast<int>(status.kind());
-  return code == 0 ? static_cast<int>(ErrorKind::kRuntime) : code;
+  if (code == 0) code = static_cast<int>(ErrorKind::kRuntime);
+  if (json_ && !json_printed_) {
+    print_json({{"schema", "lodbake.error/1"},
+                {"tool", name_},
+                {"file", file},
+                {"error", status.message()},
+                {"exit_code", code}});
+  }
+  return code;
 }
 
 int Tool::usage_error(const std::string& message) const {
-  std::cerr << name_ << ": error: " << message << ". See '" << name_ << " --help'.\n";
+  std::string text = message;
+  while (!text.empty() && (text.back() == '.' || text.back() == ' '))
+    text.pop_back();
+  std::cerr << name_ << ": error: " << text << ". See '" << name_ << " --help'.\n";
   return static_cast<int>(ErrorKind::kUsage);
 }
 

@@ -7,6 +7,7 @@
 
 #include <boost/program_options.hpp>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,8 +49,15 @@ class Tool {
   bool quiet() const { return quiet_; }
 
   // Prints "name: error: FILE: message" (or without FILE when empty) and
-  // returns the exit code of the status' kind.
+  // returns the exit code of the status' kind. With --json, when no report
+  // was printed yet, also prints a JSON error report on stdout (schema
+  // lodbake.error/1), so that stdout always holds exactly one JSON document.
   int fail(const std::string& file, const Status& status) const;
+  // Prints `report` as indented JSON on stdout and remembers that the run's
+  // report was printed. Strings that are not valid UTF-8 (file names on
+  // Linux are bytes) get U+FFFD for each bad byte instead of making the dump
+  // throw.
+  void print_json(const nlohmann::json& report) const;
   // Prints a usage error ending in "See 'name --help'." and returns 1.
   int usage_error(const std::string& message) const;
   // "name: warning: FILE: message", unless --quiet.
@@ -73,6 +81,7 @@ class Tool {
   po::positional_options_description positional_;
   po::variables_map vm_;
   bool json_ = false;
+  mutable bool json_printed_ = false;
   bool quiet_ = false;
 };
 

@@ -11,10 +11,6 @@ std::string format_float(float value) {
   return std::string(buffer, result.ptr);
 }
 
-std::string dump_json(const nlohmann::json& report) {
-  return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
 std::string to_valid_utf8(const std::string& text) {
   // nlohmann's replace handler implements the substitution; reading the
   // dumped string back undoes the JSON escaping.

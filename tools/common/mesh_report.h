@@ -26,11 +26,6 @@ void print_check(std::ostream& out, const MeshCheckReport& report);
 void print_import_notes(const Tool& tool, const std::string& file, const ImportReport& report);
 void print_repair_actions(const Tool& tool, const std::string& file, const RepairReport& report);
 
-// The report as indented JSON text. Strings that are not valid UTF-8 (file
-// names on Linux are bytes) get U+FFFD for each bad byte instead of making
-// the dump throw.
-std::string dump_json(const nlohmann::json& report);
-
 // `text` with every byte that is not part of valid UTF-8 replaced by U+FFFD,
 // for strings that must be valid UTF-8 (META) but come from file names.
 std::string to_valid_utf8(const std::string& text);

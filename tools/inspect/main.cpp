@@ -178,22 +178,28 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
   }
 }
 
-int extract_base(const Tool& tool, const std::string& path, const Container& container,
-                 const std::string& out_path, nlohmann::json* report) {
+// A failure and the file it concerns (the container or the output).
+struct FileStatus {
+  std::string file;
+  Status status;
+};
+
+FileStatus extract_base(const Tool& tool, const std::string& path, const Container& container,
+                        const std::string& out_path, nlohmann::json* report) {
   Result<const Section*> base = container.require(kBaseTag);
-  if (!base.is_ok()) return tool.fail(path, base.status());
+  if (!base.is_ok()) return {path, base.status()};
   Result<TriangleMesh> mesh = decode_base(base.value()->data, base.value()->size);
-  if (!mesh.is_ok()) return tool.fail(path, mesh.status());
+  if (!mesh.is_ok()) return {path, mesh.status()};
   if (drops_attributes(out_path, mesh.value()))
     tool.warn(out_path,
               "this format cannot store the mesh's normals or texture coordinates; "
               "they are not written");
   Result<Bytes> bytes = write_mesh_for_path(out_path, mesh.value());
-  if (!bytes.is_ok()) return tool.fail(out_path, bytes.status());
+  if (!bytes.is_ok()) return {out_path, bytes.status()};
   Status written = write_file_atomic(out_path, bytes.value());
-  if (!written.is_ok()) return tool.fail(out_path, written);
+  if (!written.is_ok()) return {out_path, written};
   (*report)["extracted"] = {{"file", out_path}, {"bytes", bytes.value().size()}};
-  return 0;
+  return {};
 }
 
 int inspect_container(const Tool& tool, const std::string& path, const Bytes& bytes,
@@ -204,7 +210,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   if (!listing.status.is_ok()) {
     report["error"] = listing.status.message();
     if (tool.json()) {
-      std::cout << dump_json(report) << "\n";
+      tool.print_json(report);
     } else {
       print_listing(std::cout, path, listing);
     }
@@ -227,12 +233,14 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
       jf.push_back({{"section", f.tag}, {"message", f.message}});
     report["validation"] = {{"ok", findings.empty()}, {"findings", jf}};
   }
-  int code = 0;
-  if (!options.extract.empty() && findings.empty() && undecodable.is_ok())
-    code = extract_base(tool, path, container.value(), options.extract, &report);
+  FileStatus extracted;
+  if (!options.extract.empty() && findings.empty() && undecodable.is_ok()) {
+    extracted = extract_base(tool, path, container.value(), options.extract, &report);
+    if (!extracted.status.is_ok()) report["error"] = extracted.status.message();
+  }
 
   if (tool.json()) {
-    std::cout << dump_json(report) << "\n";
+    tool.print_json(report);
   } else {
     print_listing(std::cout, path, listing);
     print_contents(std::cout, report["contents"]);
@@ -255,7 +263,8 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
                         : "")));
   }
   if (!undecodable.is_ok()) return tool.fail(path, undecodable);
-  return code;
+  if (!extracted.status.is_ok()) return tool.fail(extracted.file, extracted.status);
+  return 0;
 }
 
 int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
@@ -276,7 +285,7 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
                              {"sha256", loaded.sha256},
                              {"import", to_json(loaded.import)},
                              {"check", to_json(check)}};
-    std::cout << dump_json(report) << "\n";
+    tool.print_json(report);
   } else {
     std::cout << "file          " << path << " (" << loaded.file_bytes << " bytes)\n";
     std::cout << "format        " << loaded.import.format << "\n";
@@ -321,6 +330,8 @@ int main(int argc, char** argv) {
   if (tool.has("extract") && options.extract.empty())
     return tool.usage_error("--extract needs a file name");
   const std::string& path = files.front();
+  if (!options.extract.empty() && same_file(path, options.extract))
+    return tool.usage_error("--extract '" + options.extract + "' would overwrite the container");
   return tool.run([&] {
     Result<Bytes> bytes = read_file(path);
     if (!bytes.is_ok()) return tool.fail(path, bytes.status());

@@ -98,7 +98,7 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   report["counts"] = {{"vertices", loaded.mesh.vertex_count()},
                       {"triangles", loaded.mesh.triangle_count()}};
   if (tool.json()) {
-    std::cout << dump_json(report) << "\n";
+    tool.print_json(report);
   } else {
     std::cout << "wrote " << options.output << ": " << loaded.mesh.vertex_count() << " vertices, "
               << loaded.mesh.triangle_count() << " triangles, " << file.value().size()
@@ -140,6 +140,8 @@ int main(int argc, char** argv) {
                                 ? "missing MESH"
                                 : "expected one MESH, got " + std::to_string(inputs.size()));
   if (options.output.empty()) return tool.usage_error("missing -o OUT.lbk");
+  if (same_file(inputs.front(), options.output))
+    return tool.usage_error("the output '" + options.output + "' is the input mesh itself");
   if (tool.has("quantize") && (options.quantize_bits < 1 || options.quantize_bits > 30))
     return tool.usage_error("--quantize takes 1 to 30 bits, not " +
                             std::to_string(options.quantize_bits));
