@@ -38,12 +38,13 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr uint32_t kAltBit = 0x80000000u;
 constexpr double kPi = 3.14159265358979323846;
 
+// 16 bytes, so that more of the heap stays in cache. Stamps only grow, so the
+// sum of the two endpoints' stamps identifies "neither changed since".
 struct HeapEntry {
-  double cost;
+  float cost;
   uint32_t vt;
   uint32_t vs;
-  uint32_t stamp_t;
-  uint32_t stamp_s;  // high bit: this is the second direction tried
+  uint32_t stamps;  // stamp[vt] + stamp[vs]; high bit: the second direction tried
 };
 
 // std heap functions keep the largest on top; "largest" here is the cheapest.
@@ -134,15 +135,17 @@ class Engine {
       heap_.pop_back();
       const uint32_t vt = e.vt;
       const uint32_t vs = e.vs;
-      if (!state_.vertex_alive[vt] || !state_.vertex_alive[vs] || stamp_[vt] != e.stamp_t ||
-          stamp_[vs] != (e.stamp_s & ~kAltBit)) {
+      if (!state_.vertex_alive[vt] || !state_.vertex_alive[vs] ||
+          stamp_[vt] + stamp_[vs] != (e.stamps & ~kAltBit)) {
         continue;
       }
-      if (e.cost > settings_.max_cost) break;
+      // The queued cost is rounded to float; the stop test uses the exact one.
+      const double exact_cost = cost(vt, vs);
+      if (exact_cost > settings_.max_cost) break;
       const Vec3f p = placement(vt, vs);
       const Verdict verdict = check(vt, vs, p);
       if (verdict == Verdict::kOk) {
-        collapse(vt, vs, p, e.cost);
+        collapse(vt, vs, p, exact_cost);
         if (options_.progress && ++since_progress == 4096) {
           since_progress = 0;
           options_.progress(static_cast<double>(state_.stats.input_triangles - triangle_count_) /
@@ -154,10 +157,10 @@ class Engine {
       if (verdict == Verdict::kLink) ++state_.stats.refused_link;
       if (verdict == Verdict::kFlip) ++state_.stats.refused_flip;
       if (verdict == Verdict::kOther) ++state_.stats.refused_other;
-      if (!(e.stamp_s & kAltBit)) {
+      if (!(e.stamps & kAltBit)) {
         const double reverse = cost(vs, vt);
         if (reverse < kInfinity) {
-          push({reverse, vs, vt, stamp_[vs], stamp_[vt] | kAltBit});
+          push({static_cast<float>(reverse), vs, vt, (stamp_[vs] + stamp_[vt]) | kAltBit});
           continue;
         }
       }
@@ -282,9 +285,13 @@ class Engine {
   // The cost of collapsing vt into vs, infinite when the locks forbid it.
   double cost(uint32_t vt, uint32_t vs) const {
     if (no_remove_[vt] || no_keep_[vs]) return kInfinity;
-    const Quadric q = quadric_[vt] + quadric_[vs];
-    if (options_.placement == Placement::kHalf) return q.mean_error(to_d(state_.positions[vs]));
-    return q.mean_error(to_d(placement(vt, vs)));
+    // Evaluating both quadrics at p is cheaper than summing them first.
+    const Quadric& qt = quadric_[vt];
+    const Quadric& qs = quadric_[vs];
+    const Vec3d p =
+        to_d(options_.placement == Placement::kHalf ? state_.positions[vs] : placement(vt, vs));
+    const double weight = qt.weight + qs.weight;
+    return weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
   }
 
   void push(const HeapEntry& e) {
@@ -293,35 +300,25 @@ class Engine {
   }
 
   void push_edge(uint32_t a, uint32_t b, bool heapify) {
-    double ab;
-    double ba;
-    if (options_.placement == Placement::kHalf) {
-      ab = cost(a, b);
-      ba = cost(b, a);
-    } else {
-      // Both directions end at the same point unless a lock pins one; keep
-      // the endpoint nearer to it (the smaller index on ties).
-      ab = cost(a, b);
-      ba = cost(b, a);
-      if (ab == ba && ab < kInfinity) {
-        const Vec3f p = placement(a, b);
-        const Vec3d pd = to_d(p);
-        const Vec3d da = sub(pd, to_d(state_.positions[a]));
-        const Vec3d db = sub(pd, to_d(state_.positions[b]));
-        const double la = dot(da, da);
-        const double lb = dot(db, db);
-        // Removing a keeps b: prefer it when b is nearer.
-        if (lb < la || (lb == la && b < a))
-          ba = std::nextafter(ba, kInfinity);
-        else
-          ab = std::nextafter(ab, kInfinity);
-      }
-    }
+    const double ab = cost(a, b);  // removing a, keeping b
+    const double ba = cost(b, a);
     if (!(ab < kInfinity) && !(ba < kInfinity)) return;
-    // On equal costs remove the larger index.
-    const bool remove_a = ab < ba || (ab == ba && a > b);
-    const HeapEntry e = remove_a ? HeapEntry{ab, a, b, stamp_[a], stamp_[b]}
-                                 : HeapEntry{ba, b, a, stamp_[b], stamp_[a]};
+    const auto fab = static_cast<float>(ab);
+    const auto fba = static_cast<float>(ba);
+    // On equal costs remove the larger index, except in optimal placement
+    // where both directions end at the same point: keep the endpoint nearer
+    // to it (the smaller index on ties).
+    bool remove_a = fab < fba || (fab == fba && a > b);
+    if (fab == fba && options_.placement == Placement::kOptimal) {
+      const Vec3d pd = to_d(placement(a, b));
+      const Vec3d da = sub(pd, to_d(state_.positions[a]));
+      const Vec3d db = sub(pd, to_d(state_.positions[b]));
+      const double la = dot(da, da);
+      const double lb = dot(db, db);
+      remove_a = lb < la || (lb == la && b < a);
+    }
+    const uint32_t stamps = stamp_[a] + stamp_[b];
+    const HeapEntry e = remove_a ? HeapEntry{fab, a, b, stamps} : HeapEntry{fba, b, a, stamps};
     if (heapify) {
       push(e);
     } else {
