@@ -1,0 +1,51 @@
+// The half-edge collapse loop behind simplify(): quadrics, a binary heap of
+// candidate collapses with lazy invalidation, the legality checks and the
+// collapse itself, over flat arrays. Internal to lib/simplify; simplify.cpp
+// validates the input and turns the result into meshes and a PM.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/triangle_mesh.h"
+#include "lib/simplify/mesh_topology.h"
+#include "lib/simplify/simplify.h"
+
+namespace lodbake {
+namespace simplify_internal {
+
+/// One applied collapse, in input vertex ids: vt was merged into vs.
+struct CollapseRecord {
+  uint32_t vt = 0;
+  uint32_t vs = 0;
+  uint32_t vl = kNoVertex;  // third vertex of the removed face (vs, vt, vl)
+  uint32_t vr = kNoVertex;  // third vertex of the removed face (vt, vs, vr)
+  Vec3f vt_position{};      // before the collapse
+  Vec3f vs_position{};      // before the collapse
+  float error = 0;          // sqrt of the mean quadric error: a distance
+};
+
+struct EngineSettings {
+  uint64_t target_triangles = 0;  // stop at or below
+  double max_cost = 0;            // stop before a collapse costing more (mean squared distance)
+  double diagonal = 0;            // of the bounding box, for the statistics
+};
+
+struct EngineState {
+  std::vector<Vec3f> positions;  // current positions (moved ones in optimal mode)
+  std::vector<Triangle> triangles;
+  std::vector<uint8_t> triangle_alive;
+  std::vector<uint8_t> vertex_alive;
+  MeshAttribute normals;    // current values; per-corner corners follow the triangles
+  MeshAttribute texcoords;  // likewise
+  std::vector<CollapseRecord> log;
+  SimplifyStats stats;
+};
+
+/// Runs the collapses on `mesh` (whose adjacency is `topology`).
+/// \pre build_topology(mesh) succeeded.
+EngineState run_collapse_engine(const TriangleMesh& mesh, MeshTopology topology,
+                                const SimplifyOptions& options, const EngineSettings& settings);
+
+}  // namespace simplify_internal
+}  // namespace lodbake

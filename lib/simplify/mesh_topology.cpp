@@ -1,0 +1,150 @@
+// Adjacency and manifold check for the collapse engine. The check is local:
+// around vertex v every face contributes its outgoing edge v->next and its
+// incoming edge prev->v; a manifold, consistently oriented fan has each
+// outgoing and each incoming neighbour at most once, and linking face i to
+// the face whose outgoing neighbour is i's incoming one yields one chain
+// (boundary vertex) or one cycle (interior vertex). Non-manifold vertices are
+// refused rather than split: the engine's link condition assumes single fans,
+// and --repair splits them.
+#include "lib/simplify/mesh_topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace lodbake {
+namespace simplify_internal {
+namespace {
+
+struct FanFace {
+  uint32_t next;  // vertex after v in the face
+  uint32_t prev;  // vertex before v
+};
+
+}  // namespace
+
+Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
+  const size_t n = mesh.positions.size();
+  const size_t m = mesh.triangles.size();
+  if (n >= (size_t{1} << 31) || m >= (size_t{1} << 30)) {
+    return unsupported("mesh too large for the collapse engine (" + std::to_string(n) +
+                       " vertices, " + std::to_string(m) + " triangles)");
+  }
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3f& p = mesh.positions[v];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      return invalid_input("vertex " + std::to_string(v) + " has a non-finite coordinate");
+    }
+  }
+  std::vector<uint32_t>& start = topology->face_start;
+  start.assign(n + 1, 0);
+  for (size_t t = 0; t < m; ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    for (uint32_t v : tri) {
+      if (v >= n) {
+        return invalid_input("triangle " + std::to_string(t) + ": vertex index " +
+                             std::to_string(v) + " out of range (" + std::to_string(n) +
+                             " vertices)");
+      }
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      return invalid_input("triangle " + std::to_string(t) +
+                           " repeats a vertex (use --repair to fix)");
+    }
+    for (uint32_t v : tri)
+      ++start[v + 1];
+  }
+  for (size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  topology->faces.resize(3 * m);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < m; ++t) {
+      for (uint32_t v : mesh.triangles[t])
+        topology->faces[fill[v]++] = static_cast<uint32_t>(t);
+    }
+  }
+  topology->boundary.assign(n, 0);
+
+  std::vector<FanFace> fan;
+  std::vector<uint32_t> by_next;
+  std::vector<uint8_t> visited;
+  std::vector<uint32_t> prevs;
+  std::vector<uint8_t> has_pred;
+  for (size_t v = 0; v < n; ++v) {
+    fan.clear();
+    for (uint32_t i = start[v]; i < start[v + 1]; ++i) {
+      const Triangle& tri = mesh.triangles[topology->faces[i]];
+      const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+      fan.push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
+    }
+    const size_t k = fan.size();
+    if (k == 0) continue;
+    by_next.resize(k);
+    for (size_t i = 0; i < k; ++i)
+      by_next[i] = static_cast<uint32_t>(i);
+    std::sort(by_next.begin(), by_next.end(),
+              [&](uint32_t a, uint32_t b) { return fan[a].next < fan[b].next; });
+    prevs.resize(k);
+    for (size_t i = 0; i < k; ++i)
+      prevs[i] = fan[i].prev;
+    std::sort(prevs.begin(), prevs.end());
+    for (size_t i = 1; i < k; ++i) {
+      const uint32_t a = fan[by_next[i - 1]].next;
+      const uint32_t b = fan[by_next[i]].next;
+      if (a == b || prevs[i - 1] == prevs[i]) {
+        const uint32_t w = a == b ? a : prevs[i];
+        // Three or more faces on v-w, or two faces walking it the same way.
+        const size_t uses = std::count_if(
+            fan.begin(), fan.end(), [&](const FanFace& f) { return f.next == w || f.prev == w; });
+        if (uses > 2) {
+          return invalid_input("edge " + std::to_string(std::min<size_t>(v, w)) + "-" +
+                               std::to_string(std::max<size_t>(v, w)) + " has " +
+                               std::to_string(uses) + " faces (non-manifold edge)");
+        }
+        return invalid_input("edge " + std::to_string(std::min<size_t>(v, w)) + "-" +
+                             std::to_string(std::max<size_t>(v, w)) +
+                             " is walked the same way by two faces (inconsistent orientation "
+                             "or duplicate triangle; use --repair to fix)");
+      }
+    }
+    // Face i continues into the face whose `next` is i's `prev` (rotating
+    // around v). Count chains and cycles.
+    auto successor = [&](size_t i) -> int64_t {
+      const uint32_t want = fan[i].prev;
+      auto it = std::lower_bound(by_next.begin(), by_next.end(), want,
+                                 [&](uint32_t a, uint32_t value) { return fan[a].next < value; });
+      if (it == by_next.end() || fan[*it].next != want) return -1;
+      return *it;
+    };
+    has_pred.assign(k, 0);
+    for (size_t i = 0; i < k; ++i) {
+      const int64_t s = successor(i);
+      if (s >= 0) has_pred[static_cast<size_t>(s)] = 1;
+    }
+    visited.assign(k, 0);
+    size_t fans = 0;
+    bool open = false;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (size_t i = 0; i < k; ++i) {
+        if (visited[i] || (pass == 0 && has_pred[i])) continue;
+        if (pass == 0) open = true;
+        ++fans;
+        for (int64_t j = static_cast<int64_t>(i); j >= 0 && !visited[static_cast<size_t>(j)];
+             j = successor(static_cast<size_t>(j))) {
+          visited[static_cast<size_t>(j)] = 1;
+        }
+      }
+    }
+    if (fans > 1) {
+      return invalid_input("vertex " + std::to_string(v) + ": its faces form " +
+                           std::to_string(fans) +
+                           " separate fans (non-manifold vertex; use --repair to fix)");
+    }
+    topology->boundary[v] = open ? 1 : 0;
+  }
+  return Status::ok();
+}
+
+}  // namespace simplify_internal
+}  // namespace lodbake

@@ -1,0 +1,29 @@
+// Vertex-to-face adjacency of an indexed triangle mesh, built in flat arrays,
+// and the check that the mesh is one the collapse engine can take
+// (oriented 2-manifold, possibly with boundary). Internal to lib/simplify.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/triangle_mesh.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+namespace simplify_internal {
+
+struct MeshTopology {
+  std::vector<uint32_t> face_start;  // vertex_count + 1 offsets into `faces`
+  std::vector<uint32_t> faces;       // the faces of each vertex, in triangle order
+  std::vector<uint8_t> boundary;     // 1 when the vertex has a boundary edge
+};
+
+/// Builds the adjacency and checks, vertex by vertex: indices in range, no
+/// triangle repeating a vertex, finite coordinates, every edge in at most two
+/// faces walked in opposite directions (consistent orientation), and the
+/// faces around each vertex forming a single fan (no non-manifold vertex).
+/// Fails with kInvalidInput naming the first offending element.
+Status build_topology(const TriangleMesh& mesh, MeshTopology* topology);
+
+}  // namespace simplify_internal
+}  // namespace lodbake

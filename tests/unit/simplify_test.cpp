@@ -1,0 +1,303 @@
+// simplify(): stop criteria, determinism, boundary locking, placements,
+// attributes and the refusal of inputs the engine cannot take.
+#include "lib/simplify/simplify.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "lib/check/mesh_check.h"
+#include "simplify_test_meshes.h"
+
+namespace lodbake {
+namespace {
+
+SimplifyResult run(const TriangleMesh& mesh, const SimplifyOptions& options) {
+  Result<SimplifyResult> result = simplify(mesh, options);
+  EXPECT_TRUE(result.is_ok()) << result.status().message();
+  if (!result.is_ok()) return SimplifyResult();
+  return std::move(result).value();
+}
+
+void expect_clean(const TriangleMesh& mesh) {
+  const MeshCheckReport r = check_mesh(mesh);
+  EXPECT_EQ(r.non_manifold_edges, 0u);
+  EXPECT_EQ(r.non_manifold_vertices, 0u);
+  EXPECT_EQ(r.inconsistent_orientation_edges, 0u);
+  EXPECT_EQ(r.degenerate_triangles, 0u);
+  EXPECT_EQ(r.unreferenced_vertices, 0u);
+}
+
+std::set<Vec3f> boundary_positions(const TriangleMesh& mesh) {
+  std::set<std::pair<uint32_t, uint32_t>> half_edges;
+  for (const Triangle& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k)
+      half_edges.insert({t[k], t[(k + 1) % 3]});
+  }
+  std::set<Vec3f> out;
+  for (const auto& e : half_edges) {
+    if (!half_edges.count({e.second, e.first})) {
+      out.insert(mesh.positions[e.first]);
+      out.insert(mesh.positions[e.second]);
+    }
+  }
+  return out;
+}
+
+TEST(Simplify, StopsAtTargetTriangles) {
+  const TriangleMesh bunny = load_clean_mesh("npm_bunny.obj");
+  SimplifyOptions options;
+  options.target_triangles = 1000;
+  const SimplifyResult r = run(bunny, options);
+  EXPECT_LE(r.mesh.triangles.size(), 1000u);
+  EXPECT_GE(r.mesh.triangles.size(), 998u);
+  EXPECT_EQ(r.stats.output_triangles, r.mesh.triangles.size());
+  EXPECT_EQ(r.stats.input_triangles, bunny.triangles.size());
+  EXPECT_EQ(r.stats.collapses, (bunny.triangles.size() - r.mesh.triangles.size()) / 2);
+  expect_clean(r.mesh);
+  // A closed genus-0 mesh stays closed and genus 0.
+  const MeshCheckReport check = check_mesh(r.mesh);
+  EXPECT_TRUE(check.closed());
+  EXPECT_EQ(check.genus, 0);
+}
+
+TEST(Simplify, StopsAtRatioAndTheFirstCriterionReached) {
+  const TriangleMesh bunny = load_clean_mesh("npm_bunny.obj");
+  SimplifyOptions options;
+  options.target_ratio = 0.25;
+  const size_t quarter = bunny.triangles.size() / 4;
+  SimplifyResult r = run(bunny, options);
+  EXPECT_LE(r.mesh.triangles.size(), quarter);
+  EXPECT_GE(r.mesh.triangles.size(), quarter - 1);
+  options.target_triangles = 100;  // reached after the ratio
+  r = run(bunny, options);
+  EXPECT_GE(r.mesh.triangles.size(), quarter - 1);
+}
+
+TEST(Simplify, StopsAtMaxError) {
+  const TriangleMesh bunny = load_clean_mesh("npm_bunny.obj");
+  SimplifyOptions options;
+  options.max_error = 0.002;
+  options.record_pm = true;
+  const SimplifyResult r = run(bunny, options);
+  EXPECT_LE(r.stats.max_collapse_error, 0.002);
+  EXPECT_LT(r.mesh.triangles.size(), bunny.triangles.size());
+  EXPECT_GT(r.mesh.triangles.size(), 100u);
+  // Without a limit it goes further, beyond that error.
+  options.max_error.reset();
+  const SimplifyResult all = run(bunny, options);
+  EXPECT_LT(all.mesh.triangles.size(), r.mesh.triangles.size());
+  EXPECT_GT(all.stats.max_collapse_error, 0.002);
+  // max_error 0 on a curved mesh: nothing but exactly flat collapses.
+  options.max_error = 0.0;
+  EXPECT_EQ(run(bunny, options).mesh.triangles.size(), bunny.triangles.size());
+}
+
+TEST(Simplify, RunsToTheEndWithoutCriteria) {
+  // The tetrahedron cannot lose a vertex; a closed genus-0 mesh ends as a
+  // handful of triangles.
+  const TriangleMesh tet = load_clean_mesh("cgal_tetrahedron.off");
+  EXPECT_EQ(run(tet, SimplifyOptions()).mesh.triangles.size(), 4u);
+  const TriangleMesh bunny = load_clean_mesh("npm_bunny.obj");
+  const SimplifyResult r = run(bunny, SimplifyOptions());
+  EXPECT_LE(r.mesh.triangles.size(), 16u);
+  expect_clean(r.mesh);
+}
+
+TEST(Simplify, IsDeterministic) {
+  const TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
+  for (Placement placement : {Placement::kHalf, Placement::kOptimal}) {
+    SimplifyOptions options;
+    options.placement = placement;
+    options.record_pm = true;
+    options.target_ratio = 0.1;
+    const SimplifyResult a = run(mesh, options);
+    const SimplifyResult b = run(mesh, options);
+    EXPECT_EQ(a.mesh, b.mesh);
+    ASSERT_TRUE(a.pm && b.pm);
+    EXPECT_EQ(*a.pm, *b.pm);
+  }
+}
+
+TEST(Simplify, HalfPlacementKeepsInputPositions) {
+  const TriangleMesh mesh = load_clean_mesh("cgal_fandisk.off");
+  SimplifyOptions options;
+  options.target_ratio = 0.2;
+  const SimplifyResult half = run(mesh, options);
+  const std::set<Vec3f> input(mesh.positions.begin(), mesh.positions.end());
+  for (const Vec3f& p : half.mesh.positions)
+    EXPECT_TRUE(input.count(p));
+
+  options.placement = Placement::kOptimal;
+  const SimplifyResult optimal = run(mesh, options);
+  expect_clean(optimal.mesh);
+  size_t moved = 0;
+  for (const Vec3f& p : optimal.mesh.positions)
+    moved += !input.count(p);
+  EXPECT_GT(moved, optimal.mesh.positions.size() / 4);
+}
+
+TEST(Simplify, LockBorderKeepsBoundaryVertices) {
+  const TriangleMesh mesh = load_clean_mesh("igl_camelhead.off");
+  const std::set<Vec3f> border = boundary_positions(mesh);
+  ASSERT_FALSE(border.empty());
+  for (Placement placement : {Placement::kHalf, Placement::kOptimal}) {
+    SimplifyOptions options;
+    options.placement = placement;
+    options.lock_border = true;
+    options.target_ratio = 0.05;
+    const SimplifyResult r = run(mesh, options);
+    EXPECT_EQ(boundary_positions(r.mesh), border);
+    expect_clean(r.mesh);
+  }
+  // Without the lock the border is simplified too.
+  SimplifyOptions options;
+  options.target_ratio = 0.05;
+  EXPECT_LT(boundary_positions(run(mesh, options).mesh).size(), border.size());
+}
+
+TEST(Simplify, BoundaryWeightKeepsTheBorderCloser) {
+  // A flat square with a bumpy middle: with a strong boundary quadric the
+  // border keeps more vertices at the same triangle count.
+  const TriangleMesh mesh = load_clean_mesh("cgal_mushroom.off");
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  options.boundary_weight = 0;
+  const size_t weak = boundary_positions(run(mesh, options).mesh).size();
+  options.boundary_weight = 100;
+  const size_t strong = boundary_positions(run(mesh, options).mesh).size();
+  EXPECT_GT(strong, weak);
+}
+
+TEST(Simplify, PerVertexAttributesFollowTheSurvivor) {
+  TriangleMesh mesh = load_clean_mesh("npm_bunny.obj");
+  // Attributes derived from the position, so each survivor can be checked.
+  mesh.normals.binding = AttributeBinding::kPerVertex;
+  mesh.normals.components = 3;
+  mesh.texcoords.binding = AttributeBinding::kPerVertex;
+  mesh.texcoords.components = 2;
+  mesh.normals.values.clear();
+  mesh.texcoords.values.clear();
+  for (const Vec3f& p : mesh.positions) {
+    const double len = std::sqrt(double{p[0]} * p[0] + double{p[1]} * p[1] + double{p[2]} * p[2]);
+    for (int k = 0; k < 3; ++k)
+      mesh.normals.values.push_back(static_cast<float>(p[k] / len));
+    mesh.texcoords.values.push_back(p[0]);
+    mesh.texcoords.values.push_back(p[1]);
+  }
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  options.record_pm = true;
+  const SimplifyResult half = run(mesh, options);
+  ASSERT_EQ(half.mesh.texcoords.value_count(), half.mesh.positions.size());
+  ASSERT_EQ(half.mesh.normals.value_count(), half.mesh.positions.size());
+  for (size_t v = 0; v < half.mesh.positions.size(); ++v) {
+    EXPECT_EQ(half.mesh.texcoords.values[2 * v], half.mesh.positions[v][0]);
+    EXPECT_EQ(half.mesh.texcoords.values[2 * v + 1], half.mesh.positions[v][1]);
+  }
+  ASSERT_TRUE(half.pm);
+  // Half placement: the PM's base is the simplified mesh, attributes included.
+  EXPECT_EQ(half.pm->base, half.mesh);
+  EXPECT_EQ(half.pm->texcoords.value_count(), mesh.positions.size());
+
+  options.placement = Placement::kOptimal;
+  const SimplifyResult optimal = run(mesh, options);
+  for (size_t v = 0; v < optimal.mesh.positions.size(); ++v) {
+    const float* n = &optimal.mesh.normals.values[3 * v];
+    EXPECT_NEAR(double{n[0]} * n[0] + double{n[1]} * n[1] + double{n[2]} * n[2], 1.0, 1e-5);
+    // Interpolated along the edge: near the moved vertex's own direction.
+    const Vec3f& p = optimal.mesh.positions[v];
+    const double len = std::sqrt(double{p[0]} * p[0] + double{p[1]} * p[1] + double{p[2]} * p[2]);
+    EXPECT_GT((n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) / len, 0.9);
+  }
+}
+
+TEST(Simplify, SeamVerticesAreLockedUnlessPermissive) {
+  TriangleMesh mesh = load_clean_mesh("npm_bunny.obj");
+  // Per-corner texture coordinates: a seam along x = 0 (vertices there carry
+  // two values, one per side).
+  MeshAttribute& tc = mesh.texcoords;
+  tc.binding = AttributeBinding::kPerCorner;
+  tc.components = 2;
+  tc.values.clear();
+  tc.corners.clear();
+  std::set<uint32_t> seam;
+  for (const Triangle& t : mesh.triangles) {
+    const double cx =
+        (double{mesh.positions[t[0]][0]} + mesh.positions[t[1]][0] + mesh.positions[t[2]][0]) / 3;
+    Triangle c;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = static_cast<uint32_t>(tc.values.size() / 2);
+      tc.values.push_back(cx < 0 ? 0.0f : 1.0f);
+      tc.values.push_back(0.0f);
+    }
+    tc.corners.push_back(c);
+  }
+  // The seam vertices: used by triangles on both sides.
+  std::vector<int> side(mesh.positions.size(), -1);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const int s = tc.values[2 * tc.corners[t][0]] == 0.0f ? 0 : 1;
+    for (uint32_t v : mesh.triangles[t]) {
+      if (side[v] >= 0 && side[v] != s) seam.insert(v);
+      side[v] = s;
+    }
+  }
+  ASSERT_GT(seam.size(), 10u);
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  const SimplifyResult r = run(mesh, options);
+  ASSERT_EQ(r.mesh.texcoords.corners.size(), r.mesh.triangles.size());
+  std::set<Vec3f> kept(r.mesh.positions.begin(), r.mesh.positions.end());
+  for (uint32_t v : seam)
+    EXPECT_TRUE(kept.count(mesh.positions[v]));
+  // Every output triangle still lies on one side: corners agree.
+  for (const Triangle& c : r.mesh.texcoords.corners) {
+    EXPECT_EQ(r.mesh.texcoords.values[2 * c[0]], r.mesh.texcoords.values[2 * c[1]]);
+    EXPECT_EQ(r.mesh.texcoords.values[2 * c[0]], r.mesh.texcoords.values[2 * c[2]]);
+  }
+  options.permissive = true;
+  const SimplifyResult p = run(mesh, options);
+  std::set<Vec3f> kept_p(p.mesh.positions.begin(), p.mesh.positions.end());
+  size_t seam_kept = 0;
+  for (uint32_t v : seam)
+    seam_kept += kept_p.count(mesh.positions[v]);
+  EXPECT_LT(seam_kept, seam.size());
+  // A PM cannot carry per-corner values: refused, not dropped.
+  options.record_pm = true;
+  EXPECT_EQ(simplify(mesh, options).status().kind(), ErrorKind::kUnsupported);
+}
+
+TEST(Simplify, RefusesMeshesItCannotTake) {
+  TriangleMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  // Edge 0-1 in three faces.
+  mesh.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  Result<SimplifyResult> r = simplify(mesh, SimplifyOptions());
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput);
+  EXPECT_NE(r.status().message().find("edge 0-1"), std::string::npos) << r.status().message();
+
+  // Two triangles touching at vertex 0 only: a non-manifold vertex.
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 3, 4}};
+  r = simplify(mesh, SimplifyOptions());
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_NE(r.status().message().find("vertex 0"), std::string::npos) << r.status().message();
+
+  // Inconsistent orientation.
+  mesh.triangles = {{0, 1, 2}, {0, 1, 4}};
+  EXPECT_FALSE(simplify(mesh, SimplifyOptions()).is_ok());
+  mesh.triangles = {{0, 1, 7}};
+  EXPECT_FALSE(simplify(mesh, SimplifyOptions()).is_ok());
+  mesh.triangles = {{0, 1, 1}};
+  EXPECT_FALSE(simplify(mesh, SimplifyOptions()).is_ok());
+
+  SimplifyOptions bad;
+  bad.target_ratio = 1.5;
+  mesh.triangles = {{0, 1, 2}};
+  EXPECT_EQ(simplify(mesh, bad).status().kind(), ErrorKind::kUsage);
+}
+
+}  // namespace
+}  // namespace lodbake

@@ -1,0 +1,42 @@
+// Loading the shared meshes the simplifier tests run on: imported through
+// the tools' ingest path with the engine's policy (no non-manifold vertex,
+// consistent orientation, no degenerate or duplicate triangle) and the
+// unreferenced vertices dropped.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "formats/mesh/triangle_mesh.h"
+#include "lib/ingest/load_mesh.h"
+
+namespace lodbake {
+
+inline std::string shared_mesh_path(const std::string& file) {
+  const char* root = std::getenv("LODBAKE_SHARED_DATA");
+  return std::string(root ? root : "/work/shared/data") + "/meshes/" + file;
+}
+
+inline LoadOptions clean_mesh_options() {
+  LoadOptions options;
+  options.drop_unreferenced = true;
+  UsePolicy policy;
+  policy.refuse_non_manifold_vertices = true;
+  policy.refuse_inconsistent_orientation = true;
+  policy.refuse_degenerate_triangles = true;
+  policy.refuse_duplicate_triangles = true;
+  options.policy = policy;
+  return options;
+}
+
+/// Loads a clean shared mesh; fails the test when it cannot.
+inline TriangleMesh load_clean_mesh(const std::string& file) {
+  LoadedMesh loaded;
+  const Status status = load_mesh(shared_mesh_path(file), clean_mesh_options(), &loaded);
+  EXPECT_TRUE(status.is_ok()) << file << ": " << status.message();
+  return loaded.mesh;
+}
+
+}  // namespace lodbake
