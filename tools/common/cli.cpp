@@ -1,5 +1,7 @@
 #include "tools/common/cli.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -123,6 +125,22 @@ int Tool::run(const std::function<int()>& body) const {
   } catch (const std::exception& e) {
     return fail("", runtime_error(std::string("internal error: ") + e.what()));
   }
+}
+
+Progress::Progress(const Tool& tool, std::string label)
+    : enabled_(!tool.quiet() && ::isatty(STDERR_FILENO) == 1), label_(std::move(label)) {}
+
+Progress::~Progress() {
+  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r\033[K");
+}
+
+void Progress::update(double fraction) {
+  if (!enabled_) return;
+  int percent = static_cast<int>(fraction * 100.0);
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
+  std::fflush(stderr);
 }
 
 }  // namespace lodbake::cli

@@ -88,4 +88,21 @@ class Tool {
 // The exit-code table, printed at the end of every --help.
 const char* exit_code_help();
 
+// A progress line on stderr, drawn only when stderr is a terminal and the
+// tool is not --quiet; cleared when it goes out of scope.
+class Progress {
+ public:
+  Progress(const Tool& tool, std::string label);
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  // Shows `fraction` (0..1) as a percentage; redraws only when it changes.
+  void update(double fraction);
+
+ private:
+  bool enabled_;
+  std::string label_;
+  int last_percent_ = -1;
+};
+
 }  // namespace lodbake::cli

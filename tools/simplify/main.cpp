@@ -1,0 +1,295 @@
+// lodbake-simplify: QEM edge-collapse simplification (lib/simplify) of one
+// mesh to a mesh file, an LOD chain, and/or a progressive mesh container.
+// Thin: import, simplification, PM encoding and metrics live in lib/ and
+// formats/.
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/meta.h"
+#include "formats/sections/vspl.h"
+#include "formats/support/file_io.h"
+#include "lib/ingest/load_mesh.h"
+#include "lib/meshio/mesh_writers.h"
+#include "lib/simplify/lod_chain.h"
+#include "lib/simplify/simplify.h"
+#include "tools/common/cli.h"
+#include "tools/common/mesh_report.h"
+
+namespace lodbake::cli {
+namespace {
+
+constexpr const char* kSimplifySchema = "lodbake.simplify/1";
+
+struct Request {
+  std::string input;
+  std::string output;  // mesh file, or a pattern with %d for --lods
+  std::string pm_output;
+  std::string placement = "half";
+  std::string lods;            // "0.5,0.25,0.1" as given
+  std::vector<double> ratios;  // parsed --lods
+  bool repair = false;
+  int quantize_bits = 0;
+  SimplifyOptions options;
+};
+
+std::string base_name(const std::string& path) {
+  size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+Result<std::vector<double>> parse_ratios(const std::string& text) {
+  std::vector<double> ratios;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    double r = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == nullptr || *end != '\0' || !(r > 0 && r <= 1))
+      return Status(ErrorKind::kUsage,
+                    "--lods takes ratios in (0, 1] separated by commas, not '" + item + "'");
+    ratios.push_back(r);
+  }
+  if (ratios.empty()) return Status(ErrorKind::kUsage, "--lods needs at least one ratio");
+  return ratios;
+}
+
+// "out_%d.glb" with index 2 -> "out_2.glb".
+std::string lod_path(const std::string& pattern, size_t index) {
+  std::string path = pattern;
+  size_t at = path.find("%d");
+  return path.replace(at, 2, std::to_string(index));
+}
+
+Status write_mesh(const Tool& tool, const std::string& path, const TriangleMesh& mesh) {
+  if (drops_attributes(path, mesh))
+    tool.warn(path, "this format cannot store the mesh's normals or texture coordinates");
+  LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, write_mesh_for_path(path, mesh));
+  return write_file_atomic(path, bytes);
+}
+
+Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
+                           const ProgressiveMesh& pm, nlohmann::json* report) {
+  MetaSection meta = make_meta("lodbake-simplify");
+  meta.options = {
+      {"placement", request.placement},
+      {"boundary_weight", request.options.boundary_weight},
+      {"lock_border", request.options.lock_border},
+      {"max_normal_change_degrees", request.options.max_normal_change_degrees},
+      {"permissive", request.options.permissive},
+      {"repair", request.repair},
+      {"quantize_bits", request.quantize_bits == 0 ? nlohmann::json(nullptr)
+                                                   : nlohmann::json(request.quantize_bits)}};
+  if (request.options.target_ratio) meta.options["ratio"] = *request.options.target_ratio;
+  if (request.options.target_triangles)
+    meta.options["triangles"] = *request.options.target_triangles;
+  if (request.options.max_error) meta.options["error"] = *request.options.max_error;
+  meta.input = MetaInput{base_name(request.input), loaded.sha256, loaded.file_bytes};
+  meta.counts = {{"vertices", pm.base.vertex_count()},
+                 {"triangles", pm.base.triangle_count()},
+                 {"splits", pm.splits.size()},
+                 {"full_vertices", pm.full_vertex_count()},
+                 {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)}};
+  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+  BaseEncodeOptions base_encoding;
+  VsplEncodeOptions vspl_encoding;
+  base_encoding.quantize = vspl_encoding.quantize = request.quantize_bits != 0;
+  if (request.quantize_bits != 0) base_encoding.bits = vspl_encoding.bits = request.quantize_bits;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(pm.base, base_encoding));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl_bytes, encode_vspl(pm, vspl_encoding));
+  (*report)["pm"] = {
+      {"file", request.pm_output},
+      {"splits", pm.splits.size()},
+      {"sections",
+       {{"META", meta_bytes.size()}, {"BASE", base_bytes.size()}, {"VSPL", vspl_bytes.size()}}}};
+  ContainerWriter writer;
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kMetaTag, std::move(meta_bytes), false));
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kBaseTag, std::move(base_bytes), true));
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kVsplTag, std::move(vspl_bytes), true));
+  return writer.finish();
+}
+
+int run(const Tool& tool, Request& request) {
+  LoadOptions load;
+  load.repair = request.repair;
+  load.drop_unreferenced = true;
+  LoadedMesh loaded;
+  Status status = load_mesh(request.input, load, &loaded);
+  print_import_notes(tool, request.input, loaded.import);
+  if (loaded.repair) print_repair_actions(tool, request.input, *loaded.repair);
+  if (!status.is_ok()) return tool.fail(request.input, status);
+
+  const std::vector<double>& ratios = request.ratios;
+  if (!ratios.empty()) {
+    // One run to the smallest level; the others are taken from its PM.
+    request.options.target_ratio = *std::min_element(ratios.begin(), ratios.end());
+    request.options.record_pm = true;
+  }
+  if (!request.pm_output.empty()) request.options.record_pm = true;
+
+  Progress progress(tool, "simplifying");
+  request.options.progress = [&](double fraction) { progress.update(fraction); };
+  auto start = std::chrono::steady_clock::now();
+  Result<SimplifyResult> simplified = simplify(loaded.mesh, request.options);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!simplified.is_ok()) return tool.fail(request.input, simplified.status());
+  const SimplifyResult& result = simplified.value();
+
+  nlohmann::json report = {
+      {"schema", kSimplifySchema},
+      {"input", request.input},
+      {"import", to_json(loaded.import)},
+      {"input_counts",
+       {{"vertices", loaded.mesh.vertex_count()}, {"triangles", loaded.mesh.triangle_count()}}},
+      {"output_counts",
+       {{"vertices", result.mesh.vertex_count()}, {"triangles", result.mesh.triangle_count()}}},
+      {"seconds", seconds},
+      {"collapses", result.stats.collapses},
+      {"max_collapse_error", result.stats.max_collapse_error}};
+  if (loaded.repair) report["repair"] = to_json(*loaded.repair);
+
+  nlohmann::json outputs = nlohmann::json::array();
+  if (!ratios.empty()) {
+    std::vector<uint64_t> targets;
+    for (double r : ratios)
+      targets.push_back(
+          static_cast<uint64_t>(r * static_cast<double>(loaded.mesh.triangle_count())));
+    Result<std::vector<TriangleMesh>> lods = extract_lods(*result.pm, targets);
+    if (!lods.is_ok()) return tool.fail(request.input, lods.status());
+    for (size_t i = 0; i < lods.value().size(); ++i) {
+      std::string path = lod_path(request.output, i);
+      Status written = write_mesh(tool, path, lods.value()[i]);
+      if (!written.is_ok()) return tool.fail(path, written);
+      outputs.push_back({{"file", path},
+                         {"ratio", ratios[i]},
+                         {"vertices", lods.value()[i].vertex_count()},
+                         {"triangles", lods.value()[i].triangle_count()}});
+    }
+  } else if (!request.output.empty()) {
+    Status written = write_mesh(tool, request.output, result.mesh);
+    if (!written.is_ok()) return tool.fail(request.output, written);
+    outputs.push_back({{"file", request.output},
+                       {"vertices", result.mesh.vertex_count()},
+                       {"triangles", result.mesh.triangle_count()}});
+  }
+  report["outputs"] = outputs;
+  if (!request.pm_output.empty()) {
+    Result<Bytes> container = pm_container(request, loaded, *result.pm, &report);
+    if (!container.is_ok()) return tool.fail(request.pm_output, container.status());
+    Status written = write_file_atomic(request.pm_output, container.value());
+    if (!written.is_ok()) return tool.fail(request.pm_output, written);
+    report["pm"]["bytes"] = container.value().size();
+  }
+
+  if (tool.json()) {
+    tool.print_json(report);
+    return 0;
+  }
+  std::cout << "input         " << request.input << ": " << loaded.mesh.vertex_count()
+            << " vertices, " << loaded.mesh.triangle_count() << " triangles\n";
+  std::cout << "simplified    " << result.mesh.vertex_count() << " vertices, "
+            << result.mesh.triangle_count() << " triangles in " << seconds << " s ("
+            << result.stats.collapses << " collapses, largest error "
+            << result.stats.max_collapse_error << " of the diagonal)\n";
+  for (const nlohmann::json& out : outputs)
+    std::cout << "wrote         " << out["file"].get<std::string>() << ": "
+              << out["triangles"].get<uint64_t>() << " triangles\n";
+  if (report.contains("pm"))
+    std::cout << "wrote         " << request.pm_output << ": progressive mesh, "
+              << report["pm"]["splits"].get<uint64_t>() << " vertex splits, "
+              << report["pm"]["bytes"].get<uint64_t>() << " bytes\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace lodbake::cli
+
+int main(int argc, char** argv) {
+  using namespace lodbake;
+  using namespace lodbake::cli;
+  Tool tool("lodbake-simplify", "MESH -o OUT.{obj,ply,off,glb} [--pm OUT.lbk] [options]",
+            "Simplifies a mesh by quadric-error edge collapses (Garland & Heckbert) and\n"
+            "writes the result, an LOD chain (--lods), and/or the progressive mesh it\n"
+            "recorded (--pm: a container with BASE and VSPL that inspect can extract any\n"
+            "level of detail from). Stops at the first of --ratio, --triangles and --error\n"
+            "reached, or when no collapse is legal.");
+  Request request;
+  double ratio = 0, error = 0;
+  uint64_t triangles = 0;
+  tool.options().add_options()("output,o",
+                               po::value<std::string>(&request.output)->value_name("OUT"),
+                               "the simplified mesh (.obj .ply .off .glb); with --lods a pattern "
+                               "containing %d, replaced by the level's index")(
+      "pm", po::value<std::string>(&request.pm_output)->value_name("OUT.lbk"),
+      "also write the progressive mesh (META + BASE + VSPL)")(
+      "ratio", po::value<double>(&ratio)->value_name("R"),
+      "stop at R times the input's triangles, 0 < R <= 1")(
+      "triangles", po::value<uint64_t>(&triangles)->value_name("N"), "stop at N triangles")(
+      "error", po::value<double>(&error)->value_name("E"),
+      "stop before a collapse whose error exceeds E times the bounding-box diagonal")(
+      "lods", po::value<std::string>(&request.lods)->value_name("R1,R2,..."),
+      "write one mesh per ratio from a single run (-o must contain %d)")(
+      "placement", po::value<std::string>(&request.placement)->value_name("half|optimal"),
+      "half (default): the surviving vertex keeps an endpoint's position; optimal: the "
+      "quadric's minimiser")("boundary-weight",
+                             po::value<double>(&request.options.boundary_weight)->value_name("W"),
+                             "weight of the boundary-preserving quadrics (default 1)")(
+      "lock-border", po::bool_switch(&request.options.lock_border),
+      "never move or remove boundary vertices")(
+      "max-normal-change",
+      po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
+      "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
+      "permissive", po::bool_switch(&request.options.permissive),
+      "allow collapses across texture seams")("repair", po::bool_switch(&request.repair),
+                                              "repair the input first (see lodbake-pack)")(
+      "quantize", po::value<int>(&request.quantize_bits)->value_name("BITS"),
+      "store the PM's positions quantized to BITS (1..30) bits");
+  tool.positional("mesh", -1);
+  if (std::optional<int> done = tool.parse(argc, argv)) return *done;
+  std::vector<std::string> inputs = tool.positionals("mesh");
+  if (inputs.size() != 1)
+    return tool.usage_error(inputs.empty()
+                                ? "missing MESH"
+                                : "expected one MESH, got " + std::to_string(inputs.size()));
+  request.input = inputs.front();
+  if (request.output.empty() && request.pm_output.empty())
+    return tool.usage_error("nothing to write: give -o OUT and/or --pm OUT.lbk");
+  if (tool.has("ratio")) {
+    if (!(ratio > 0 && ratio <= 1)) return tool.usage_error("--ratio takes a value in (0, 1]");
+    request.options.target_ratio = ratio;
+  }
+  if (tool.has("triangles")) request.options.target_triangles = triangles;
+  if (tool.has("error")) {
+    if (!(error >= 0)) return tool.usage_error("--error takes a value >= 0");
+    request.options.max_error = error;
+  }
+  if (request.placement == "optimal") {
+    request.options.placement = Placement::kOptimal;
+  } else if (request.placement != "half") {
+    return tool.usage_error("--placement takes 'half' or 'optimal', not '" + request.placement +
+                            "'");
+  }
+  if (!request.lods.empty()) {
+    Result<std::vector<double>> parsed = parse_ratios(request.lods);
+    if (!parsed.is_ok()) return tool.usage_error(parsed.status().message());
+    request.ratios = parsed.value();
+    if (request.output.find("%d") == std::string::npos)
+      return tool.usage_error("--lods needs -o with %d in the name, e.g. -o lod_%d.glb");
+    if (tool.has("ratio") || tool.has("triangles") || tool.has("error"))
+      return tool.usage_error(
+          "--lods sets the ratios; do not combine it with --ratio, "
+          "--triangles or --error");
+  }
+  if (tool.has("quantize") && (request.quantize_bits < 1 || request.quantize_bits > 30))
+    return tool.usage_error("--quantize takes 1 to 30 bits, not " +
+                            std::to_string(request.quantize_bits));
+  for (const std::string& out : {request.output, request.pm_output})
+    if (!out.empty() && same_file(request.input, out))
+      return tool.usage_error("the output '" + out + "' is the input mesh itself");
+  return tool.run([&] { return run(tool, request); });
+}
