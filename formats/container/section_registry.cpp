@@ -9,6 +9,7 @@ const std::vector<SectionKind>& known_section_kinds() {
   static const std::vector<SectionKind> kinds = {
       {kMetaTag, "provenance: tool, version, options, input, counts (JSON)"},
       {kBaseTag, "base triangle mesh: positions, triangles, normals, texture coordinates"},
+      {kVsplTag, "progressive mesh: vertex-split records and the input vertex permutation"},
   };
   return kinds;
 }

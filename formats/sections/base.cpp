@@ -3,10 +3,10 @@
 // docs/format.md "BASE").
 //
 // Choices where the brief was open:
-// - Quantization rounds half away from zero (floor(t + 0.5), t >= 0) in IEEE
-//   double with the operations in the documented order, so any conforming
-//   implementation reproduces the integers bit for bit. The box is the
-//   positions' bounding box; an axis of zero extent stores q = 0.
+// - Quantization (formats/support/quantization.h, shared with VSPL) rounds
+//   half away from zero in IEEE double with the operations in the documented
+//   order, so any conforming implementation reproduces the integers bit for
+//   bit. The box is the positions' bounding box.
 // - Canonical form only: index_bits must be exactly bits_for_count(V), the
 //   padding bits of every packed stream must be zero and the payload must end
 //   exactly after its last field. One mesh therefore has one encoding.
@@ -28,6 +28,7 @@
 #include "formats/container/section_registry.h"
 #include "formats/support/bit_packing.h"
 #include "formats/support/byte_reader.h"
+#include "formats/support/quantization.h"
 #include "formats/support/string_format.h"
 
 namespace lodbake {
@@ -38,41 +39,6 @@ Status bad_base(const std::string& detail) {
 }
 Status cannot_encode(const std::string& detail) {
   return invalid_input("cannot encode BASE: " + detail);
-}
-
-uint32_t quantization_steps(int bits) {
-  return static_cast<uint32_t>((uint64_t{1} << bits) - 1);
-}
-
-// The integer for coordinate p on an axis [lo, hi] (see file comment).
-uint32_t quantize(float p, float lo, float hi, uint32_t steps) {
-  const double extent = static_cast<double>(hi) - static_cast<double>(lo);
-  if (!(extent > 0)) return 0;
-  const double t = (static_cast<double>(p) - static_cast<double>(lo)) / extent * steps;
-  const double q = std::floor(t + 0.5);
-  if (q <= 0) return 0;
-  if (q >= steps) return steps;
-  return static_cast<uint32_t>(q);
-}
-
-float dequantize(uint32_t q, float lo, float hi, uint32_t steps) {
-  const double t = static_cast<double>(q) / steps;
-  const double extent = static_cast<double>(hi) - static_cast<double>(lo);
-  return static_cast<float>(static_cast<double>(lo) + t * extent);
-}
-
-void bounding_box(const std::vector<Vec3f>& positions, Vec3f* lo, Vec3f* hi) {
-  *lo = {0, 0, 0};
-  *hi = {0, 0, 0};
-  if (positions.empty()) return;
-  *lo = positions[0];
-  *hi = positions[0];
-  for (const Vec3f& p : positions) {
-    for (int a = 0; a < 3; ++a) {
-      (*lo)[a] = std::min((*lo)[a], p[a]);
-      (*hi)[a] = std::max((*hi)[a], p[a]);
-    }
-  }
 }
 
 const char* attribute_name(int which) {
@@ -148,12 +114,10 @@ Status parse_layout(const uint8_t* data, size_t size, BaseLayout* layout) {
                      &s.box_max[2]}) {
       if (!reader.read(v)) return bad_base("payload ends inside the quantization box");
     }
-    for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(s.box_min[a]) || !std::isfinite(s.box_max[a]) ||
-          !(s.box_min[a] <= s.box_max[a])) {
-        return bad_base(string_printf("quantization box axis %d [%g, %g] is not finite and ordered",
-                                      a, s.box_min[a], s.box_max[a]));
-      }
+    int a = 0;
+    if (!is_valid_quantization_box(s.box_min, s.box_max, &a)) {
+      return bad_base(string_printf("quantization box axis %d [%g, %g] is not finite and ordered",
+                                    a, s.box_min[a], s.box_max[a]));
     }
   }
 
@@ -264,7 +228,7 @@ Status decode_with_layout(const uint8_t* data, const BaseLayout& layout, Triangl
       for (int a = 0; a < 3; ++a) {
         uint32_t q = 0;
         if (!bits_in.read(s.quantization_bits, &q)) return bad_base("position stream too short");
-        p[a] = dequantize(q, s.box_min[a], s.box_max[a], steps);
+        p[a] = dequantize_coordinate(q, s.box_min[a], s.box_max[a], steps);
       }
     }
     if (!bits_in.padding_is_zero()) return bad_base("nonzero padding bits after the positions");
@@ -433,7 +397,7 @@ Result<Bytes> encode_base(const TriangleMesh& mesh, const BaseEncodeOptions& opt
       BitWriter bits_out(&out);
       for (const Vec3f& p : mesh.positions) {
         for (int a = 0; a < 3; ++a)
-          bits_out.write(quantize(p[a], lo[a], hi[a], steps), options.bits);
+          bits_out.write(quantize_coordinate(p[a], lo[a], hi[a], steps), options.bits);
       }
       bits_out.finish();
     } else {
@@ -535,19 +499,6 @@ std::vector<std::string> validate_base_payload(const uint8_t* data, size_t size)
   return validate_base(mesh.value());
 }
 
-double quantization_error_bound(const Vec3f& box_min, const Vec3f& box_max, int bits) {
-  const double steps = quantization_steps(bits);
-  double bound = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double extent = static_cast<double>(box_max[a]) - static_cast<double>(box_min[a]);
-    const double magnitude = std::max(std::fabs(static_cast<double>(box_min[a])),
-                                      std::fabs(static_cast<double>(box_max[a])));
-    bound = std::max(
-        bound, extent * (0.5 / steps + std::ldexp(1.0, -40)) + magnitude * std::ldexp(1.0, -23));
-  }
-  return bound;
-}
-
 Result<QuantizationReport> measure_quantization(const std::vector<Vec3f>& positions, int bits) {
   if (bits < kMinQuantizationBits || bits > kMaxQuantizationBits) {
     return invalid_input(string_printf("quantization bits %d outside 1..30", bits));
@@ -563,8 +514,8 @@ Result<QuantizationReport> measure_quantization(const std::vector<Vec3f>& positi
   const uint32_t steps = quantization_steps(bits);
   for (const Vec3f& p : positions) {
     for (int a = 0; a < 3; ++a) {
-      const uint32_t q = quantize(p[a], report.box_min[a], report.box_max[a], steps);
-      const float back = dequantize(q, report.box_min[a], report.box_max[a], steps);
+      const uint32_t q = quantize_coordinate(p[a], report.box_min[a], report.box_max[a], steps);
+      const float back = dequantize_coordinate(q, report.box_min[a], report.box_max[a], steps);
       report.max_error = std::max(report.max_error, std::fabs(static_cast<double>(back) - p[a]));
     }
   }

@@ -10,18 +10,11 @@
 
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/file_io.h"
+#include "formats/support/quantization.h"
 #include "formats/support/status.h"
 
 namespace lodbake {
 
-/// How positions are stored.
-enum class PositionEncoding : uint8_t {
-  kFloat32 = 0,    ///< three little-endian float32 per vertex, exact
-  kQuantized = 1,  ///< three `bits`-bit integers per vertex over a stored box
-};
-
-inline constexpr int kMinQuantizationBits = 1;
-inline constexpr int kMaxQuantizationBits = 30;
 inline constexpr uint8_t kBaseHasNormals = 0x01;    ///< attribute mask bit 0
 inline constexpr uint8_t kBaseHasTexcoords = 0x02;  ///< attribute mask bit 1
 
@@ -51,7 +44,7 @@ struct BaseSummary {
 /// the mesh and the options. With quantize, the box is the positions'
 /// bounding box and each coordinate becomes
 ///   q = floor((p - min) / (max - min) * (2^bits - 1) + 0.5)   (0 when max == min)
-/// computed in IEEE double (docs/format.md "Quantization").
+/// computed in IEEE double (formats/support/quantization.h).
 /// \return kInvalidInput ("cannot encode BASE: ...") when the mesh is not
 ///         storable: more than 2^32 - 1 vertices or triangles, triangles over
 ///         fewer than 2 vertices, an index out of range, a non-finite position
@@ -104,12 +97,5 @@ struct QuantizationReport {
 /// decode_base() do and measures the largest coordinate error.
 /// \return kInvalidInput when bits is outside 1..30 or a position is not finite.
 Result<QuantizationReport> measure_quantization(const std::vector<Vec3f>& positions, int bits);
-
-/// The documented bound on a quantized coordinate's error: half a
-/// quantization step of the widest axis, plus one float32 rounding of the
-/// result and a margin for double rounding:
-///   max over axes of  extent * (0.5 / (2^bits - 1) + 2^-40) + max(|min|, |max|) * 2^-23
-/// \pre box finite with min <= max per axis; bits in 1..30.
-double quantization_error_bound(const Vec3f& box_min, const Vec3f& box_max, int bits);
 
 }  // namespace lodbake

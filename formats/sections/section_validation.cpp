@@ -1,49 +1,132 @@
+// Sections are decoded in one pass, then the cross-section checks run, so
+// the result does not depend on the order of the sections in the file (a
+// VSPL may precede its BASE).
 #include "formats/sections/section_validation.h"
+
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/vspl.h"
 
 namespace lodbake {
 namespace {
 
-// META's counts, when present, must agree with the sections they describe.
-void check_meta_counts(const MetaSection& meta, const BaseSummary& base,
-                       std::vector<SectionFinding>* findings) {
-  auto expect = [&](const char* key, uint64_t actual) {
+// What the cross-section checks know of each section.
+struct Decoded {
+  std::optional<MetaSection> meta;
+  const Section* base_section = nullptr;
+  std::optional<BaseSummary> base;        // its fixed fields read
+  std::optional<TriangleMesh> base_mesh;  // decoded in full
+  const Section* vspl_section = nullptr;
+  std::optional<VsplSummary> vspl;         // its fixed fields read
+  std::optional<uint64_t> full_triangles;  // when VSPL decoded in full
+};
+
+// META's counts, when present, must agree with the sections they describe
+// (docs/format.md "META": vertices and triangles describe BASE; splits,
+// full_vertices and full_triangles a progressive mesh's BASE + VSPL).
+void check_meta_counts(const Decoded& d, std::vector<SectionFinding>* findings) {
+  const MetaSection& meta = *d.meta;
+  auto expect = [&](const char* key, uint64_t actual, const char* holder) {
     auto it = meta.counts.find(key);
     if (it != meta.counts.end() && it->second != actual) {
       findings->push_back({kMetaTag, std::string("counts.") + key + " is " +
-                                         std::to_string(it->second) + " but BASE holds " +
+                                         std::to_string(it->second) + " but " + holder + " " +
                                          std::to_string(actual)});
     }
   };
-  expect("vertices", base.vertex_count);
-  expect("triangles", base.triangle_count);
+  if (d.base) {
+    expect("vertices", d.base->vertex_count, "BASE holds");
+    expect("triangles", d.base->triangle_count, "BASE holds");
+  }
+  if (d.vspl) {
+    expect("splits", d.vspl->split_count, "VSPL holds");
+    expect("full_vertices", d.vspl->full_vertex_count(), "BASE and VSPL make");
+    if (d.full_triangles) expect("full_triangles", *d.full_triangles, "BASE and VSPL make");
+  } else if (d.vspl_section == nullptr) {
+    for (const char* key : {"splits", "full_vertices", "full_triangles"}) {
+      if (meta.counts.count(key) != 0) {
+        findings->push_back(
+            {kMetaTag, std::string("counts.") + key + " is given but there is no VSPL section"});
+      }
+    }
+  }
+}
+
+// VSPL needs its base mesh: the vertex counts must agree, and the records
+// are decoded against BASE's positions.
+void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
+  const Section& section = *d->vspl_section;
+  Result<VsplSummary> summary = read_vspl_summary(section.data, section.size);
+  if (!summary.is_ok()) {
+    findings->push_back({kVsplTag, summary.status().message()});
+    return;
+  }
+  d->vspl = summary.value();
+  if (d->base_section == nullptr) {
+    findings->push_back({kVsplTag, "no BASE section holds the base mesh of the " +
+                                       std::to_string(d->vspl->split_count) + " splits"});
+    return;
+  }
+  if (d->base && d->base->vertex_count != d->vspl->base_vertex_count) {
+    findings->push_back(
+        {kVsplTag, "base vertex count " + std::to_string(d->vspl->base_vertex_count) +
+                       " but BASE holds " + std::to_string(d->base->vertex_count) + " vertices"});
+    return;
+  }
+  if (!d->base_mesh) return;  // BASE's own finding says why
+  Result<VsplSection> decoded = decode_vspl(section.data, section.size, d->base_mesh->positions);
+  if (!decoded.is_ok()) {
+    findings->push_back({kVsplTag, decoded.status().message()});
+    return;
+  }
+  ProgressiveMesh pm;
+  pm.base = std::move(*d->base_mesh);
+  d->base_mesh.reset();
+  pm.splits = std::move(decoded.value().splits);
+  pm.input_vertex = std::move(decoded.value().input_vertex);
+  for (std::string& finding : validate_vspl(pm))
+    findings->push_back({kVsplTag, std::move(finding)});
+  d->full_triangles = full_triangle_count(pm.base.triangle_count(), pm.splits);
 }
 
 }  // namespace
 
 std::vector<SectionFinding> validate_sections(const Container& container) {
   std::vector<SectionFinding> findings;
-  std::optional<MetaSection> meta;
-  std::optional<BaseSummary> base;
+  Decoded d;
   for (const Section& section : container.sections) {
     if (section.tag() == kMetaTag) {
       Result<MetaSection> decoded = decode_meta(section.data, section.size);
       if (decoded.is_ok()) {
-        meta = std::move(decoded).value();
+        d.meta = std::move(decoded).value();
       } else {
         findings.push_back({kMetaTag, decoded.status().message()});
       }
     } else if (section.tag() == kBaseTag) {
-      for (std::string& finding : validate_base_payload(section.data, section.size))
-        findings.push_back({kBaseTag, std::move(finding)});
-      Result<BaseSummary> summary = read_base_summary(section.data, section.size);
-      if (summary.is_ok()) base = summary.value();
+      d.base_section = &section;
+      BaseSummary summary;
+      Result<TriangleMesh> mesh = decode_base(section.data, section.size, &summary);
+      if (mesh.is_ok()) {
+        for (std::string& finding : validate_base(mesh.value()))
+          findings.push_back({kBaseTag, std::move(finding)});
+        d.base = summary;
+        d.base_mesh = std::move(mesh).value();
+      } else {
+        findings.push_back({kBaseTag, mesh.status().message()});
+        Result<BaseSummary> fixed = read_base_summary(section.data, section.size);
+        if (fixed.is_ok()) d.base = fixed.value();
+      }
+    } else if (section.tag() == kVsplTag) {
+      d.vspl_section = &section;
     }
   }
-  if (meta && base) check_meta_counts(*meta, *base, &findings);
+  if (d.vspl_section != nullptr) check_vspl(&d, &findings);
+  if (d.meta) check_meta_counts(d, &findings);
   return findings;
 }
 

@@ -1,14 +1,19 @@
 // Fuzz target for the container: strict reader, lenient lister, and the
-// decoders of every section found. Invariants: the lister reports exactly
-// the strict reader's verdict; a valid file is canonical (re-writing its
-// sections reproduces it byte for byte); section round trips hold.
+// decoders of every section found (VSPL against the file's BASE when that
+// decodes), and the deep cross-section validation of valid files.
+// Invariants: the lister reports exactly the strict reader's verdict; a
+// valid file is canonical (re-writing its sections reproduces it byte for
+// byte); section round trips hold.
 #include <cstdint>
 #include <cstring>
+#include <optional>
+#include <utility>
 
 #include "formats/container/container_listing.h"
 #include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
+#include "formats/sections/section_validation.h"
 #include "tests/fuzz/fuzz_section_checks.h"
 
 using namespace lodbake;
@@ -19,14 +24,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::require(listing.status.code() == (container.is_ok() ? 0 : container.status().code()),
                 "listing and reader disagree");
 
+  std::optional<TriangleMesh> base;
   for (const SectionListing& section : listing.sections) {
     if (section.data == nullptr) continue;
     if (section.entry.tag == kMetaTag) fuzz::check_meta_payload(section.data, section.size);
-    if (section.entry.tag == kBaseTag) fuzz::check_base_payload(section.data, section.size);
+    if (section.entry.tag == kBaseTag) {
+      fuzz::check_base_payload(section.data, section.size);
+      Result<TriangleMesh> mesh = decode_base(section.data, section.size);
+      if (mesh.is_ok()) base = std::move(mesh).value();
+    }
+  }
+  for (const SectionListing& section : listing.sections) {
+    if (section.data == nullptr || section.entry.tag != kVsplTag) continue;
+    fuzz::check_vspl_payload(section.data, section.size, base ? &base->positions : nullptr);
   }
 
   if (container.is_ok()) {
     fuzz::require(listing.table_complete && listing.table_crc_ok, "valid file, broken listing");
+    (void)validate_sections(container.value());
     ContainerWriter writer;
     for (const Section& section : container.value().sections) {
       fuzz::require(

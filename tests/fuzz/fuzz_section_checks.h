@@ -1,4 +1,4 @@
-// Checks shared by the container and BASE fuzz targets: decode a section
+// Checks shared by the container, BASE and VSPL fuzz targets: decode a section
 // payload, validate it, and assert the round-trip invariants of the format.
 // A failed invariant aborts, which the fuzzer (or the corpus replay under
 // the sanitizers) reports as a crash.
@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <vector>
 
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/vspl.h"
 
 namespace lodbake::fuzz {
 
@@ -62,6 +64,59 @@ inline void check_meta_payload(const uint8_t* data, size_t size) {
   if (!again.is_ok()) return;  // e.g. an empty tool name, or growth past 1 MiB
   Result<MetaSection> back = decode_meta(again.value().data(), again.value().size());
   require(back.is_ok() && back.value() == meta.value(), "META round trip");
+}
+
+// Largest synthetic base mesh the VSPL check builds for a bare payload, so a
+// hostile base vertex count cannot make the harness itself allocate much.
+inline constexpr uint32_t kMaxSyntheticBaseVertices = 4096;
+
+// VSPL: decoded against `base_positions` (the container's BASE) or, when
+// null, against synthetic positions of the stored base vertex count. What
+// decodes passes validation and re-encodes (float32) to the same records,
+// and to the same bytes when the input was float32 with the flags the
+// writer would choose.
+inline void check_vspl_payload(const uint8_t* data, size_t size,
+                               const std::vector<Vec3f>* base_positions) {
+  Result<VsplSummary> summary = read_vspl_summary(data, size);
+  std::vector<Vec3f> synthetic;
+  if (base_positions == nullptr) {
+    if (summary.is_ok() && summary.value().base_vertex_count <= kMaxSyntheticBaseVertices) {
+      for (uint32_t i = 0; i < summary.value().base_vertex_count; ++i)
+        synthetic.push_back({static_cast<float>(i), 0.5f * static_cast<float>(i), -1.0f});
+    }
+    base_positions = &synthetic;
+  }
+  VsplSummary decoded_summary;
+  Result<VsplSection> section = decode_vspl(data, size, *base_positions, &decoded_summary);
+  (void)validate_vspl_payload(data, size, *base_positions);
+  if (!section.is_ok()) {
+    require(section.status().code() == 23 || section.status().kind() == ErrorKind::kRuntime,
+            "VSPL decode error without LBK-E023");
+    return;
+  }
+  require(summary.is_ok(), "VSPL decodes but its summary does not");
+  require(summary.value().split_count == section.value().splits.size() &&
+              summary.value().full_vertex_count() == section.value().input_vertex.size() &&
+              decoded_summary.flags == summary.value().flags,
+          "VSPL summary disagrees with the decoded records");
+  ProgressiveMesh pm;
+  pm.base.positions = *base_positions;
+  pm.splits = section.value().splits;
+  pm.input_vertex = section.value().input_vertex;
+  require(validate_vspl(pm).empty(), "decoded VSPL fails validation");
+  Result<Bytes> again = encode_vspl(pm, {});
+  require(again.is_ok(), "decoded VSPL cannot be encoded");
+  Result<VsplSection> back =
+      decode_vspl(again.value().data(), again.value().size(), *base_positions);
+  require(back.is_ok() && back.value().splits == pm.splits &&
+              back.value().input_vertex == pm.input_vertex,
+          "VSPL float32 round trip");
+  if (decoded_summary.position_encoding == PositionEncoding::kFloat32 &&
+      back.value().summary.flags == decoded_summary.flags) {
+    require(again.value().size() == size &&
+                (size == 0 || std::memcmp(again.value().data(), data, size) == 0),
+            "float32 VSPL is not canonical");
+  }
 }
 
 }  // namespace lodbake::fuzz
