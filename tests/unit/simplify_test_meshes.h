@@ -16,7 +16,8 @@ namespace lodbake {
 
 inline std::string shared_mesh_path(const std::string& file) {
   const char* root = std::getenv("LODBAKE_SHARED_DATA");
-  return std::string(root ? root : "/work/shared/data") + "/meshes/" + file;
+  // CTest sets LODBAKE_SHARED_DATA; without it the load fails naming the path.
+  return std::string(root ? root : "LODBAKE_SHARED_DATA-not-set") + "/meshes/" + file;
 }
 
 inline LoadOptions clean_mesh_options() {

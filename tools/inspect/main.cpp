@@ -12,10 +12,13 @@
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/section_validation.h"
+#include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/file_name.h"
 #include "lib/meshio/mesh_writers.h"
+#include "lib/simplify/lod_chain.h"
+#include "lib/simplify/pm_replay.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -29,6 +32,7 @@ struct InspectOptions {
   bool validate = false;
   bool strict = false;
   std::string extract;
+  std::optional<LodRequest> lod;  // --lod: extract the PM at this level
 };
 
 bool is_container(const Bytes& bytes) {
@@ -141,6 +145,24 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
         jb["positions"] = "float32";
       }
       contents[kBaseTag] = std::move(jb);
+    } else if (section.tag() == kVsplTag) {
+      Result<VsplSummary> vspl = read_vspl_summary(section.data, section.size);
+      if (!vspl.is_ok()) {
+        contents[kVsplTag] = keep(vspl.status());
+        continue;
+      }
+      const VsplSummary& v = vspl.value();
+      nlohmann::json jv = {{"splits", v.split_count},
+                           {"base_vertices", v.base_vertex_count},
+                           {"full_vertices", v.full_vertex_count()},
+                           {"error_range", {v.min_error, v.max_error}},
+                           {"stores_vs_positions", (v.flags & kVsplStoresVsPositions) != 0},
+                           {"stores_permutation", (v.flags & kVsplStoresPermutation) != 0}};
+      jv["positions"] =
+          v.position_encoding == PositionEncoding::kQuantized ? "quantized" : "float32";
+      if (v.position_encoding == PositionEncoding::kQuantized)
+        jv["quantization_bits"] = v.quantization_bits;
+      contents[kVsplTag] = std::move(jv);
     }
   }
   return contents;
@@ -176,6 +198,19 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
         << b["normals"].get<std::string>() << ", texcoords " << b["texcoords"].get<std::string>()
         << "\n";
   }
+  if (contents.contains(kVsplTag)) {
+    const nlohmann::json& v = contents[kVsplTag];
+    out << "VSPL          ";
+    if (!v.is_object()) {
+      out << v.get<std::string>() << "\n";
+      return;
+    }
+    out << "progressive mesh: " << v["splits"].get<uint64_t>() << " vertex splits from "
+        << v["base_vertices"].get<uint64_t>() << " to " << v["full_vertices"].get<uint64_t>()
+        << " vertices, collapse errors " << v["error_range"][0].get<double>() << " .. "
+        << v["error_range"][1].get<double>() << ", positions " << v["positions"].get<std::string>()
+        << "\n";
+  }
 }
 
 // A failure and the file it concerns (the container or the output).
@@ -184,11 +219,24 @@ struct FileStatus {
   Status status;
 };
 
+// The base mesh, or with a LoD request the PM's mesh at that level.
+Result<TriangleMesh> mesh_to_extract(const Container& container,
+                                     const std::optional<LodRequest>& lod, nlohmann::json* report) {
+  LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
+  if (!lod) return decode_base(base->data, base->size);
+  LODBAKE_ASSIGN_OR_RETURN(const Section* vspl, container.require(kVsplTag));
+  LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh pm,
+                           decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size));
+  size_t vertices = lod_vertex_count(pm, *lod);
+  (*report)["lod_vertices"] = vertices;
+  return mesh_at_lod(pm, vertices);
+}
+
 FileStatus extract_base(const Tool& tool, const std::string& path, const Container& container,
-                        const std::string& out_path, nlohmann::json* report) {
-  Result<const Section*> base = container.require(kBaseTag);
-  if (!base.is_ok()) return {path, base.status()};
-  Result<TriangleMesh> mesh = decode_base(base.value()->data, base.value()->size);
+                        const std::string& out_path, const std::optional<LodRequest>& lod,
+                        nlohmann::json* report) {
+  nlohmann::json extracted;
+  Result<TriangleMesh> mesh = mesh_to_extract(container, lod, &extracted);
   if (!mesh.is_ok()) return {path, mesh.status()};
   if (drops_attributes(out_path, mesh.value()))
     tool.warn(out_path,
@@ -198,7 +246,11 @@ FileStatus extract_base(const Tool& tool, const std::string& path, const Contain
   if (!bytes.is_ok()) return {out_path, bytes.status()};
   Status written = write_file_atomic(out_path, bytes.value());
   if (!written.is_ok()) return {out_path, written};
-  (*report)["extracted"] = {{"file", out_path}, {"bytes", bytes.value().size()}};
+  extracted["file"] = out_path;
+  extracted["bytes"] = bytes.value().size();
+  extracted["vertices"] = mesh.value().vertex_count();
+  extracted["triangles"] = mesh.value().triangle_count();
+  (*report)["extracted"] = std::move(extracted);
   return {};
 }
 
@@ -235,7 +287,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   }
   FileStatus extracted;
   if (!options.extract.empty() && findings.empty() && undecodable.is_ok()) {
-    extracted = extract_base(tool, path, container.value(), options.extract, &report);
+    extracted = extract_base(tool, path, container.value(), options.extract, options.lod, &report);
     if (!extracted.status.is_ok()) report["error"] = extracted.status.message();
   }
 
@@ -251,6 +303,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
     }
     if (report.contains("extracted"))
       std::cout << "extracted     " << options.extract << " ("
+                << report["extracted"]["triangles"].get<uint64_t>() << " triangles, "
                 << report["extracted"]["bytes"].get<uint64_t>() << " bytes)\n";
   }
   if (!findings.empty()) {
@@ -320,7 +373,10 @@ int main(int argc, char** argv) {
       "strict", po::bool_switch(&options.strict),
       "mesh: exit 7 when the check finds any problem (a linter for CI); container: as --validate")(
       "extract", po::value<std::string>(&options.extract)->value_name("OUT"),
-      "container: write the base mesh to OUT (.obj .ply .off .glb)");
+      "container: write the base mesh to OUT (.obj .ply .off .glb)")(
+      "lod", po::value<std::string>()->value_name("N|Nt|R"),
+      "with --extract on a progressive mesh: the level to write, as a vertex count (5000), "
+      "a triangle count (5000t) or a ratio of the full mesh's triangles (0.25)");
   tool.positional("file", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   std::vector<std::string> files = tool.positionals("file");
@@ -329,6 +385,12 @@ int main(int argc, char** argv) {
         files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
   if (tool.has("extract") && options.extract.empty())
     return tool.usage_error("--extract needs a file name");
+  if (tool.has("lod")) {
+    if (options.extract.empty()) return tool.usage_error("--lod needs --extract OUT");
+    Result<LodRequest> lod = parse_lod_request(tool.get<std::string>("lod"));
+    if (!lod.is_ok()) return tool.usage_error(lod.status().message());
+    options.lod = lod.value();
+  }
   const std::string& path = files.front();
   if (!options.extract.empty() && same_file(path, options.extract))
     return tool.usage_error("--extract '" + options.extract + "' would overwrite the container");
