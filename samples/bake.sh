@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The end-to-end bake `make run` runs on the embedded sample: check the mesh,
 # pack it (float32 and quantized), validate both containers, extract the base
-# mesh as GLB and check that again, then print a summary.
+# mesh as GLB and check that again, simplify it to a mesh, an LOD chain and a
+# progressive mesh whose full refinement is checked again, then print a
+# summary.
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -24,8 +26,15 @@ step "3. inspect and validate the containers (lodbake-inspect --validate)"
 "$bin/lodbake-inspect" --validate --quiet "$out/elephant-q16.lbk" > /dev/null
 
 step "4. extract the base mesh and check it again"
-"$bin/lodbake-inspect" "$out/elephant.lbk" --extract "$out/elephant.glb" > /dev/null
-"$bin/lodbake-inspect" --strict "$out/elephant.glb" > /dev/null
+"$bin/lodbake-inspect" -q "$out/elephant.lbk" --extract "$out/elephant.glb" > /dev/null
+"$bin/lodbake-inspect" -q --strict "$out/elephant.glb" > /dev/null
+
+step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
+"$bin/lodbake-simplify" "$mesh" --ratio 0.1 -o "$out/elephant-10.obj" --pm "$out/elephant-pm.lbk"
+"$bin/lodbake-simplify" -q "$mesh" --lods 0.5,0.25,0.1 -o "$out/elephant-lod%d.glb"
+"$bin/lodbake-inspect" --validate --quiet "$out/elephant-pm.lbk" > /dev/null
+"$bin/lodbake-inspect" -q "$out/elephant-pm.lbk" --extract "$out/elephant-pm-full.obj" --lod 1.0 > /dev/null
+"$bin/lodbake-inspect" --strict -q "$out/elephant-pm-full.obj" | grep -E '^(triangles|genus|problems)'
 
 size() { stat -c %s "$1"; }
 step "summary"
@@ -33,4 +42,6 @@ printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
 printf '%-28s %10s bytes\n' "elephant.lbk (float32)" "$(size "$out/elephant.lbk")"
 printf '%-28s %10s bytes\n' "elephant-q16.lbk (16 bits)" "$(size "$out/elephant-q16.lbk")"
 printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.glb")"
+printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
+printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
 echo "all steps passed; outputs in $out"
