@@ -138,17 +138,18 @@ class Engine {
 
     boundary_ = std::move(topology.boundary);
     refs_ = std::move(topology.faces);
-    start_.resize(n);
+    start_ = std::move(topology.face_start);
     count_.resize(n);
-    for (size_t v = 0; v < n; ++v) {
-      start_[v] = topology.face_start[v];
-      count_[v] = topology.face_start[v + 1] - topology.face_start[v];
-    }
-    live_refs_ = refs_.size();
-    refs_.reserve(refs_.size() * 2 + 16);
+    for (size_t v = 0; v < n; ++v)
+      count_[v] = start_[v + 1] - start_[v];
 
     setup_locks(mesh);
     setup_quadrics();
+    if (options.placement == Placement::kHalf) {
+      self_error_.resize(n);
+      for (size_t v = 0; v < n; ++v)
+        self_error_[v] = quadric_[v].evaluate(to_d(state_.positions[v]));
+    }
     mark_.assign(n, 0);
     locked_.assign(n, 0);
     max_cost_float_ = static_cast<float>(settings.max_cost);
@@ -251,13 +252,10 @@ class Engine {
   // Every live edge once, in its cheaper direction. A half-edge a->b stands
   // for its edge when a < b or when b->a does not exist (a boundary edge).
   void list_candidates() {
+    rebuild_adjacency();
     candidates_.clear();
-    const std::vector<Triangle>& tris = state_.triangles;
-    size_t live = 0;
     for (uint32_t f : live_triangles_) {
-      if (!state_.triangle_alive[f]) continue;
-      live_triangles_[live++] = f;
-      const Triangle& t = tris[f];
+      const Triangle& t = state_.triangles[f];
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
@@ -265,7 +263,31 @@ class Engine {
         add_candidate(a, b);
       }
     }
+  }
+
+  // Fresh face lists of the live triangles, in triangle order. Within a pass
+  // a list only loses faces until its vertex is touched (faces move only to
+  // the survivor, which is then locked), so the lists of untouched vertices
+  // stay exact without appending, and touched ones are not read again.
+  void rebuild_adjacency() {
+    size_t live = 0;
+    for (uint32_t f : live_triangles_) {
+      if (state_.triangle_alive[f]) live_triangles_[live++] = f;
+    }
     live_triangles_.resize(live);
+    const size_t n = count_.size();
+    uint32_t sum = 0;
+    for (size_t v = 0; v < n; ++v) {
+      start_[v] = sum;
+      sum += count_[v];
+    }
+    start_[n] = sum;
+    refs_.resize(sum);
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (uint32_t f : live_triangles_) {
+      for (uint32_t v : state_.triangles[f])
+        refs_[fill_[v]++] = f;
+    }
   }
 
   // Walks the sorted candidates; returns the number of collapses made.
@@ -360,6 +382,11 @@ class Engine {
     // Evaluating both quadrics at p is cheaper than summing them first.
     const Quadric& qt = quadric_[vt];
     const Quadric& qs = quadric_[vs];
+    if (!self_error_.empty()) {
+      const double weight = qt.weight + qs.weight;
+      const double e = qt.evaluate(to_d(state_.positions[vs])) + self_error_[vs];
+      return weight > 0 ? e / weight : 0;
+    }
     const Vec3d p =
         to_d(options_.placement == Placement::kHalf ? state_.positions[vs] : placement(vt, vs));
     const double weight = qt.weight + qs.weight;
@@ -471,6 +498,7 @@ class Engine {
 
     // The attribute value index the corners moving to vs take (seams only).
     uint32_t vs_face = refs_[start_[vs]];
+    uint32_t removed = 0;
     for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
       const uint32_t f = refs_[i];
       const Triangle& t = tris[f];
@@ -484,15 +512,15 @@ class Engine {
       }
       state_.triangle_alive[f] = 0;
       --triangle_count_;
-      remove_face(third, f);
+      ++removed;
+      // A touched wing's list is stale anyway; only its face count matters.
+      if (locked_[third] == pass_) {
+        --count_[third];
+      } else {
+        remove_face(third, f);
+      }
     }
 
-    if (refs_.size() + count_[vs] + count_[vt] > 4 * live_refs_ + 64) compact_refs();
-    const uint32_t new_start = static_cast<uint32_t>(refs_.size());
-    for (uint32_t i = start_[vs], end = start_[vs] + count_[vs]; i < end; ++i) {
-      const uint32_t f = refs_[i];
-      if (state_.triangle_alive[f]) refs_.push_back(f);
-    }
     for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
       const uint32_t f = refs_[i];
       if (!state_.triangle_alive[f]) continue;
@@ -503,16 +531,15 @@ class Engine {
           attr->corners[f][k] = attr->corners[vs_face][corner_of(tris[vs_face], vs)];
         }
       }
-      refs_.push_back(f);
     }
-    live_refs_ -= count_[vs] + count_[vt];
-    start_[vs] = new_start;
-    count_[vs] = static_cast<uint32_t>(refs_.size()) - new_start;
-    live_refs_ += count_[vs];
+    count_[vs] += count_[vt] - 2 * removed;
     count_[vt] = 0;
     state_.vertex_alive[vt] = 0;
 
     quadric_[vs] += quadric_[vt];
+    if (!self_error_.empty()) {
+      self_error_[vs] = quadric_[vs].evaluate(to_d(state_.positions[vs]));
+    }
     boundary_[vs] = boundary_[vs] | boundary_[vt];
     if (options_.placement == Placement::kOptimal) move_vertex(vt, vs, p);
     state_.log.push_back(rec);
@@ -560,21 +587,9 @@ class Engine {
       if (refs_[i] == f) {
         refs_[i] = refs_[end - 1];
         --count_[v];
-        --live_refs_;
         return;
       }
     }
-  }
-
-  void compact_refs() {
-    std::vector<uint32_t> packed;
-    packed.reserve(2 * live_refs_ + 64);
-    for (size_t v = 0; v < start_.size(); ++v) {
-      const uint32_t begin = start_[v];
-      start_[v] = static_cast<uint32_t>(packed.size());
-      packed.insert(packed.end(), refs_.begin() + begin, refs_.begin() + begin + count_[v]);
-    }
-    refs_.swap(packed);
   }
 
   const SimplifyOptions& options_;
@@ -582,16 +597,22 @@ class Engine {
   EngineState state_;
   uint64_t triangle_count_ = 0;
 
+  // Per-vertex face lists, rebuilt at each pass: the faces of v are
+  // refs_[start_[v] .. start_[v] + count_[v]) while v is untouched in the
+  // pass; count_[v] is always its live face count.
   std::vector<uint32_t> refs_;
   std::vector<uint32_t> start_;
   std::vector<uint32_t> count_;
-  size_t live_refs_ = 0;
+  std::vector<uint32_t> fill_;
   std::vector<uint8_t> boundary_;
   std::vector<uint8_t> no_remove_;
   std::vector<uint8_t> no_keep_;
   std::vector<uint8_t> fixed_;
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<Quadric> quadric_;
+  // Half placement: Q_v(position of v), the survivor's share of each cost
+  // (empty in optimal placement, where the survivor moves).
+  std::vector<double> self_error_;
   std::vector<uint32_t> mark_;
   uint32_t mark_id_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
