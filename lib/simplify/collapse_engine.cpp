@@ -295,24 +295,32 @@ class Engine {
     ++pass_;
     const uint64_t target = settings_.target_triangles;
     const uint64_t goal = triangle_count_ - target;  // triangles this pass may remove
-    const size_t goal_index = goal / 2;              // most collapses remove two
-    const double limit = goal_index < candidates_.size()
-                             ? kPassLimitFactor * candidates_[goal_index].cost
-                             : kInfinity;
+    // The candidate whose cost sets the limit: the goal's collapse count (most
+    // remove two triangles), moved on by every refused candidate, which does
+    // not count towards the goal (as in meshoptimizer).
+    size_t goal_index = goal / 2;
+    auto limit = [&] {
+      return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost
+                                             : kInfinity;
+    };
     const uint64_t before = triangle_count_;
     uint64_t collapses = 0;
     for (const Candidate& c : candidates_) {
       if (triangle_count_ <= target || c.cost > max_cost_float_) break;
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
-      if (c.cost > limit && past_limit) break;
+      if (c.cost > limit() && past_limit) break;
       if (locked_[c.vt] == pass_ || locked_[c.vs] == pass_) continue;
       Verdict verdict = try_collapse(c.vt, c.vs);
       if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther) {
         // The other direction, when it fits in this pass.
         const double reverse = cost(c.vs, c.vt);
-        if (reverse <= limit || !past_limit) verdict = try_collapse(c.vs, c.vt);
+        if (reverse <= limit() || !past_limit) verdict = try_collapse(c.vs, c.vt);
       }
-      if (verdict == Verdict::kOk) ++collapses;
+      if (verdict == Verdict::kOk) {
+        ++collapses;
+      } else {
+        ++goal_index;
+      }
     }
     return collapses;
   }
