@@ -150,7 +150,6 @@ class Engine {
       for (size_t v = 0; v < n; ++v)
         self_error_[v] = quadric_[v].evaluate(to_d(state_.positions[v]));
     }
-    mark_.assign(n, 0);
     locked_.assign(n, 0);
     max_cost_float_ = static_cast<float>(settings.max_cost);
     if (max_cost_float_ < settings.max_cost) {
@@ -305,7 +304,9 @@ class Engine {
     };
     const uint64_t before = triangle_count_;
     uint64_t collapses = 0;
-    for (const Candidate& c : candidates_) {
+    for (size_t i = 0; i < candidates_.size(); ++i) {
+      prefetch_candidate(i);
+      const Candidate& c = candidates_[i];
       if (triangle_count_ <= target || c.cost > max_cost_float_) break;
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
       if (c.cost > limit() && past_limit) break;
@@ -323,6 +324,29 @@ class Engine {
       }
     }
     return collapses;
+  }
+
+  // The walk visits the mesh in cost order, i.e. at random: ask for the data
+  // of the candidates a few steps ahead in two stages (the second needs
+  // what the first fetched).
+  void prefetch_candidate(size_t i) {
+    constexpr size_t kFar = 16;
+    constexpr size_t kNear = 6;
+    if (i + kFar < candidates_.size()) {
+      const Candidate& c = candidates_[i + kFar];
+      __builtin_prefetch(&locked_[c.vt]);
+      __builtin_prefetch(&locked_[c.vs]);
+      __builtin_prefetch(&start_[c.vt]);
+      __builtin_prefetch(&count_[c.vt]);
+      __builtin_prefetch(&start_[c.vs]);
+      __builtin_prefetch(&quadric_[c.vt]);
+    }
+    if (i + kNear < candidates_.size()) {
+      const Candidate& c = candidates_[i + kNear];
+      __builtin_prefetch(&refs_[start_[c.vt]]);
+      __builtin_prefetch(&refs_[start_[c.vs]]);
+      __builtin_prefetch(&state_.positions[c.vs]);
+    }
   }
 
   // Collapses vt into vs when the cost and the legality checks allow it.
@@ -429,21 +453,31 @@ class Engine {
     uint32_t vl = kNoVertex;
     uint32_t vr = kNoVertex;
     const std::vector<Triangle>& tris = state_.triangles;
+    // vt's neighbours, gathered while looking for the shared faces: every
+    // face's next vertex, and on a boundary also the previous ones (one
+    // neighbour there has no face after it). Small arrays compared pairwise
+    // beat marking a vertex-sized array, whose writes miss the cache.
+    ring_.clear();
+    const bool vt_boundary = boundary_[vt];
     for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
       const Triangle& t = tris[refs_[i]];
-      const int k = corner_of(t, vs);
-      if (t[k] != vs) continue;
-      ++shared;
-      if (t[(k + 1) % 3] == vt) {
-        vl = t[(k + 2) % 3];
-      } else {
-        vr = t[(k + 1) % 3];
+      const int k = corner_of(t, vt);
+      const uint32_t next = t[(k + 1) % 3];
+      const uint32_t prev = t[(k + 2) % 3];
+      ring_.push_back(next);
+      if (vt_boundary) ring_.push_back(prev);
+      if (prev == vs) {
+        vl = next;  // the face (vs, vt, vl)
+        ++shared;
+      } else if (next == vs) {
+        vr = prev;  // the face (vt, vs, vr)
+        ++shared;
       }
     }
     if (shared == 0) return Verdict::kNotAnEdge;
     const bool edge_boundary = shared == 1;
-    if (!edge_boundary && boundary_[vt] && boundary_[vs]) return Verdict::kLink;
-    const bool vs_boundary_after = boundary_[vt] || boundary_[vs];
+    if (!edge_boundary && vt_boundary && boundary_[vs]) return Verdict::kLink;
+    const bool vs_boundary_after = vt_boundary || boundary_[vs];
     if (count_[vs] + count_[vt] - 2 * shared < (vs_boundary_after ? 1u : 3u)) {
       return Verdict::kOther;
     }
@@ -451,14 +485,14 @@ class Engine {
       if (w != kNoVertex && count_[w] - 1 < (boundary_[w] ? 1u : 3u)) return Verdict::kOther;
     }
     // Link condition: the only common neighbours are the wing vertices.
-    const uint32_t id = ++mark_id_;
+    const bool vs_boundary = boundary_[vs];
     for (uint32_t i = start_[vs], end = start_[vs] + count_[vs]; i < end; ++i) {
-      for (uint32_t w : tris[refs_[i]])
-        mark_[w] = id;
-    }
-    for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
-      for (uint32_t w : tris[refs_[i]]) {
-        if (mark_[w] == id && w != vs && w != vt && w != vl && w != vr) return Verdict::kLink;
+      const Triangle& t = tris[refs_[i]];
+      const int k = corner_of(t, vs);
+      for (int step = 1; step <= (vs_boundary ? 2 : 1); ++step) {
+        const uint32_t w = t[(k + step) % 3];
+        if (w == vt || w == vl || w == vr) continue;
+        if (std::find(ring_.begin(), ring_.end(), w) != ring_.end()) return Verdict::kLink;
       }
     }
     if (!faces_keep_orientation(vt, vs, p)) return Verdict::kFlip;
@@ -621,8 +655,7 @@ class Engine {
   // Half placement: Q_v(position of v), the survivor's share of each cost
   // (empty in optimal placement, where the survivor moves).
   std::vector<double> self_error_;
-  std::vector<uint32_t> mark_;
-  uint32_t mark_id_ = 0;
+  std::vector<uint32_t> ring_;            // check()'s scratch: vt's neighbours
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<Candidate> candidates_;
   std::vector<Candidate> scratch_;
