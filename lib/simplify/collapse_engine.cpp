@@ -15,8 +15,9 @@
 //   Untouched endpoints keep their quadrics and positions, so each listed cost
 //   is exact when it is applied and the costs within a pass increase. A pass
 //   ends at a cost limit (1.5 times the cost of the candidate at the pass's
-//   collapse goal) so that cheap edges of the next pass come before expensive
-//   ones of this one; an edge refused in one pass is listed again in the next;
+//   collapse goal, moved on by each refusal) so that cheap edges of the next
+//   pass come before expensive ones of this one; an edge refused in one pass
+//   is listed again in the next;
 // - direction: when the cheaper direction is illegal the other is tried at
 //   its own cost, if that is within the pass's limit;
 // - legality: link condition; an interior edge between two boundary vertices
@@ -24,9 +25,8 @@
 //   which rules out tetrahedron pockets, duplicate faces and vanishing
 //   components; no moved face may turn more than max_normal_change_degrees or
 //   become (nearly) degenerate;
-// - adjacency: per-vertex face lists in one flat array; a vertex whose list
-//   changes gets a fresh list appended at the end, and the array is compacted
-//   when it has grown to four times its live size.
+// - adjacency: per-vertex face lists in one flat array, rebuilt at each pass
+//   (an untouched vertex's list only loses faces during the pass).
 #include "lib/simplify/collapse_engine.h"
 
 #include <algorithm>
