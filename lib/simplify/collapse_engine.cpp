@@ -8,24 +8,30 @@
 //   the bounding-box diagonal for max_error;
 // - boundary: each boundary edge adds the plane through it perpendicular to
 //   its face, weighted by boundary_weight * |edge|^2 (an area, like faces);
-// - direction: each edge is queued in its cheaper direction; when that one is
-//   illegal the other is queued at its own cost; when both are, the edge is
-//   "refused" and re-queued as soon as a collapse changes the 1-ring of one of
-//   its endpoints;
+// - order: passes, as in meshoptimizer. Each pass lists every edge once in
+//   its cheaper direction, sorts the list by cost (stable radix sort, so ties
+//   keep the listing order: triangle order) and walks it, collapsing every
+//   legal edge neither of whose endpoints was touched earlier in the pass.
+//   Untouched endpoints keep their quadrics and positions, so each listed cost
+//   is exact when it is applied and the costs within a pass increase. A pass
+//   ends at a cost limit (1.5 times the cost of the candidate at the pass's
+//   collapse goal, moved on by each refusal) so that cheap edges of the next
+//   pass come before expensive ones of this one; an edge refused in one pass
+//   is listed again in the next;
+// - direction: when the cheaper direction is illegal the other is tried at
+//   its own cost, if that is within the pass's limit;
 // - legality: link condition; an interior edge between two boundary vertices
 //   is refused; every vertex keeps at least three faces (one on a boundary),
 //   which rules out tetrahedron pockets, duplicate faces and vanishing
 //   components; no moved face may turn more than max_normal_change_degrees or
 //   become (nearly) degenerate;
-// - heap: binary heap of (cost, vt, vs) with ties broken by vertex indices,
-//   invalidated lazily by per-vertex stamps;
-// - adjacency: per-vertex face lists in one flat array; a vertex whose list
-//   changes gets a fresh list appended at the end, and the array is compacted
-//   when it has grown to four times its live size.
+// - adjacency: per-vertex face lists in one flat array, rebuilt at each pass
+//   (an untouched vertex's list only loses faces during the pass).
 #include "lib/simplify/collapse_engine.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "lib/simplify/quadric.h"
@@ -35,28 +41,53 @@ namespace simplify_internal {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr uint32_t kAltBit = 0x80000000u;
 constexpr double kPi = 3.14159265358979323846;
+// A pass may run past its cost limit until it has removed this fraction of
+// its triangle goal, so that a pass whose cheap edges are all illegal still
+// makes progress (meshoptimizer's rule).
+constexpr uint64_t kMinPassShare = 6;
+// The pass's cost limit, as a multiple of the cost of the candidate at its
+// collapse goal: many candidates are skipped because a neighbour was
+// collapsed first, so the goal's own cost would stop the pass too early.
+constexpr double kPassLimitFactor = 1.5;
 
-// 16 bytes, so that more of the heap stays in cache. Stamps only grow, so the
-// sum of the two endpoints' stamps identifies "neither changed since".
-struct HeapEntry {
+// One edge listed for a pass, in its cheaper direction: vt into vs.
+struct Candidate {
   float cost;
   uint32_t vt;
   uint32_t vs;
-  uint32_t stamps;  // stamp[vt] + stamp[vs]; high bit: the second direction tried
 };
 
-// std heap functions keep the largest on top; "largest" here is the cheapest.
-struct HeapOrder {
-  bool operator()(const HeapEntry& a, const HeapEntry& b) const {
-    if (a.cost != b.cost) return a.cost > b.cost;
-    if (a.vt != b.vt) return a.vt > b.vt;
-    return a.vs > b.vs;
+// Stable LSD radix sort on the cost's bits (costs are finite and never
+// negative, so their IEEE bits order like unsigned integers). Stability makes
+// ties keep the listing order, which is deterministic.
+void sort_by_cost(std::vector<Candidate>& items, std::vector<Candidate>& scratch) {
+  constexpr int kDigitBits = 11;
+  constexpr uint32_t kBuckets = 1u << kDigitBits;
+  scratch.resize(items.size());
+  std::vector<uint32_t> histogram(kBuckets);
+  for (int shift = 0; shift < 32; shift += kDigitBits) {
+    std::fill(histogram.begin(), histogram.end(), 0);
+    auto digit = [shift](const Candidate& c) {
+      uint32_t bits;
+      std::memcpy(&bits, &c.cost, sizeof bits);
+      return (bits >> shift) & (kBuckets - 1);
+    };
+    for (const Candidate& c : items)
+      ++histogram[digit(c)];
+    uint32_t sum = 0;
+    for (uint32_t& h : histogram) {
+      const uint32_t count = h;
+      h = sum;
+      sum += count;
+    }
+    for (const Candidate& c : items)
+      scratch[histogram[digit(c)]++] = c;
+    items.swap(scratch);
   }
-};
+}
 
-enum class Verdict { kOk, kNotAnEdge, kLink, kFlip, kOther };
+enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther };
 
 Vec3d to_d(const Vec3f& p) {
   return {p[0], p[1], p[2]};
@@ -107,65 +138,35 @@ class Engine {
 
     boundary_ = std::move(topology.boundary);
     refs_ = std::move(topology.faces);
-    start_.resize(n);
+    start_ = std::move(topology.face_start);
     count_.resize(n);
-    for (size_t v = 0; v < n; ++v) {
-      start_[v] = topology.face_start[v];
-      count_[v] = topology.face_start[v + 1] - topology.face_start[v];
-    }
-    live_refs_ = refs_.size();
-    refs_.reserve(refs_.size() * 2 + 16);
+    for (size_t v = 0; v < n; ++v)
+      count_[v] = start_[v + 1] - start_[v];
 
     setup_locks(mesh);
     setup_quadrics();
-    stamp_.assign(n, 0);
-    refused_.assign(n, 0);
-    mark_.assign(n, 0);
+    if (options.placement == Placement::kHalf) {
+      self_error_.resize(n);
+      for (size_t v = 0; v < n; ++v)
+        self_error_[v] = quadric_[v].evaluate(to_d(state_.positions[v]));
+    }
+    locked_.assign(n, 0);
+    max_cost_float_ = static_cast<float>(settings.max_cost);
+    if (max_cost_float_ < settings.max_cost) {
+      max_cost_float_ = std::nextafter(max_cost_float_, std::numeric_limits<float>::infinity());
+    }
     cos_limit_ = std::cos(options.max_normal_change_degrees * kPi / 180.0);
   }
 
   EngineState run() {
-    push_initial_edges();
     const uint64_t target = settings_.target_triangles;
-    const uint64_t to_remove = triangle_count_ > target ? triangle_count_ - target : 0;
-    uint64_t since_progress = 0;
-    while (!heap_.empty() && triangle_count_ > target) {
-      std::pop_heap(heap_.begin(), heap_.end(), HeapOrder());
-      const HeapEntry e = heap_.back();
-      heap_.pop_back();
-      const uint32_t vt = e.vt;
-      const uint32_t vs = e.vs;
-      if (!state_.vertex_alive[vt] || !state_.vertex_alive[vs] ||
-          stamp_[vt] + stamp_[vs] != (e.stamps & ~kAltBit)) {
-        continue;
-      }
-      // The queued cost is rounded to float; the stop test uses the exact one.
-      const double exact_cost = cost(vt, vs);
-      if (exact_cost > settings_.max_cost) break;
-      const Vec3f p = placement(vt, vs);
-      const Verdict verdict = check(vt, vs, p);
-      if (verdict == Verdict::kOk) {
-        collapse(vt, vs, p, exact_cost);
-        if (options_.progress && ++since_progress == 4096) {
-          since_progress = 0;
-          options_.progress(static_cast<double>(state_.stats.input_triangles - triangle_count_) /
-                            static_cast<double>(to_remove));
-        }
-        continue;
-      }
-      if (verdict == Verdict::kNotAnEdge) continue;
-      if (verdict == Verdict::kLink) ++state_.stats.refused_link;
-      if (verdict == Verdict::kFlip) ++state_.stats.refused_flip;
-      if (verdict == Verdict::kOther) ++state_.stats.refused_other;
-      if (!(e.stamps & kAltBit)) {
-        const double reverse = cost(vs, vt);
-        if (reverse < kInfinity) {
-          push({static_cast<float>(reverse), vs, vt, (stamp_[vs] + stamp_[vt]) | kAltBit});
-          continue;
-        }
-      }
-      refused_[vt] = 1;
-      refused_[vs] = 1;
+    live_triangles_.resize(state_.triangles.size());
+    for (uint32_t f = 0; f < live_triangles_.size(); ++f)
+      live_triangles_[f] = f;
+    while (triangle_count_ > target) {
+      list_candidates();
+      sort_by_cost(candidates_, scratch_);
+      if (run_pass() == 0) break;
     }
     state_.stats.output_triangles = triangle_count_;
     return std::move(state_);
@@ -245,20 +246,145 @@ class Engine {
     return true;
   }
 
-  void push_initial_edges() {
-    const uint32_t n = static_cast<uint32_t>(state_.positions.size());
-    heap_.reserve(size_t{3} * state_.triangles.size() / 2 + 16);
-    for (uint32_t v = 0; v < n; ++v) {
-      const uint32_t id = ++mark_id_;
-      for (uint32_t i = start_[v], end = start_[v] + count_[v]; i < end; ++i) {
-        for (uint32_t w : state_.triangles[refs_[i]]) {
-          if (w <= v || mark_[w] == id) continue;
-          mark_[w] = id;
-          push_edge(v, w, false);
-        }
+  // ---- the passes ----
+
+  // Every live edge once, in its cheaper direction. A half-edge a->b stands
+  // for its edge when a < b or when b->a does not exist (a boundary edge).
+  void list_candidates() {
+    rebuild_adjacency();
+    candidates_.clear();
+    for (uint32_t f : live_triangles_) {
+      const Triangle& t = state_.triangles[f];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = t[k];
+        const uint32_t b = t[(k + 1) % 3];
+        if (a > b && !(boundary_[a] && boundary_[b] && is_boundary_half_edge(a, b))) continue;
+        add_candidate(a, b);
       }
     }
-    std::make_heap(heap_.begin(), heap_.end(), HeapOrder());
+  }
+
+  // Fresh face lists of the live triangles, in triangle order. Within a pass
+  // a list only loses faces until its vertex is touched (faces move only to
+  // the survivor, which is then locked), so the lists of untouched vertices
+  // stay exact without appending, and touched ones are not read again.
+  void rebuild_adjacency() {
+    size_t live = 0;
+    for (uint32_t f : live_triangles_) {
+      if (state_.triangle_alive[f]) live_triangles_[live++] = f;
+    }
+    live_triangles_.resize(live);
+    const size_t n = count_.size();
+    uint32_t sum = 0;
+    for (size_t v = 0; v < n; ++v) {
+      start_[v] = sum;
+      sum += count_[v];
+    }
+    start_[n] = sum;
+    refs_.resize(sum);
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (uint32_t f : live_triangles_) {
+      for (uint32_t v : state_.triangles[f])
+        refs_[fill_[v]++] = f;
+    }
+  }
+
+  // Walks the sorted candidates; returns the number of collapses made.
+  uint64_t run_pass() {
+    ++pass_;
+    const uint64_t target = settings_.target_triangles;
+    const uint64_t goal = triangle_count_ - target;  // triangles this pass may remove
+    // The candidate whose cost sets the limit: the goal's collapse count (most
+    // remove two triangles), moved on by every refused candidate, which does
+    // not count towards the goal (as in meshoptimizer).
+    size_t goal_index = goal / 2;
+    auto limit = [&] {
+      return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost
+                                             : kInfinity;
+    };
+    const uint64_t before = triangle_count_;
+    uint64_t collapses = 0;
+    for (size_t i = 0; i < candidates_.size(); ++i) {
+      prefetch_candidate(i);
+      const Candidate& c = candidates_[i];
+      if (triangle_count_ <= target || c.cost > max_cost_float_) break;
+      const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
+      if (c.cost > limit() && past_limit) break;
+      if (locked_[c.vt] == pass_ || locked_[c.vs] == pass_) continue;
+      Verdict verdict = try_collapse(c.vt, c.vs);
+      if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther) {
+        // The other direction, when it fits in this pass.
+        const double reverse = cost(c.vs, c.vt);
+        if (reverse <= limit() || !past_limit) verdict = try_collapse(c.vs, c.vt);
+      }
+      if (verdict == Verdict::kOk) {
+        ++collapses;
+      } else {
+        ++goal_index;
+      }
+    }
+    return collapses;
+  }
+
+  // The walk visits the mesh in cost order, i.e. at random: ask for the data
+  // of the candidates a few steps ahead in two stages (the second needs
+  // what the first fetched).
+  void prefetch_candidate(size_t i) {
+    constexpr size_t kFar = 16;
+    constexpr size_t kNear = 6;
+    if (i + kFar < candidates_.size()) {
+      const Candidate& c = candidates_[i + kFar];
+      __builtin_prefetch(&locked_[c.vt]);
+      __builtin_prefetch(&locked_[c.vs]);
+      __builtin_prefetch(&start_[c.vt]);
+      __builtin_prefetch(&count_[c.vt]);
+      __builtin_prefetch(&start_[c.vs]);
+      __builtin_prefetch(&quadric_[c.vt]);
+    }
+    if (i + kNear < candidates_.size()) {
+      const Candidate& c = candidates_[i + kNear];
+      __builtin_prefetch(&refs_[start_[c.vt]]);
+      __builtin_prefetch(&refs_[start_[c.vs]]);
+      __builtin_prefetch(&state_.positions[c.vs]);
+    }
+  }
+
+  // Collapses vt into vs when the cost and the legality checks allow it.
+  Verdict try_collapse(uint32_t vt, uint32_t vs) {
+    // The listed cost is rounded to float; the stop test uses the exact one.
+    const double exact_cost = cost(vt, vs);
+    if (!(exact_cost <= settings_.max_cost)) return Verdict::kTooCostly;
+    const Vec3f p = placement(vt, vs);
+    const Verdict verdict = check(vt, vs, p);
+    switch (verdict) {
+      case Verdict::kOk:
+        collapse(vt, vs, p, exact_cost);
+        report_progress();
+        break;
+      case Verdict::kLink:
+        ++state_.stats.refused_link;
+        break;
+      case Verdict::kFlip:
+        ++state_.stats.refused_flip;
+        break;
+      case Verdict::kOther:
+        ++state_.stats.refused_other;
+        break;
+      case Verdict::kNotAnEdge:
+      case Verdict::kTooCostly:
+        break;
+    }
+    return verdict;
+  }
+
+  void report_progress() {
+    if (!options_.progress || ++since_progress_ < 4096) return;
+    since_progress_ = 0;
+    const uint64_t target = settings_.target_triangles;
+    const uint64_t input = state_.stats.input_triangles;
+    const uint64_t to_remove = input > target ? input - target : 1;
+    options_.progress(static_cast<double>(input - triangle_count_) /
+                      static_cast<double>(to_remove));
   }
 
   // ---- costs ----
@@ -288,18 +414,18 @@ class Engine {
     // Evaluating both quadrics at p is cheaper than summing them first.
     const Quadric& qt = quadric_[vt];
     const Quadric& qs = quadric_[vs];
+    if (!self_error_.empty()) {
+      const double weight = qt.weight + qs.weight;
+      const double e = qt.evaluate(to_d(state_.positions[vs])) + self_error_[vs];
+      return weight > 0 ? e / weight : 0;
+    }
     const Vec3d p =
         to_d(options_.placement == Placement::kHalf ? state_.positions[vs] : placement(vt, vs));
     const double weight = qt.weight + qs.weight;
     return weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
   }
 
-  void push(const HeapEntry& e) {
-    heap_.push_back(e);
-    std::push_heap(heap_.begin(), heap_.end(), HeapOrder());
-  }
-
-  void push_edge(uint32_t a, uint32_t b, bool heapify) {
+  void add_candidate(uint32_t a, uint32_t b) {
     const double ab = cost(a, b);  // removing a, keeping b
     const double ba = cost(b, a);
     if (!(ab < kInfinity) && !(ba < kInfinity)) return;
@@ -317,13 +443,7 @@ class Engine {
       const double lb = dot(db, db);
       remove_a = lb < la || (lb == la && b < a);
     }
-    const uint32_t stamps = stamp_[a] + stamp_[b];
-    const HeapEntry e = remove_a ? HeapEntry{fab, a, b, stamps} : HeapEntry{fba, b, a, stamps};
-    if (heapify) {
-      push(e);
-    } else {
-      heap_.push_back(e);
-    }
+    candidates_.push_back(remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
   }
 
   // ---- legality ----
@@ -333,21 +453,31 @@ class Engine {
     uint32_t vl = kNoVertex;
     uint32_t vr = kNoVertex;
     const std::vector<Triangle>& tris = state_.triangles;
+    // vt's neighbours, gathered while looking for the shared faces: every
+    // face's next vertex, and on a boundary also the previous ones (one
+    // neighbour there has no face after it). Small arrays compared pairwise
+    // beat marking a vertex-sized array, whose writes miss the cache.
+    ring_.clear();
+    const bool vt_boundary = boundary_[vt];
     for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
       const Triangle& t = tris[refs_[i]];
-      const int k = corner_of(t, vs);
-      if (t[k] != vs) continue;
-      ++shared;
-      if (t[(k + 1) % 3] == vt) {
-        vl = t[(k + 2) % 3];
-      } else {
-        vr = t[(k + 1) % 3];
+      const int k = corner_of(t, vt);
+      const uint32_t next = t[(k + 1) % 3];
+      const uint32_t prev = t[(k + 2) % 3];
+      ring_.push_back(next);
+      if (vt_boundary) ring_.push_back(prev);
+      if (prev == vs) {
+        vl = next;  // the face (vs, vt, vl)
+        ++shared;
+      } else if (next == vs) {
+        vr = prev;  // the face (vt, vs, vr)
+        ++shared;
       }
     }
     if (shared == 0) return Verdict::kNotAnEdge;
     const bool edge_boundary = shared == 1;
-    if (!edge_boundary && boundary_[vt] && boundary_[vs]) return Verdict::kLink;
-    const bool vs_boundary_after = boundary_[vt] || boundary_[vs];
+    if (!edge_boundary && vt_boundary && boundary_[vs]) return Verdict::kLink;
+    const bool vs_boundary_after = vt_boundary || boundary_[vs];
     if (count_[vs] + count_[vt] - 2 * shared < (vs_boundary_after ? 1u : 3u)) {
       return Verdict::kOther;
     }
@@ -355,14 +485,14 @@ class Engine {
       if (w != kNoVertex && count_[w] - 1 < (boundary_[w] ? 1u : 3u)) return Verdict::kOther;
     }
     // Link condition: the only common neighbours are the wing vertices.
-    const uint32_t id = ++mark_id_;
+    const bool vs_boundary = boundary_[vs];
     for (uint32_t i = start_[vs], end = start_[vs] + count_[vs]; i < end; ++i) {
-      for (uint32_t w : tris[refs_[i]])
-        mark_[w] = id;
-    }
-    for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
-      for (uint32_t w : tris[refs_[i]]) {
-        if (mark_[w] == id && w != vs && w != vt && w != vl && w != vr) return Verdict::kLink;
+      const Triangle& t = tris[refs_[i]];
+      const int k = corner_of(t, vs);
+      for (int step = 1; step <= (vs_boundary ? 2 : 1); ++step) {
+        const uint32_t w = t[(k + step) % 3];
+        if (w == vt || w == vl || w == vr) continue;
+        if (std::find(ring_.begin(), ring_.end(), w) != ring_.end()) return Verdict::kLink;
       }
     }
     if (!faces_keep_orientation(vt, vs, p)) return Verdict::kFlip;
@@ -410,6 +540,7 @@ class Engine {
 
     // The attribute value index the corners moving to vs take (seams only).
     uint32_t vs_face = refs_[start_[vs]];
+    uint32_t removed = 0;
     for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
       const uint32_t f = refs_[i];
       const Triangle& t = tris[f];
@@ -423,15 +554,15 @@ class Engine {
       }
       state_.triangle_alive[f] = 0;
       --triangle_count_;
-      remove_face(third, f);
+      ++removed;
+      // A touched wing's list is stale anyway; only its face count matters.
+      if (locked_[third] == pass_) {
+        --count_[third];
+      } else {
+        remove_face(third, f);
+      }
     }
 
-    if (refs_.size() + count_[vs] + count_[vt] > 4 * live_refs_ + 64) compact_refs();
-    const uint32_t new_start = static_cast<uint32_t>(refs_.size());
-    for (uint32_t i = start_[vs], end = start_[vs] + count_[vs]; i < end; ++i) {
-      const uint32_t f = refs_[i];
-      if (state_.triangle_alive[f]) refs_.push_back(f);
-    }
     for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
       const uint32_t f = refs_[i];
       if (!state_.triangle_alive[f]) continue;
@@ -442,16 +573,15 @@ class Engine {
           attr->corners[f][k] = attr->corners[vs_face][corner_of(tris[vs_face], vs)];
         }
       }
-      refs_.push_back(f);
     }
-    live_refs_ -= count_[vs] + count_[vt];
-    start_[vs] = new_start;
-    count_[vs] = static_cast<uint32_t>(refs_.size()) - new_start;
-    live_refs_ += count_[vs];
+    count_[vs] += count_[vt] - 2 * removed;
     count_[vt] = 0;
     state_.vertex_alive[vt] = 0;
 
     quadric_[vs] += quadric_[vt];
+    if (!self_error_.empty()) {
+      self_error_[vs] = quadric_[vs].evaluate(to_d(state_.positions[vs]));
+    }
     boundary_[vs] = boundary_[vs] | boundary_[vt];
     if (options_.placement == Placement::kOptimal) move_vertex(vt, vs, p);
     state_.log.push_back(rec);
@@ -459,7 +589,10 @@ class Engine {
     const double relative = settings_.diagonal > 0 ? rec.error / settings_.diagonal : 0;
     state_.stats.max_collapse_error = std::max(state_.stats.max_collapse_error, relative);
 
-    requeue_around(vs);
+    // Their quadrics (and vs's faces) changed: the costs listed for their
+    // other edges are stale until the next pass.
+    locked_[vt] = pass_;
+    locked_[vs] = pass_;
   }
 
   // Optimal placement: vs moves to p and its per-vertex attributes are
@@ -496,57 +629,7 @@ class Engine {
       if (refs_[i] == f) {
         refs_[i] = refs_[end - 1];
         --count_[v];
-        --live_refs_;
         return;
-      }
-    }
-  }
-
-  void compact_refs() {
-    std::vector<uint32_t> packed;
-    packed.reserve(2 * live_refs_ + 64);
-    for (size_t v = 0; v < start_.size(); ++v) {
-      const uint32_t begin = start_[v];
-      start_[v] = static_cast<uint32_t>(packed.size());
-      packed.insert(packed.end(), refs_.begin() + begin, refs_.begin() + begin + count_[v]);
-    }
-    refs_.swap(packed);
-  }
-
-  // vs changed: its edges get new costs. Neighbours holding a refused edge
-  // may have become collapsible, so their edges are queued again too.
-  void requeue_around(uint32_t vs) {
-    ++stamp_[vs];
-    refused_[vs] = 0;
-    neighbours_.clear();
-    const uint32_t id = ++mark_id_;
-    mark_[vs] = id;
-    for (uint32_t i = start_[vs], end = start_[vs] + count_[vs]; i < end; ++i) {
-      for (uint32_t w : state_.triangles[refs_[i]]) {
-        if (mark_[w] == id) continue;
-        mark_[w] = id;
-        neighbours_.push_back(w);
-      }
-    }
-    retry_.clear();
-    for (uint32_t w : neighbours_) {
-      if (!refused_[w]) continue;
-      refused_[w] = 0;
-      ++stamp_[w];
-      retry_.push_back(w);
-    }
-    for (uint32_t w : neighbours_)
-      push_edge(vs, w, true);
-    for (uint32_t w : retry_) {
-      const uint32_t wid = ++mark_id_;
-      mark_[w] = wid;
-      mark_[vs] = wid;
-      for (uint32_t i = start_[w], end = start_[w] + count_[w]; i < end; ++i) {
-        for (uint32_t x : state_.triangles[refs_[i]]) {
-          if (mark_[x] == wid) continue;
-          mark_[x] = wid;
-          push_edge(w, x, true);
-        }
       }
     }
   }
@@ -556,23 +639,30 @@ class Engine {
   EngineState state_;
   uint64_t triangle_count_ = 0;
 
+  // Per-vertex face lists, rebuilt at each pass: the faces of v are
+  // refs_[start_[v] .. start_[v] + count_[v]) while v is untouched in the
+  // pass; count_[v] is always its live face count.
   std::vector<uint32_t> refs_;
   std::vector<uint32_t> start_;
   std::vector<uint32_t> count_;
-  size_t live_refs_ = 0;
+  std::vector<uint32_t> fill_;
   std::vector<uint8_t> boundary_;
   std::vector<uint8_t> no_remove_;
   std::vector<uint8_t> no_keep_;
   std::vector<uint8_t> fixed_;
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<Quadric> quadric_;
-  std::vector<uint32_t> stamp_;
-  std::vector<uint8_t> refused_;
-  std::vector<uint32_t> mark_;
-  uint32_t mark_id_ = 0;
-  std::vector<HeapEntry> heap_;
-  std::vector<uint32_t> neighbours_;
-  std::vector<uint32_t> retry_;
+  // Half placement: Q_v(position of v), the survivor's share of each cost
+  // (empty in optimal placement, where the survivor moves).
+  std::vector<double> self_error_;
+  std::vector<uint32_t> ring_;            // check()'s scratch: vt's neighbours
+  std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
+  std::vector<Candidate> candidates_;
+  std::vector<Candidate> scratch_;
+  std::vector<uint32_t> locked_;  // the pass in which the vertex was last touched
+  uint32_t pass_ = 0;
+  float max_cost_float_ = 0;  // settings_.max_cost rounded up to float
+  uint64_t since_progress_ = 0;
   double cos_limit_ = -1;
 };
 

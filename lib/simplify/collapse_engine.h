@@ -1,6 +1,6 @@
-// The half-edge collapse loop behind simplify(): quadrics, a binary heap of
-// candidate collapses with lazy invalidation, the legality checks and the
-// collapse itself, over flat arrays. Internal to lib/simplify; simplify.cpp
+// The half-edge collapse loop behind simplify(): quadrics, passes over the
+// edges sorted by cost, the legality checks and the collapse itself, over
+// flat arrays. Internal to lib/simplify; simplify.cpp
 // validates the input and turns the result into meshes and a PM.
 #pragma once
 

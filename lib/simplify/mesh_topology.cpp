@@ -21,6 +21,43 @@ struct FanFace {
   uint32_t prev;  // vertex before v
 };
 
+// Fans up to this size take the quadratic fast path: almost every vertex of
+// a real mesh, and far cheaper than the sorting path for them.
+constexpr size_t kSmallFan = 16;
+constexpr uint32_t kNone = 0xffffffffu;
+
+// The quadratic check of a small fan: true when no neighbour repeats as
+// `next` or as `prev` and the faces form one chain or one cycle, with *open
+// set for a chain. False sends the fan to the sorting path, which finds and
+// names the problem.
+bool small_fan_is_simple(const std::vector<FanFace>& fan, bool* open) {
+  const size_t k = fan.size();
+  uint32_t successor[kSmallFan];
+  uint32_t start = 0;
+  size_t chain_starts = 0;
+  for (size_t i = 0; i < k; ++i) {
+    successor[i] = kNone;
+    bool has_pred = false;
+    for (size_t j = 0; j < k; ++j) {
+      if (j == i) continue;
+      if (fan[j].next == fan[i].next || fan[j].prev == fan[i].prev) return false;
+      if (fan[j].next == fan[i].prev) successor[i] = static_cast<uint32_t>(j);
+      if (fan[j].prev == fan[i].next) has_pred = true;
+    }
+    if (!has_pred) {
+      ++chain_starts;
+      start = static_cast<uint32_t>(i);
+    }
+  }
+  if (chain_starts > 1) return false;
+  size_t walked = 1;
+  for (uint32_t j = successor[start]; j != kNone && j != start; j = successor[j]) {
+    if (++walked > k) return false;
+  }
+  *open = chain_starts == 1;
+  return walked == k;
+}
+
 }  // namespace
 
 Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
@@ -80,6 +117,11 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
     }
     const size_t k = fan.size();
     if (k == 0) continue;
+    bool simple_open = false;
+    if (k <= kSmallFan && small_fan_is_simple(fan, &simple_open)) {
+      topology->boundary[v] = simple_open ? 1 : 0;
+      continue;
+    }
     by_next.resize(k);
     for (size_t i = 0; i < k; ++i)
       by_next[i] = static_cast<uint32_t>(i);

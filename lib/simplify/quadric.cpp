@@ -70,15 +70,6 @@ Quadric& Quadric::operator*=(double s) {
   return *this;
 }
 
-double Quadric::evaluate(const Vec3d& p) const {
-  const double x = p[0], y = p[1], z = p[2];
-  const double r = a00 * x * x + a11 * y * y + a22 * z * z +
-                   2 * (a01 * x * y + a02 * x * z + a12 * y * z) + 2 * (b0 * x + b1 * y + b2 * z) +
-                   c;
-  // Rounding can take an exact zero slightly below.
-  return r > 0 ? r : 0;
-}
-
 double Quadric::mean_error(const Vec3d& p) const {
   return weight > 0 ? evaluate(p) / weight : 0;
 }

@@ -36,8 +36,16 @@ struct Quadric {
   }
   Quadric& operator*=(double s);
 
-  /// Q(p): the weighted sum of squared distances (never negative).
-  double evaluate(const Vec3d& p) const;
+  /// Q(p): the weighted sum of squared distances (never negative). Inline:
+  /// the collapse engine evaluates quadrics millions of times.
+  double evaluate(const Vec3d& p) const {
+    const double x = p[0], y = p[1], z = p[2];
+    const double r = a00 * x * x + a11 * y * y + a22 * z * z +
+                     2 * (a01 * x * y + a02 * x * z + a12 * y * z) +
+                     2 * (b0 * x + b1 * y + b2 * z) + c;
+    // Rounding can take an exact zero slightly below.
+    return r > 0 ? r : 0;
+  }
   /// Q(p) / weight: the weighted mean squared distance; 0 when weight is 0.
   double mean_error(const Vec3d& p) const;
   /// The minimiser of Q, when the 3x3 system is well conditioned; false
