@@ -70,9 +70,16 @@ fuzz: fuzz-deps
 BENCH_MESHES := $(BUILD)/data/dragon_vrip.ply $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/igl_armadillo.obj $(SHARED_DATA)/meshes/cgal_bunny00.off \
   $(SHARED_DATA)/meshes/draco_bunny.stl
+# Simplification against meshoptimizer, OpenMesh and CGAL at 50%, 10% and 1%
+# of the triangles (time, throughput, Hausdorff and mean error; see
+# docs/benchmarks.md). BENCH_RUNS sets the runs per median.
+BENCH_RUNS ?= 3
+SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
+  $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
 bench: build
-	cmake --build $(BUILD) --target dragon_data bench_import
+	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
