@@ -16,6 +16,7 @@
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/mesh_writers.h"
+#include "lib/metrics/surface_distance.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/simplify.h"
 #include "tools/common/cli.h"
@@ -35,6 +36,7 @@ struct Request {
   std::vector<double> ratios;  // parsed --lods
   bool repair = false;
   int quantize_bits = 0;
+  bool metrics = true;
   SimplifyOptions options;
 };
 
@@ -64,6 +66,29 @@ std::string lod_path(const std::string& pattern, size_t index) {
   std::string path = pattern;
   size_t at = path.find("%d");
   return path.replace(at, 2, std::to_string(index));
+}
+
+// The achieved geometric error of `output` against `input` (docs/metrics.md),
+// as JSON, or nothing with --no-metrics.
+Result<nlohmann::json> measure(const Request& request, const TriangleMesh& input,
+                               const TriangleMesh& output) {
+  if (!request.metrics) return nlohmann::json(nullptr);
+  LODBAKE_ASSIGN_OR_RETURN(SurfaceDistance d, measure_surface_distance(input, output));
+  return nlohmann::json{{"hausdorff_relative", d.hausdorff_relative},
+                        {"mean_relative", d.mean_relative},
+                        {"hausdorff", d.hausdorff},
+                        {"mean", d.mean},
+                        {"diagonal", d.diagonal},
+                        {"samples", d.a_to_b.vertex_samples + d.a_to_b.area_samples +
+                                        d.b_to_a.vertex_samples + d.b_to_a.area_samples}};
+}
+
+std::string metrics_text(const nlohmann::json& metrics) {
+  if (metrics.is_null()) return "";
+  std::ostringstream text;
+  text << ", Hausdorff " << metrics["hausdorff_relative"].get<double>() << " and mean "
+       << metrics["mean_relative"].get<double>() << " of the diagonal";
+  return text.str();
 }
 
 Status write_mesh(const Tool& tool, const std::string& path, const TriangleMesh& mesh) {
@@ -163,19 +188,28 @@ int run(const Tool& tool, Request& request) {
     if (!lods.is_ok()) return tool.fail(request.input, lods.status());
     for (size_t i = 0; i < lods.value().size(); ++i) {
       std::string path = lod_path(request.output, i);
+      Result<nlohmann::json> metrics = measure(request, loaded.mesh, lods.value()[i]);
+      if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
       Status written = write_mesh(tool, path, lods.value()[i]);
       if (!written.is_ok()) return tool.fail(path, written);
       outputs.push_back({{"file", path},
                          {"ratio", ratios[i]},
                          {"vertices", lods.value()[i].vertex_count()},
-                         {"triangles", lods.value()[i].triangle_count()}});
+                         {"triangles", lods.value()[i].triangle_count()},
+                         {"metrics", metrics.value()}});
     }
-  } else if (!request.output.empty()) {
-    Status written = write_mesh(tool, request.output, result.mesh);
-    if (!written.is_ok()) return tool.fail(request.output, written);
-    outputs.push_back({{"file", request.output},
-                       {"vertices", result.mesh.vertex_count()},
-                       {"triangles", result.mesh.triangle_count()}});
+  } else {
+    Result<nlohmann::json> metrics = measure(request, loaded.mesh, result.mesh);
+    if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
+    report["metrics"] = metrics.value();
+    if (!request.output.empty()) {
+      Status written = write_mesh(tool, request.output, result.mesh);
+      if (!written.is_ok()) return tool.fail(request.output, written);
+      outputs.push_back({{"file", request.output},
+                         {"vertices", result.mesh.vertex_count()},
+                         {"triangles", result.mesh.triangle_count()},
+                         {"metrics", metrics.value()}});
+    }
   }
   report["outputs"] = outputs;
   if (!request.pm_output.empty()) {
@@ -194,11 +228,13 @@ int run(const Tool& tool, Request& request) {
             << " vertices, " << loaded.mesh.triangle_count() << " triangles\n";
   std::cout << "simplified    " << result.mesh.vertex_count() << " vertices, "
             << result.mesh.triangle_count() << " triangles in " << seconds << " s ("
-            << result.stats.collapses << " collapses, largest error "
-            << result.stats.max_collapse_error << " of the diagonal)\n";
+            << result.stats.collapses << " collapses, largest collapse error "
+            << result.stats.max_collapse_error << " of the diagonal"
+            << metrics_text(report.value("metrics", nlohmann::json(nullptr))) << ")\n";
   for (const nlohmann::json& out : outputs)
     std::cout << "wrote         " << out["file"].get<std::string>() << ": "
-              << out["triangles"].get<uint64_t>() << " triangles\n";
+              << out["triangles"].get<uint64_t>() << " triangles"
+              << (ratios.empty() ? std::string() : metrics_text(out["metrics"])) << "\n";
   if (report.contains("pm"))
     std::cout << "wrote         " << request.pm_output << ": progressive mesh, "
               << report["pm"]["splits"].get<uint64_t>() << " vertex splits, "
@@ -248,7 +284,8 @@ int main(int argc, char** argv) {
       "allow collapses across texture seams")("repair", po::bool_switch(&request.repair),
                                               "repair the input first (see lodbake-pack)")(
       "quantize", po::value<int>(&request.quantize_bits)->value_name("BITS"),
-      "store the PM's positions quantized to BITS (1..30) bits");
+      "store the PM's positions quantized to BITS (1..30) bits")(
+      "no-metrics", "skip measuring the Hausdorff and mean distance to the input");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   std::vector<std::string> inputs = tool.positionals("mesh");
@@ -257,6 +294,7 @@ int main(int argc, char** argv) {
                                 ? "missing MESH"
                                 : "expected one MESH, got " + std::to_string(inputs.size()));
   request.input = inputs.front();
+  request.metrics = !tool.has("no-metrics");
   if (request.output.empty() && request.pm_output.empty())
     return tool.usage_error("nothing to write: give -o OUT and/or --pm OUT.lbk");
   if (tool.has("ratio")) {
