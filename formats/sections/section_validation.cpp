@@ -57,8 +57,9 @@ void check_meta_counts(const Decoded& d, std::vector<SectionFinding>* findings) 
   }
 }
 
-// VSPL needs its base mesh: the vertex counts must agree, and the records
-// are decoded against BASE's positions.
+// VSPL needs its base mesh: the vertex counts must agree, the records are
+// decoded against BASE's positions, and the attributes must be in both or
+// in neither (join_progressive_mesh()).
 void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
   const Section& section = *d->vspl_section;
   Result<VsplSummary> summary = read_vspl_summary(section.data, section.size);
@@ -84,14 +85,17 @@ void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
     findings->push_back({kVsplTag, decoded.status().message()});
     return;
   }
-  ProgressiveMesh pm;
-  pm.base = std::move(*d->base_mesh);
+  const uint64_t base_triangles = d->base_mesh->triangle_count();
+  d->full_triangles = full_triangle_count(base_triangles, decoded.value().splits);
+  Result<ProgressiveMesh> pm =
+      join_progressive_mesh(std::move(*d->base_mesh), std::move(decoded).value());
   d->base_mesh.reset();
-  pm.splits = std::move(decoded.value().splits);
-  pm.input_vertex = std::move(decoded.value().input_vertex);
-  for (std::string& finding : validate_vspl(pm))
+  if (!pm.is_ok()) {
+    findings->push_back({kVsplTag, pm.status().message()});
+    return;
+  }
+  for (std::string& finding : validate_vspl(pm.value()))
     findings->push_back({kVsplTag, std::move(finding)});
-  d->full_triangles = full_triangle_count(pm.base.triangle_count(), pm.splits);
 }
 
 }  // namespace

@@ -3,15 +3,23 @@
 //
 // Choices where the brief was open:
 // - Structure of arrays: one bit-packed topology stream (vs, vl, vr of every
-//   record), then the positions, the errors and the permutation. Every part's
-//   size follows from the fixed fields, so the layout walk (and the O(1)
-//   summary) checks the whole payload size before anything is allocated, and
-//   a later byte-level codec sees like values next to each other.
-// - Split i happens on a mesh of n = B + i vertices, so vs and vl take
-//   bits(n) bits and vr takes bits(n + 1): the value n (which is the new
-//   vertex vt itself, never a valid wing) means "no right wing". That costs
-//   one extra bit only when n is a power of two, where a per-record boundary
-//   flag would cost one bit on every record.
+//   record), then the positions, the errors, the split vertices' normals and
+//   texture coordinates, and the permutation. Every part's size follows from
+//   the fixed fields, so the layout walk (and the O(1) summary) checks the
+//   whole payload size before anything is allocated, and a later byte-level
+//   codec sees like values next to each other.
+// - Split i happens on a mesh of n = B + i vertices, so vs takes bits(n)
+//   bits and each wing bits(n + 1): the value n (which is the new vertex vt
+//   itself, never a valid wing) means "no wing" (a boundary edge has only
+//   one; the engine records either side missing). That costs one extra bit
+//   per wing only when n is a power of two, where a per-record boundary
+//   field would cost bits on every record. Both wings missing is malformed.
+// - Attributes: a progressive mesh's normals and texture coordinates are
+//   per vertex and never change along the LoDs, so BASE holds the base
+//   vertices' values and VSPL appends one value per split (the new vertex
+//   vt's), float32 like BASE's attribute blocks. Presence must agree between
+//   the two sections; join_progressive_mesh() refuses a mismatch rather than
+//   inventing values.
 // - The base vertex count is stored redundantly (4 bytes): the summary is then
 //   self-contained and the reader cross-checks it against BASE instead of
 //   trusting the caller.
@@ -64,10 +72,10 @@ uint64_t sum_of_widths(uint64_t lo, uint64_t hi) {
 }
 
 // Bits of the topology stream: split i (n = B + i vertices before it) takes
-// bits(n) for vs and vl and bits(n + 1) for vr.
+// bits(n) for vs and bits(n + 1) for each of vl and vr.
 uint64_t topology_bits(uint64_t base_vertices, uint64_t splits) {
-  return 2 * sum_of_widths(base_vertices, base_vertices + splits) +
-         sum_of_widths(base_vertices + 1, base_vertices + splits + 1);
+  return sum_of_widths(base_vertices, base_vertices + splits) +
+         2 * sum_of_widths(base_vertices + 1, base_vertices + splits + 1);
 }
 
 bool stores_vs(const VsplSummary& s) {
@@ -75,6 +83,12 @@ bool stores_vs(const VsplSummary& s) {
 }
 bool stores_permutation(const VsplSummary& s) {
   return (s.flags & kVsplStoresPermutation) != 0;
+}
+bool stores_normals(const VsplSummary& s) {
+  return (s.flags & kVsplStoresNormals) != 0;
+}
+bool stores_texcoords(const VsplSummary& s) {
+  return (s.flags & kVsplStoresTexcoords) != 0;
 }
 
 // Where each part of a payload lies; every range was checked against the size.
@@ -85,6 +99,8 @@ struct VsplLayout {
   size_t positions_offset = 0;
   uint64_t positions_bytes = 0;
   size_t errors_offset = 0;
+  size_t normals_offset = 0;    // when stores_normals()
+  size_t texcoords_offset = 0;  // when stores_texcoords()
   size_t permutation_offset = 0;
   uint64_t permutation_bytes = 0;
 };
@@ -122,7 +138,7 @@ Status parse_layout(const uint8_t* data, size_t size, VsplLayout* layout) {
   if (!quantized && qbits != 0) {
     return bad_vspl(string_printf("quantization bits %u with float32 positions, must be 0", qbits));
   }
-  if ((s.flags & ~(kVsplStoresVsPositions | kVsplStoresPermutation)) != 0) {
+  if ((s.flags & ~kVsplKnownFlags) != 0) {
     return bad_vspl(string_printf("unknown flag bits 0x%02X", s.flags));
   }
   const uint64_t r = s.split_count;
@@ -166,6 +182,16 @@ Status parse_layout(const uint8_t* data, size_t size, VsplLayout* layout) {
   LODBAKE_RETURN_IF_ERROR(need_bytes(&reader, 4 * r,
                                      string_printf("the errors of %u splits", s.split_count),
                                      &layout->errors_offset));
+  if (stores_normals(s)) {
+    LODBAKE_RETURN_IF_ERROR(need_bytes(&reader, 12 * r,
+                                       string_printf("the normals of %u splits", s.split_count),
+                                       &layout->normals_offset));
+  }
+  if (stores_texcoords(s)) {
+    LODBAKE_RETURN_IF_ERROR(need_bytes(
+        &reader, 8 * r, string_printf("the texture coordinates of %u splits", s.split_count),
+        &layout->texcoords_offset));
+  }
   if (stores_permutation(s)) {
     const uint64_t full = b + r;
     layout->permutation_bytes = packed_size_bytes(full, bits_for_count(full));
@@ -181,8 +207,8 @@ Status parse_layout(const uint8_t* data, size_t size, VsplLayout* layout) {
   return Status::ok();
 }
 
-std::string vr_text(uint32_t vr) {
-  return vr == kNoVertex ? std::string("none") : std::to_string(vr);
+std::string wing_text(uint32_t wing) {
+  return wing == kNoVertex ? std::string("none") : std::to_string(wing);
 }
 
 Status decode_topology(const uint8_t* data, const VsplLayout& layout,
@@ -191,22 +217,27 @@ Status decode_topology(const uint8_t* data, const VsplLayout& layout,
   const uint32_t base = layout.summary.base_vertex_count;
   for (size_t i = 0; i < splits->size(); ++i) {
     const uint32_t n = base + static_cast<uint32_t>(i);
-    const int width = bits_for_count(n);
+    const int wing_width = bits_for_count(uint64_t{n} + 1);
     VertexSplit& split = (*splits)[i];
-    if (!in.read(width, &split.vs) || !in.read(width, &split.vl) ||
-        !in.read(bits_for_count(uint64_t{n} + 1), &split.vr)) {
+    if (!in.read(bits_for_count(n), &split.vs) || !in.read(wing_width, &split.vl) ||
+        !in.read(wing_width, &split.vr)) {
       return bad_vspl("vertex index stream too short");
     }
-    if (split.vs >= n || split.vl >= n || split.vr > n) {
+    if (split.vs >= n || split.vl > n || split.vr > n) {
       return bad_vspl(string_printf(
           "split %zu (vs %u, vl %u, vr %u) has an index out of range (%u vertices before it, "
-          "vr %u means none)",
+          "a wing of %u means none)",
           i, split.vs, split.vl, split.vr, n, n));
     }
+    if (split.vl == n && split.vr == n) {
+      return bad_vspl(string_printf(
+          "split %zu (vs %u) has neither wing (vl and vr are both %u, none)", i, split.vs, n));
+    }
+    if (split.vl == n) split.vl = kNoVertex;
     if (split.vr == n) split.vr = kNoVertex;
     if (split.vl == split.vs || split.vr == split.vs || split.vr == split.vl) {
-      return bad_vspl(string_printf("split %zu (vs %u, vl %u, vr %s) repeats a vertex", i, split.vs,
-                                    split.vl, vr_text(split.vr).c_str()));
+      return bad_vspl(string_printf("split %zu (vs %u, vl %s, vr %s) repeats a vertex", i, split.vs,
+                                    wing_text(split.vl).c_str(), wing_text(split.vr).c_str()));
     }
   }
   if (!in.padding_is_zero()) return bad_vspl("nonzero padding bits after the vertex indices");
@@ -290,6 +321,22 @@ Status decode_errors(const uint8_t* data, const VsplLayout& layout,
   return Status::ok();
 }
 
+// The split vertices' values of one attribute: `components` float32 per
+// split, all finite (as in BASE's attribute blocks).
+Status decode_split_attribute(const uint8_t* bytes, uint32_t splits, int components,
+                              const char* what, std::vector<float>* values) {
+  values->resize(size_t{splits} * static_cast<size_t>(components));
+  for (size_t k = 0; k < values->size(); ++k) {
+    std::memcpy(&(*values)[k], bytes + 4 * k, 4);
+    if (!std::isfinite((*values)[k])) {
+      return bad_vspl(string_printf("split %zu: %s component %zu is not finite",
+                                    k / static_cast<size_t>(components), what,
+                                    k % static_cast<size_t>(components)));
+    }
+  }
+  return Status::ok();
+}
+
 Status decode_permutation(const uint8_t* data, const VsplLayout& layout,
                           std::vector<uint32_t>* input_vertex) {
   const uint64_t full = layout.summary.full_vertex_count();
@@ -338,6 +385,7 @@ void structural_problems(size_t base_vertices, const std::vector<VertexSplit>& s
     if (!all) return;
   }
   size_t out_of_range = 0, first_out_of_range = 0;
+  size_t wingless = 0, first_wingless = 0;
   size_t repeated = 0, first_repeated = 0;
   size_t bad_position = 0, first_bad_position = 0;
   size_t bad_error = 0, first_bad_error = 0;
@@ -347,8 +395,10 @@ void structural_problems(size_t base_vertices, const std::vector<VertexSplit>& s
   for (size_t i = 0; i < r; ++i) {
     const VertexSplit& s = splits[i];
     const uint64_t n = uint64_t{base_vertices} + i;
-    if (s.vs >= n || s.vl >= n || (s.vr != kNoVertex && s.vr >= n)) {
+    if (s.vs >= n || (s.vl != kNoVertex && s.vl >= n) || (s.vr != kNoVertex && s.vr >= n)) {
       if (out_of_range++ == 0) first_out_of_range = i;
+    } else if (s.vl == kNoVertex && s.vr == kNoVertex) {
+      if (wingless++ == 0) first_wingless = i;
     } else if (s.vl == s.vs || s.vr == s.vs || s.vr == s.vl) {
       if (repeated++ == 0) first_repeated = i;
     }
@@ -361,7 +411,8 @@ void structural_problems(size_t base_vertices, const std::vector<VertexSplit>& s
   }
   auto describe = [&](size_t i) {
     const VertexSplit& s = splits[i];
-    return string_printf("split %zu (vs %u, vl %u, vr %s)", i, s.vs, s.vl, vr_text(s.vr).c_str());
+    return string_printf("split %zu (vs %u, vl %s, vr %s)", i, s.vs, wing_text(s.vl).c_str(),
+                         wing_text(s.vr).c_str());
   };
   if (out_of_range != 0) {
     out->push_back(
@@ -369,6 +420,11 @@ void structural_problems(size_t base_vertices, const std::vector<VertexSplit>& s
                       " vertices before it",
                       out_of_range, describe(first_out_of_range).c_str(),
                       uint64_t{base_vertices} + first_out_of_range));
+    if (!all) return;
+  }
+  if (wingless != 0) {
+    out->push_back(string_printf("%zu splits have neither wing, first: %s", wingless,
+                                 describe(first_wingless).c_str()));
     if (!all) return;
   }
   if (repeated != 0) {
@@ -420,6 +476,68 @@ void structural_problems(size_t base_vertices, const std::vector<VertexSplit>& s
   }
 }
 
+// Storability problems of one of a PM's attributes (`what`: "normals" or
+// "texture coordinates", `components` 3 or 2): all of them when `all`.
+void attribute_problems(const MeshAttribute& attr, const MeshAttribute& base_attr, const char* what,
+                        uint32_t components, size_t base_vertices, size_t full_vertices, bool all,
+                        std::vector<std::string>* out) {
+  if (!attr.present()) {
+    if (base_attr.present()) {
+      out->push_back(string_printf(
+          "the base mesh has %s but the progressive mesh has none for its %zu vertices", what,
+          full_vertices));
+    }
+    return;
+  }
+  if (attr.binding != AttributeBinding::kPerVertex || attr.components != components ||
+      attr.values.size() != full_vertices * components) {
+    out->push_back(string_printf(
+        "%s must be per-vertex with %u components for each of the %zu vertices, they are %s "
+        "with %u components and %zu floats",
+        what, components, full_vertices,
+        attr.binding == AttributeBinding::kPerVertex ? "per-vertex" : "per-corner", attr.components,
+        attr.values.size()));
+    return;
+  }
+  size_t non_finite = 0, first_non_finite = 0;
+  for (size_t k = 0; k < attr.values.size(); ++k) {
+    if (!std::isfinite(attr.values[k]) && non_finite++ == 0) first_non_finite = k / components;
+  }
+  if (non_finite != 0) {
+    out->push_back(string_printf("%s: %zu non-finite values, first: vertex %zu", what, non_finite,
+                                 first_non_finite));
+    if (!all) return;
+  }
+  // BASE stores the base vertices' values: they must be the PM's first ones,
+  // bit for bit, or the decoded PM would differ from this one.
+  const size_t base_floats = base_vertices * components;
+  if (base_attr.binding != AttributeBinding::kPerVertex || base_attr.components != components ||
+      base_attr.values.size() != base_floats) {
+    out->push_back(
+        string_printf("the progressive mesh has %s but the base mesh does not have "
+                      "them per-vertex for its %zu vertices",
+                      what, base_vertices));
+    return;
+  }
+  for (size_t k = 0; k < base_floats; ++k) {
+    if (!same_bits(base_attr.values[k], attr.values[k])) {
+      out->push_back(string_printf(
+          "the base mesh's %s differ from the progressive mesh's, first at vertex %zu", what,
+          k / components));
+      return;
+    }
+  }
+}
+
+void all_attribute_problems(const ProgressiveMesh& pm, bool all, std::vector<std::string>* out) {
+  const size_t before = out->size();
+  attribute_problems(pm.normals, pm.base.normals, "normals", 3, pm.base.vertex_count(),
+                     pm.full_vertex_count(), all, out);
+  if (!all && out->size() != before) return;
+  attribute_problems(pm.texcoords, pm.base.texcoords, "texture coordinates", 2,
+                     pm.base.vertex_count(), pm.full_vertex_count(), all, out);
+}
+
 // vs's position before split i when no vertex ever moves.
 const Vec3f& initial_position(const std::vector<Vec3f>& base_positions,
                               const std::vector<VertexSplit>& splits, uint32_t v) {
@@ -441,6 +559,7 @@ Result<Bytes> encode_vspl(const ProgressiveMesh& pm, const VsplEncodeOptions& op
   try {
     std::vector<std::string> problems;
     structural_problems(pm.base.vertex_count(), pm.splits, pm.input_vertex, false, &problems);
+    if (problems.empty()) all_attribute_problems(pm, false, &problems);
     if (!problems.empty()) return cannot_encode(problems.front());
 
     const uint32_t b = static_cast<uint32_t>(pm.base.vertex_count());
@@ -459,6 +578,8 @@ Result<Bytes> encode_vspl(const ProgressiveMesh& pm, const VsplEncodeOptions& op
         break;
       }
     }
+    if (pm.normals.present()) flags |= kVsplStoresNormals;
+    if (pm.texcoords.present()) flags |= kVsplStoresTexcoords;
     const bool with_vs = (flags & kVsplStoresVsPositions) != 0;
     std::vector<Vec3f> stored;
     stored.reserve(size_t{r} * (with_vs ? 2 : 1));
@@ -495,10 +616,10 @@ Result<Bytes> encode_vspl(const ProgressiveMesh& pm, const VsplEncodeOptions& op
     for (uint32_t i = 0; i < r; ++i) {
       const VertexSplit& split = pm.splits[i];
       const uint32_t n = b + i;
-      const int width = bits_for_count(n);
-      topology.write(split.vs, width);
-      topology.write(split.vl, width);
-      topology.write(split.vr == kNoVertex ? n : split.vr, bits_for_count(uint64_t{n} + 1));
+      const int wing_width = bits_for_count(uint64_t{n} + 1);
+      topology.write(split.vs, bits_for_count(n));
+      topology.write(split.vl == kNoVertex ? n : split.vl, wing_width);
+      topology.write(split.vr == kNoVertex ? n : split.vr, wing_width);
     }
     topology.finish();
 
@@ -518,6 +639,12 @@ Result<Bytes> encode_vspl(const ProgressiveMesh& pm, const VsplEncodeOptions& op
     }
     for (const VertexSplit& split : pm.splits)
       writer.write(split.error);
+    // The split vertices' values follow the base vertices' (which BASE holds).
+    for (const MeshAttribute* attr : {&pm.normals, &pm.texcoords}) {
+      if (!attr->present()) continue;
+      for (size_t k = size_t{b} * attr->components; k < attr->values.size(); ++k)
+        writer.write(attr->values[k]);
+    }
 
     if ((flags & kVsplStoresPermutation) != 0) {
       const int width = bits_for_count(pm.input_vertex.size());
@@ -548,6 +675,15 @@ Result<VsplSection> decode_vspl(const uint8_t* data, size_t size,
     LODBAKE_RETURN_IF_ERROR(decode_topology(data, layout, &section.splits));
     LODBAKE_RETURN_IF_ERROR(decode_positions(data, layout, &section.splits));
     LODBAKE_RETURN_IF_ERROR(decode_errors(data, layout, &section.splits));
+    if (stores_normals(s)) {
+      LODBAKE_RETURN_IF_ERROR(decode_split_attribute(data + layout.normals_offset, s.split_count, 3,
+                                                     "normal", &section.split_normals));
+    }
+    if (stores_texcoords(s)) {
+      LODBAKE_RETURN_IF_ERROR(decode_split_attribute(data + layout.texcoords_offset, s.split_count,
+                                                     2, "texture coordinate",
+                                                     &section.split_texcoords));
+    }
     LODBAKE_RETURN_IF_ERROR(decode_permutation(data, layout, &section.input_vertex));
     if (!stores_vs(s)) {
       for (VertexSplit& split : section.splits)
@@ -566,16 +702,81 @@ Result<VsplSummary> read_vspl_summary(const uint8_t* data, size_t size) {
   return layout.summary;
 }
 
-Result<ProgressiveMesh> decode_progressive_mesh(const uint8_t* base_data, size_t base_size,
-                                                const uint8_t* vspl_data, size_t vspl_size) {
+namespace {
+
+// One attribute of the joined PM: BASE's per-vertex values, then the split
+// vertices' from VSPL.
+Status join_attribute(const MeshAttribute& base_attr, size_t base_vertices, bool stored,
+                      const std::vector<float>& split_values, const char* what, uint32_t components,
+                      MeshAttribute* out) {
+  if (!stored) {
+    if (base_attr.present()) {
+      return bad_vspl(
+          string_printf("BASE has %s but VSPL does not store those of the split vertices", what));
+    }
+    return Status::ok();
+  }
+  if (!base_attr.present()) {
+    return bad_vspl(string_printf(
+        "VSPL stores the split vertices' %s but BASE has none for its vertices", what));
+  }
+  if (base_attr.binding != AttributeBinding::kPerVertex) {
+    return bad_vspl(string_printf(
+        "VSPL stores the split vertices' %s but BASE's are per corner, a progressive mesh needs "
+        "them per vertex",
+        what));
+  }
+  if (base_attr.components != components || base_attr.values.size() != base_vertices * components) {
+    return bad_vspl(string_printf(
+        "BASE's %s have %u components and %zu floats, expected %u for each of %zu vertices", what,
+        base_attr.components, base_attr.values.size(), components, base_vertices));
+  }
+  out->binding = AttributeBinding::kPerVertex;
+  out->components = components;
+  out->values.reserve(base_attr.values.size() + split_values.size());
+  out->values.insert(out->values.end(), base_attr.values.begin(), base_attr.values.end());
+  out->values.insert(out->values.end(), split_values.begin(), split_values.end());
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<ProgressiveMesh> join_progressive_mesh(TriangleMesh base, VsplSection section) {
   try {
+    const VsplSummary& s = section.summary;
+    if (s.base_vertex_count != base.vertex_count()) {
+      return bad_vspl(string_printf("base vertex count %u, but the base mesh has %zu vertices",
+                                    s.base_vertex_count, base.vertex_count()));
+    }
+    if (section.splits.size() != s.split_count ||
+        section.input_vertex.size() != s.full_vertex_count() ||
+        section.split_normals.size() != (stores_normals(s) ? 3 * section.splits.size() : 0) ||
+        section.split_texcoords.size() != (stores_texcoords(s) ? 2 * section.splits.size() : 0)) {
+      return bad_vspl("the decoded section's arrays disagree with its summary");
+    }
     ProgressiveMesh pm;
-    LODBAKE_ASSIGN_OR_RETURN(pm.base, decode_base(base_data, base_size));
-    LODBAKE_ASSIGN_OR_RETURN(VsplSection section,
-                             decode_vspl(vspl_data, vspl_size, pm.base.positions));
+    const size_t n0 = base.vertex_count();
+    LODBAKE_RETURN_IF_ERROR(join_attribute(base.normals, n0, stores_normals(s),
+                                           section.split_normals, "normals", 3, &pm.normals));
+    LODBAKE_RETURN_IF_ERROR(join_attribute(base.texcoords, n0, stores_texcoords(s),
+                                           section.split_texcoords, "texture coordinates", 2,
+                                           &pm.texcoords));
+    pm.base = std::move(base);
     pm.splits = std::move(section.splits);
     pm.input_vertex = std::move(section.input_vertex);
     return pm;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory while joining a progressive mesh");
+  }
+}
+
+Result<ProgressiveMesh> decode_progressive_mesh(const uint8_t* base_data, size_t base_size,
+                                                const uint8_t* vspl_data, size_t vspl_size) {
+  try {
+    LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base, decode_base(base_data, base_size));
+    LODBAKE_ASSIGN_OR_RETURN(VsplSection section,
+                             decode_vspl(vspl_data, vspl_size, base.positions));
+    return join_progressive_mesh(std::move(base), std::move(section));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding a progressive mesh");
   }
@@ -585,6 +786,7 @@ std::vector<std::string> validate_vspl(const ProgressiveMesh& pm) {
   std::vector<std::string> findings;
   try {
     structural_problems(pm.base.vertex_count(), pm.splits, pm.input_vertex, true, &findings);
+    all_attribute_problems(pm, true, &findings);
   } catch (const std::bad_alloc&) {
     findings.push_back("out of memory while validating VSPL");
   }
@@ -608,7 +810,7 @@ std::vector<std::string> validate_vspl_payload(const uint8_t* data, size_t size,
 uint64_t full_triangle_count(uint64_t base_triangles, const std::vector<VertexSplit>& splits) {
   uint64_t total = base_triangles;
   for (const VertexSplit& split : splits)
-    total += split.vr == kNoVertex ? 1 : 2;
+    total += uint64_t{split.vl != kNoVertex} + uint64_t{split.vr != kNoVertex};
   return total;
 }
 

@@ -23,6 +23,14 @@ inline constexpr uint8_t kVsplStoresVsPositions = 0x01;
 /// Flag bit 1: the input permutation is stored. When clear it is the
 /// identity (PM vertex v is input vertex v).
 inline constexpr uint8_t kVsplStoresPermutation = 0x02;
+/// Flag bit 2: the progressive mesh carries per-vertex normals; the normal
+/// of each split's new vertex is stored (BASE holds the base vertices').
+inline constexpr uint8_t kVsplStoresNormals = 0x04;
+/// Flag bit 3: the same for texture coordinates.
+inline constexpr uint8_t kVsplStoresTexcoords = 0x08;
+/// Every flag bit defined in format 1.0.
+inline constexpr uint8_t kVsplKnownFlags =
+    kVsplStoresVsPositions | kVsplStoresPermutation | kVsplStoresNormals | kVsplStoresTexcoords;
 
 /// The bytes before the quantization box and the records.
 inline constexpr size_t kVsplFixedBytes = 19;
@@ -39,7 +47,7 @@ struct VsplSummary {
   uint32_t base_vertex_count = 0;  ///< B, must equal BASE's vertex count
   PositionEncoding position_encoding = PositionEncoding::kFloat32;
   uint8_t quantization_bits = 0;  ///< 0 for float32
-  uint8_t flags = 0;              ///< kVsplStoresVsPositions | kVsplStoresPermutation
+  uint8_t flags = 0;              ///< kVsplStores* bits (kVsplKnownFlags)
   float min_error = 0;            ///< the smallest record error (0 when R == 0)
   float max_error = 0;            ///< the largest record error (0 when R == 0)
   Vec3f box_min{};                ///< dequantization box (quantized only)
@@ -49,19 +57,28 @@ struct VsplSummary {
   uint64_t full_vertex_count() const { return uint64_t{base_vertex_count} + split_count; }
 };
 
-/// A decoded VSPL payload: everything of a ProgressiveMesh but the base mesh.
+/// A decoded VSPL payload: everything of a ProgressiveMesh but the base mesh
+/// (and the base vertices' attributes, which BASE holds).
 struct VsplSection {
   VsplSummary summary;
   std::vector<VertexSplit> splits;     ///< vs_position always filled (stored or implied)
   std::vector<uint32_t> input_vertex;  ///< always full_vertex_count() entries
+  /// Flag bit 2: 3 floats per split, the normal of the vertex it creates
+  /// (PM vertex B + i), in split order; empty otherwise.
+  std::vector<float> split_normals;
+  /// Flag bit 3: 2 floats per split, likewise; empty otherwise.
+  std::vector<float> split_texcoords;
 };
 
-/// Encodes the records and the permutation of `pm` as a VSPL payload
-/// (pm.base goes to BASE). Deterministic. The writer stores vs positions
+/// Encodes the records, the permutation and the split vertices' attributes
+/// of `pm` as a VSPL payload (pm.base goes to BASE, base vertices'
+/// attributes included). Deterministic. The writer stores vs positions
 /// only when some split's vs_position differs (bitwise) from vs's position
-/// before the split, and the permutation only when it is not the identity.
-/// With quantize, the box is the bounding box of the stored positions and
-/// coordinates are quantized as formats/support/quantization.h specifies.
+/// before the split, the permutation only when it is not the identity, and
+/// normals / texture coordinates exactly when pm carries them (float32,
+/// never quantized). With quantize, the box is the bounding box of the
+/// stored positions and coordinates are quantized as
+/// formats/support/quantization.h specifies.
 /// \return kInvalidInput ("cannot encode VSPL: ...") when the PM is not
 ///         storable (see validate_vspl(), the first problem), or bits
 ///         outside 1..30 when quantizing; kRuntime when memory runs out.
@@ -81,9 +98,10 @@ Result<Bytes> encode_vspl(const ProgressiveMesh& pm, const VsplEncodeOptions& op
 ///         other than base_positions.size(), more than 2^32 - 1 vertices,
 ///         splits over fewer than 2 base vertices, a non-finite or inverted
 ///         box, counts needing more bytes than remain, vs / vl / vr out of
-///         range or equal, a non-finite float, an error range that is not the
-///         records' own, a permutation that is not one, nonzero padding bits,
-///         trailing bytes. Never throws.
+///         range or equal, a split with neither wing, a non-finite float
+///         (position, error, normal or texture coordinate), an error range
+///         that is not the records' own, a permutation that is not one,
+///         nonzero padding bits, trailing bytes. Never throws.
 Result<VsplSection> decode_vspl(const uint8_t* data, size_t size,
                                 const std::vector<Vec3f>& base_positions,
                                 VsplSummary* summary = nullptr);
@@ -93,17 +111,33 @@ Result<VsplSection> decode_vspl(const uint8_t* data, size_t size,
 /// as decode_vspl() except what needs the base mesh or the record contents.
 Result<VsplSummary> read_vspl_summary(const uint8_t* data, size_t size);
 
-/// The progressive mesh stored in a BASE and a VSPL payload.
-/// \return decode_base()'s or decode_vspl()'s error.
+/// Joins a decoded BASE mesh and a VSPL section decoded against its
+/// positions into a progressive mesh. ProgressiveMesh::normals (texcoords)
+/// is BASE's per-vertex values followed by the section's split values.
+/// \return LBK-E023 "section VSPL: ..." (kInvalidInput) when the two do not
+///         belong together: base vertex counts differ, VSPL stores an
+///         attribute that BASE lacks or holds per corner (a progressive mesh
+///         needs it per vertex), or BASE has an attribute that VSPL does not
+///         store for the split vertices.
+Result<ProgressiveMesh> join_progressive_mesh(TriangleMesh base, VsplSection section);
+
+/// The progressive mesh stored in a BASE and a VSPL payload, attributes
+/// included.
+/// \return decode_base()'s, decode_vspl()'s or join_progressive_mesh()'s
+///         error.
 Result<ProgressiveMesh> decode_progressive_mesh(const uint8_t* base_data, size_t base_size,
                                                 const uint8_t* vspl_data, size_t vspl_size);
 
 /// Deep check of a progressive mesh's records as VSPL stores them (for
 /// `lodbake-inspect --validate`): more than 2^32 - 1 vertices, splits over
 /// fewer than 2 base vertices, vs / vl / vr out of range for the vertex count
-/// at their split or repeating a vertex, non-finite positions or errors,
-/// input_vertex of the wrong size or not a permutation. Each kind of problem
-/// gives one line with its count and first instance; empty when all is well.
+/// at their split or repeating a vertex, splits with neither wing,
+/// non-finite positions or errors, input_vertex of the wrong size or not a
+/// permutation, normals / texture coordinates that are not per-vertex with
+/// 3 / 2 components for all full_vertex_count() vertices, hold a non-finite
+/// value, or disagree (bitwise, or in presence) with pm.base's. Each kind of
+/// problem gives one line with its count and first instance; empty when all
+/// is well.
 /// Whether the splits fit the base mesh's connectivity is the replay's check
 /// (lib/simplify), not the format's.
 std::vector<std::string> validate_vspl(const ProgressiveMesh& pm);
@@ -113,7 +147,7 @@ std::vector<std::string> validate_vspl_payload(const uint8_t* data, size_t size,
                                                const std::vector<Vec3f>& base_positions);
 
 /// Triangles of the fully refined mesh: `base_triangles` plus 2 per split
-/// (1 for a boundary split, vr == kNoVertex).
+/// (1 for a boundary split, vl or vr == kNoVertex).
 uint64_t full_triangle_count(uint64_t base_triangles, const std::vector<VertexSplit>& splits);
 
 }  // namespace lodbake

@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   for (const SectionListing& section : listing.sections) {
     if (section.data == nullptr || section.entry.tag != kVsplTag) continue;
-    fuzz::check_vspl_payload(section.data, section.size, base ? &base->positions : nullptr);
+    fuzz::check_vspl_payload(section.data, section.size, base ? &*base : nullptr);
   }
 
   if (container.is_ok()) {

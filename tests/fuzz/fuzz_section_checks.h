@@ -70,25 +70,46 @@ inline void check_meta_payload(const uint8_t* data, size_t size) {
 // hostile base vertex count cannot make the harness itself allocate much.
 inline constexpr uint32_t kMaxSyntheticBaseVertices = 4096;
 
-// VSPL: decoded against `base_positions` (the container's BASE) or, when
-// null, against synthetic positions of the stored base vertex count. What
-// decodes passes validation and re-encodes (float32) to the same records,
-// and to the same bytes when the input was float32 with the flags the
-// writer would choose.
-inline void check_vspl_payload(const uint8_t* data, size_t size,
-                               const std::vector<Vec3f>* base_positions) {
+// A stand-in base mesh for a bare VSPL payload: `vertices` positions and,
+// when the flags say the PM carries them, per-vertex normals and texture
+// coordinates, so that join_progressive_mesh() accepts it.
+inline TriangleMesh synthetic_base(uint32_t vertices, uint8_t flags) {
+  TriangleMesh base;
+  for (uint32_t i = 0; i < vertices; ++i)
+    base.positions.push_back({static_cast<float>(i), 0.5f * static_cast<float>(i), -1.0f});
+  if ((flags & kVsplStoresNormals) != 0) {
+    base.normals.binding = AttributeBinding::kPerVertex;
+    base.normals.components = 3;
+    for (uint32_t i = 0; i < vertices; ++i)
+      base.normals.values.insert(base.normals.values.end(), {0.0f, -0.0f, 1.0f});
+  }
+  if ((flags & kVsplStoresTexcoords) != 0) {
+    base.texcoords.binding = AttributeBinding::kPerVertex;
+    base.texcoords.components = 2;
+    for (uint32_t i = 0; i < vertices; ++i)
+      base.texcoords.values.insert(base.texcoords.values.end(), {static_cast<float>(i), 0.25f});
+  }
+  return base;
+}
+
+// VSPL: decoded against `base` (the container's BASE) or, when null,
+// against a synthetic base of the stored base vertex count with the
+// attributes the flags announce. What decodes and joins its base passes
+// validation and re-encodes (float32) to the same progressive mesh, and to
+// the same bytes when the input was float32 with the flags the writer would
+// choose.
+inline void check_vspl_payload(const uint8_t* data, size_t size, const TriangleMesh* base) {
   Result<VsplSummary> summary = read_vspl_summary(data, size);
-  std::vector<Vec3f> synthetic;
-  if (base_positions == nullptr) {
+  TriangleMesh synthetic;
+  if (base == nullptr) {
     if (summary.is_ok() && summary.value().base_vertex_count <= kMaxSyntheticBaseVertices) {
-      for (uint32_t i = 0; i < summary.value().base_vertex_count; ++i)
-        synthetic.push_back({static_cast<float>(i), 0.5f * static_cast<float>(i), -1.0f});
+      synthetic = synthetic_base(summary.value().base_vertex_count, summary.value().flags);
     }
-    base_positions = &synthetic;
+    base = &synthetic;
   }
   VsplSummary decoded_summary;
-  Result<VsplSection> section = decode_vspl(data, size, *base_positions, &decoded_summary);
-  (void)validate_vspl_payload(data, size, *base_positions);
+  Result<VsplSection> section = decode_vspl(data, size, base->positions, &decoded_summary);
+  (void)validate_vspl_payload(data, size, base->positions);
   if (!section.is_ok()) {
     require(section.status().code() == 23 || section.status().kind() == ErrorKind::kRuntime,
             "VSPL decode error without LBK-E023");
@@ -99,18 +120,21 @@ inline void check_vspl_payload(const uint8_t* data, size_t size,
               summary.value().full_vertex_count() == section.value().input_vertex.size() &&
               decoded_summary.flags == summary.value().flags,
           "VSPL summary disagrees with the decoded records");
-  ProgressiveMesh pm;
-  pm.base.positions = *base_positions;
-  pm.splits = section.value().splits;
-  pm.input_vertex = section.value().input_vertex;
+  Result<ProgressiveMesh> joined = join_progressive_mesh(*base, section.value());
+  if (!joined.is_ok()) {
+    // Only a container's BASE can disagree with the VSPL's attributes.
+    require(joined.status().code() == 23 && base != &synthetic, "VSPL does not join its base");
+    return;
+  }
+  const ProgressiveMesh& pm = joined.value();
   require(validate_vspl(pm).empty(), "decoded VSPL fails validation");
   Result<Bytes> again = encode_vspl(pm, {});
   require(again.is_ok(), "decoded VSPL cannot be encoded");
   Result<VsplSection> back =
-      decode_vspl(again.value().data(), again.value().size(), *base_positions);
-  require(back.is_ok() && back.value().splits == pm.splits &&
-              back.value().input_vertex == pm.input_vertex,
-          "VSPL float32 round trip");
+      decode_vspl(again.value().data(), again.value().size(), base->positions);
+  require(back.is_ok(), "re-encoded VSPL does not decode");
+  Result<ProgressiveMesh> rejoined = join_progressive_mesh(*base, back.value());
+  require(rejoined.is_ok() && rejoined.value() == pm, "VSPL float32 round trip");
   if (decoded_summary.position_encoding == PositionEncoding::kFloat32 &&
       back.value().summary.flags == decoded_summary.flags) {
     require(again.value().size() == size &&

@@ -1,8 +1,10 @@
 // VSPL section: exact float32 round trips (half and optimal placement,
-// identity and stored permutations, boundary splits, no splits), quantized
-// positions within the documented bound, the exact byte layout, encoder
-// refusals, hostile payloads that fail fast with LBK-E023, truncation and
-// bit flips, and the container-level cross-checks against BASE and META.
+// identity and stored permutations, boundary splits missing either wing,
+// per-vertex normals and texture coordinates, no splits), quantized
+// positions within the documented bound, the exact byte layout (both
+// examples of docs/format.md), encoder refusals, hostile payloads that fail
+// fast with LBK-E023, truncation and bit flips, BASE/VSPL attribute
+// mismatches, and the container-level cross-checks against BASE and META.
 // The progressive meshes are built by hand: the format does not need the
 // engine, only records whose indices are valid at their step.
 #include "formats/sections/vspl.h"
@@ -16,6 +18,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -68,9 +71,51 @@ ProgressiveMesh open_quad_pm() {
   return pm;
 }
 
+// The open quad of docs/format.md's second VSPL example: a boundary split
+// without a left wing, with per-vertex normals and texture coordinates.
+ProgressiveMesh open_quad_with_attributes_pm() {
+  ProgressiveMesh pm;
+  pm.base.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  pm.base.triangles = {{0, 1, 2}};
+  VertexSplit split;
+  split.vs = 0;
+  split.vl = kNoVertex;
+  split.vr = 2;
+  split.vt_position = {0, 1, 0};
+  split.vs_position = {0, 0, 0};
+  split.error = 0.25f;
+  pm.splits = {split};
+  pm.input_vertex = {0, 1, 2, 3};
+  pm.normals = {AttributeBinding::kPerVertex, 3, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {}};
+  pm.texcoords = {AttributeBinding::kPerVertex, 2, {0, 0, 1, 0, 1, 1, 0, 1}, {}};
+  pm.base.normals = {AttributeBinding::kPerVertex, 3, {0, 0, 1, 0, 0, 1, 0, 0, 1}, {}};
+  pm.base.texcoords = {AttributeBinding::kPerVertex, 2, {0, 0, 1, 0, 1, 1}, {}};
+  return pm;
+}
+
+// Gives `pm` random per-vertex normals (and texture coordinates), the base
+// holding the first ones, as lib/simplify records them.
+void add_attributes(ProgressiveMesh* pm, bool normals, bool texcoords, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+  const size_t full = pm->full_vertex_count();
+  const size_t n0 = pm->base.vertex_count();
+  for (auto [attr, base_attr, components, wanted] :
+       {std::make_tuple(&pm->normals, &pm->base.normals, 3u, normals),
+        std::make_tuple(&pm->texcoords, &pm->base.texcoords, 2u, texcoords)}) {
+    if (!wanted) continue;
+    *attr = MeshAttribute{AttributeBinding::kPerVertex, components, {}, {}};
+    for (size_t k = 0; k < full * components; ++k)
+      attr->values.push_back(k % 11 == 4 ? -0.0f : value(rng));
+    *base_attr = *attr;
+    base_attr->values.resize(n0 * components);
+  }
+}
+
 // Random records with valid indices at every step. `optimal` moves vs at
 // every split; `permuted` shuffles input_vertex; boundary splits appear
-// with probability 1/4.
+// with probability 1/4, half of them without the left wing and half
+// without the right one.
 ProgressiveMesh random_pm(uint32_t base_vertices, uint32_t splits, uint32_t seed, bool optimal,
                           bool permuted) {
   std::mt19937 rng(seed);
@@ -92,6 +137,8 @@ ProgressiveMesh random_pm(uint32_t base_vertices, uint32_t splits, uint32_t seed
       do {
         s.vr = static_cast<uint32_t>(rng() % n);
       } while (s.vr == s.vs || s.vr == s.vl);
+    } else if (rng() % 2 == 0) {
+      std::swap(s.vl, s.vr);
     }
     s.vt_position = {coord(rng), coord(rng), coord(rng)};
     s.vs_position = optimal ? Vec3f{coord(rng), coord(rng), coord(rng)} : current[s.vs];
@@ -122,11 +169,10 @@ ProgressiveMesh round_trip(const ProgressiveMesh& pm, const VsplEncodeOptions& o
   Result<VsplSection> back = decode_copy(bytes.value(), pm.base.positions, summary);
   EXPECT_TRUE(back.is_ok()) << back.status().message();
   if (!back.is_ok()) return {};
-  ProgressiveMesh out;
-  out.base = pm.base;
-  out.splits = back.value().splits;
-  out.input_vertex = back.value().input_vertex;
-  return out;
+  Result<ProgressiveMesh> joined = join_progressive_mesh(pm.base, std::move(back).value());
+  EXPECT_TRUE(joined.is_ok()) << joined.status().message();
+  if (!joined.is_ok()) return {};
+  return std::move(joined).value();
 }
 
 TEST(VsplSection, Float32RoundTripIsExact) {
@@ -160,8 +206,12 @@ TEST(VsplSection, Float32RoundTripIsExact) {
 TEST(VsplSection, BoundarySplits) {
   const ProgressiveMesh quad = open_quad_pm();
   EXPECT_EQ(round_trip(quad, {}), quad);
-  // n = 4 vertices before the split: vs and vl take 2 bits, vr takes
-  // bits(5) = 3 and the value 4 says "no right wing".
+  ProgressiveMesh mirrored = open_quad_pm();
+  std::swap(mirrored.splits[0].vl, mirrored.splits[0].vr);
+  EXPECT_EQ(round_trip(mirrored, {}), mirrored);
+  EXPECT_EQ(round_trip(mirrored, {true, 8}).splits[0].vl, kNoVertex);
+  // n = 4 vertices before the split: vs takes 2 bits, each wing bits(5) = 3
+  // and the value 4 says "no such wing".
   ProgressiveMesh pm = random_pm(4, 0, 3, false, false);
   VertexSplit s;
   s.vs = 3;
@@ -172,10 +222,103 @@ TEST(VsplSection, BoundarySplits) {
   pm.splits.push_back(s);
   pm.input_vertex.push_back(4);
   const Bytes bytes = encode_vspl(pm, {}).value();
-  EXPECT_EQ(bytes[kVsplFixedBytes], 3 | 0 << 2 | 4 << 4);
+  EXPECT_EQ(bytes[kVsplFixedBytes], 3 | 0 << 2 | 4 << 5);
+  EXPECT_EQ(round_trip(pm, {}), pm);
+  std::swap(pm.splits[0].vl, pm.splits[0].vr);
+  EXPECT_EQ(encode_vspl(pm, {}).value()[kVsplFixedBytes], 3 | 4 << 2 | 0 << 5);
   EXPECT_EQ(round_trip(pm, {}), pm);
   EXPECT_EQ(full_triangle_count(10, pm.splits), 11u);
   EXPECT_EQ(full_triangle_count(2, tetrahedron_pm().splits), 4u);
+  EXPECT_EQ(full_triangle_count(1, open_quad_with_attributes_pm().splits), 2u);
+}
+
+TEST(VsplSection, AttributesRoundTrip) {
+  for (auto [normals, texcoords] : {std::pair{true, false}, {false, true}, {true, true}}) {
+    ProgressiveMesh pm = random_pm(30, 500, 31, false, true);
+    add_attributes(&pm, normals, texcoords, 7);
+    VsplSummary summary;
+    EXPECT_EQ(round_trip(pm, {}, &summary), pm);
+    EXPECT_EQ(summary.flags, kVsplStoresPermutation | (normals ? kVsplStoresNormals : 0) |
+                                 (texcoords ? kVsplStoresTexcoords : 0));
+    // Quantized positions leave the attributes exact.
+    const ProgressiveMesh quantized = round_trip(pm, {true, 6});
+    EXPECT_EQ(quantized.normals, pm.normals);
+    EXPECT_EQ(quantized.texcoords, pm.texcoords);
+    EXPECT_NE(quantized.splits, pm.splits);
+  }
+  // With no splits the flag still says the PM carries the attribute.
+  ProgressiveMesh empty = random_pm(4, 0, 2, false, false);
+  add_attributes(&empty, true, false, 1);
+  VsplSummary summary;
+  EXPECT_EQ(round_trip(empty, {}, &summary), empty);
+  EXPECT_EQ(summary.flags, kVsplStoresNormals);
+  EXPECT_EQ(encode_vspl(empty, {}).value().size(), kVsplFixedBytes);
+}
+
+TEST(VsplSection, BoundaryAndAttributesExampleOfTheSpec) {
+  const ProgressiveMesh pm = open_quad_with_attributes_pm();
+  const Bytes b = encode_vspl(pm, {}).value();
+  // docs/format.md, "Example with a boundary split and attributes".
+  EXPECT_EQ(b, (Bytes{0x01, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x00,
+                      0x00, 0x80, 0x3e, 0x00, 0x00, 0x80, 0x3e, 0x2c, 0x00, 0x00, 0x00, 0x00,
+                      0x00, 0x00, 0x80, 0x3f, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3e,
+                      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3f,
+                      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3f}));
+  const Bytes base = encode_base(pm.base, {}).value();
+  Result<ProgressiveMesh> back =
+      decode_progressive_mesh(base.data(), base.size(), b.data(), b.size());
+  ASSERT_TRUE(back.is_ok()) << back.status().message();
+  EXPECT_EQ(back.value(), pm);
+}
+
+TEST(VsplSection, BaseAndVsplAttributesMustAgree) {
+  const ProgressiveMesh pm = open_quad_with_attributes_pm();
+  const Bytes vspl = encode_vspl(pm, {}).value();
+  auto joined = [&](const TriangleMesh& base) {
+    return decode_progressive_mesh(encode_base(base, {}).value().data(),
+                                   encode_base(base, {}).value().size(), vspl.data(), vspl.size());
+  };
+  TriangleMesh base = pm.base;
+  base.normals = MeshAttribute();
+  Result<ProgressiveMesh> r = joined(base);
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().message(),
+            "LBK-E023: section VSPL: VSPL stores the split vertices' normals but BASE has none for "
+            "its vertices");
+  base = pm.base;
+  base.texcoords = {AttributeBinding::kPerCorner, 2, {0, 0, 1, 0, 1, 1}, {{0, 1, 2}}};
+  r = joined(base);
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().code(), 23);
+  EXPECT_EQ(r.status().message(),
+            "LBK-E023: section VSPL: VSPL stores the split vertices' texture coordinates but "
+            "BASE's are per corner, a progressive mesh needs them per vertex");
+  // BASE has normals, the VSPL of a PM without them does not.
+  ProgressiveMesh plain = tetrahedron_pm();
+  const Bytes plain_vspl = encode_vspl(plain, {}).value();
+  plain.base.normals = {AttributeBinding::kPerVertex, 3, std::vector<float>(9, 0.5f), {}};
+  const Bytes normals_base = encode_base(plain.base, {}).value();
+  r = decode_progressive_mesh(normals_base.data(), normals_base.size(), plain_vspl.data(),
+                              plain_vspl.size());
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().message(),
+            "LBK-E023: section VSPL: BASE has normals but VSPL does not store those of the split "
+            "vertices");
+  // join_progressive_mesh() checks what it is given, too.
+  VsplSection section = decode_copy(vspl, pm.base.positions).value();
+  section.split_normals.pop_back();
+  EXPECT_EQ(join_progressive_mesh(pm.base, section).status().code(), 23);
+  section = decode_copy(vspl, pm.base.positions).value();
+  EXPECT_EQ(
+      join_progressive_mesh(random_pm(4, 0, 1, false, false).base, section).status().message(),
+      "LBK-E023: section VSPL: base vertex count 3, but the base mesh has 4 vertices");
+  TriangleMesh wrong_components = pm.base;
+  wrong_components.normals.components = 2;
+  wrong_components.normals.values.resize(6);
+  EXPECT_EQ(join_progressive_mesh(wrong_components, section).status().message(),
+            "LBK-E023: section VSPL: BASE's normals have 2 components and 6 floats, expected 3 "
+            "for each of 3 vertices");
+  EXPECT_TRUE(join_progressive_mesh(pm.base, section).is_ok());
 }
 
 TEST(VsplSection, NoSplits) {
@@ -227,6 +370,10 @@ TEST(VsplSection, ExactLayout) {
   std::memcpy(&error, b.data() + 32, 4);
   EXPECT_EQ(error, 0.5f);
   EXPECT_EQ(b[36], 2 | 0 << 2 | 3 << 4 | 1 << 6);
+  // docs/format.md's first example, byte for byte.
+  EXPECT_EQ(b, (Bytes{0x01, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00,
+                      0x00, 0x3f, 0x00, 0x00, 0x00, 0x3f, 0x24, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+                      0x00, 0x00, 0x00, 0x00, 0x80, 0x3f, 0x00, 0x00, 0x00, 0x3f, 0x72}));
 
   // Boundary split: vr is written as n = 3.
   const Bytes q = encode_vspl(open_quad_pm(), {}).value();
@@ -285,7 +432,7 @@ TEST(VsplSection, SizeIsTheDocumentedFormula) {
   const ProgressiveMesh pm = random_pm(40, 70000, 23, false, true);
   uint64_t topology_bits = 0;
   for (uint64_t n = 40; n < 40 + 70000; ++n)
-    topology_bits += 2 * bits_for_count(n) + bits_for_count(n + 1);
+    topology_bits += bits_for_count(n) + 2 * bits_for_count(n + 1);
   const uint64_t full = 70040;
   const uint64_t permutation = (full * bits_for_count(full) + 7) / 8;
   const Bytes float32 = encode_vspl(pm, {}).value();
@@ -295,6 +442,15 @@ TEST(VsplSection, SizeIsTheDocumentedFormula) {
   Result<VsplSummary> summary = read_vspl_summary(quantized.data(), quantized.size());
   ASSERT_TRUE(summary.is_ok());
   EXPECT_EQ(summary.value().split_count, 70000u);
+  // Normals and texture coordinates stay float32: 12 + 8 bytes per split.
+  ProgressiveMesh with_attributes = pm;
+  add_attributes(&with_attributes, true, true, 3);
+  EXPECT_EQ(encode_vspl(with_attributes, {true, 16}).value().size(),
+            quantized.size() + 70000 * (12 + 8));
+  add_attributes(&with_attributes, false, true, 3);
+  with_attributes.normals = MeshAttribute();
+  with_attributes.base.normals = MeshAttribute();
+  EXPECT_EQ(encode_vspl(with_attributes, {}).value().size(), float32.size() + 70000 * 8);
 }
 
 TEST(VsplSection, DeterministicAndIdempotent) {
@@ -380,6 +536,47 @@ TEST(VsplSection, EncoderRefusesUnstorablePms) {
   pm.base.positions.resize(1);
   pm.input_vertex = {0, 1};
   refused(pm, {}, "1 splits over a base of 1 vertices (a split needs 2)");
+  pm = tetrahedron_pm();
+  pm.splits[0].vl = kNoVertex;
+  pm.splits[0].vr = kNoVertex;
+  refused(pm, {}, "1 splits have neither wing, first: split 0 (vs 0, vl none, vr none)");
+}
+
+TEST(VsplSection, EncoderRefusesAttributesItCannotStore) {
+  auto refused = [](const ProgressiveMesh& pm, const std::string& message) {
+    Result<Bytes> bytes = encode_vspl(pm, {});
+    ASSERT_FALSE(bytes.is_ok()) << message;
+    EXPECT_EQ(bytes.status().message(), "cannot encode VSPL: " + message);
+    const std::vector<std::string> findings = validate_vspl(pm);
+    EXPECT_NE(std::find(findings.begin(), findings.end(), message), findings.end()) << message;
+  };
+  const ProgressiveMesh good = open_quad_with_attributes_pm();
+  ASSERT_TRUE(encode_vspl(good, {}).is_ok());
+  EXPECT_TRUE(validate_vspl(good).empty());
+  ProgressiveMesh pm = good;
+  pm.normals.values.pop_back();
+  refused(pm,
+          "normals must be per-vertex with 3 components for each of the 4 vertices, they are "
+          "per-vertex with 3 components and 11 floats");
+  pm = good;
+  pm.texcoords.binding = AttributeBinding::kPerCorner;
+  refused(pm,
+          "texture coordinates must be per-vertex with 2 components for each of the 4 vertices, "
+          "they are per-corner with 2 components and 8 floats");
+  pm = good;
+  pm.normals.values[10] = std::numeric_limits<float>::quiet_NaN();
+  refused(pm, "normals: 1 non-finite values, first: vertex 3");
+  pm = good;
+  pm.base.texcoords = MeshAttribute();
+  refused(pm,
+          "the progressive mesh has texture coordinates but the base mesh does not have them "
+          "per-vertex for its 3 vertices");
+  pm = good;
+  pm.base.normals.values[4] = -0.0f;  // == 0, but not the same bits
+  refused(pm, "the base mesh's normals differ from the progressive mesh's, first at vertex 1");
+  pm = good;
+  pm.normals = MeshAttribute();
+  refused(pm, "the base mesh has normals but the progressive mesh has none for its 4 vertices");
 }
 
 TEST(VsplSection, ValidateListsEveryKindOfProblem) {
@@ -390,15 +587,25 @@ TEST(VsplSection, ValidateListsEveryKindOfProblem) {
   pm.splits[20].vl = pm.splits[20].vs;
   pm.splits[30].vt_position[0] = std::numeric_limits<float>::quiet_NaN();
   pm.splits[40].error = std::numeric_limits<float>::infinity();
+  pm.splits[50].vl = pm.splits[50].vr = kNoVertex;
+  pm.splits[60].vl = pm.splits[60].vr = kNoVertex;
   std::swap(pm.input_vertex[3], pm.input_vertex[4]);
   pm.input_vertex[7] = pm.input_vertex[9];
+  add_attributes(&pm, true, true, 5);
+  pm.normals.values[3 * 100 + 1] = std::numeric_limits<float>::infinity();
+  pm.base.texcoords.values[2 * 4] += 1.0f;
   const std::vector<std::string> findings = validate_vspl(pm);
-  ASSERT_EQ(findings.size(), 5u);
+  ASSERT_EQ(findings.size(), 8u);
   EXPECT_EQ(findings[0].find("1 splits have a vertex index out of range, first: split 10"), 0u);
-  EXPECT_EQ(findings[1].find("1 splits repeat a vertex, first: split 20"), 0u);
-  EXPECT_EQ(findings[2], "1 splits have a non-finite position, first: split 30");
-  EXPECT_EQ(findings[3], "1 splits have a non-finite error, first: split 40");
-  EXPECT_EQ(findings[4].find("input_vertex is not a permutation: 1 repeated entries"), 0u);
+  EXPECT_EQ(findings[1].find("2 splits have neither wing, first: split 50 (vs "), 0u);
+  EXPECT_EQ(findings[2].find("1 splits repeat a vertex, first: split 20"), 0u);
+  EXPECT_EQ(findings[3], "1 splits have a non-finite position, first: split 30");
+  EXPECT_EQ(findings[4], "1 splits have a non-finite error, first: split 40");
+  EXPECT_EQ(findings[5].find("input_vertex is not a permutation: 1 repeated entries"), 0u);
+  EXPECT_EQ(findings[6], "normals: 1 non-finite values, first: vertex 100");
+  EXPECT_EQ(findings[7],
+            "the base mesh's texture coordinates differ from the progressive mesh's, first at "
+            "vertex 4");
 
   const ProgressiveMesh good = tetrahedron_pm();
   const Bytes bytes = encode_vspl(good, {}).value();
@@ -483,7 +690,8 @@ TEST(VsplSection, MalformedFields) {
   expect_malformed(Payload(0, 3, 1, 0, 0).bytes, "quantization bits 0 outside 1..30", base3);
   expect_malformed(Payload(0, 3, 0, 8, 0).bytes, "quantization bits 8 with float32 positions",
                    base3);
-  expect_malformed(Payload(0, 3, 0, 0, 0x04).bytes, "unknown flag bits 0x04", base3);
+  expect_malformed(Payload(0, 3, 0, 0, 0x10).bytes, "unknown flag bits 0x10", base3);
+  expect_malformed(Payload(0, 3, 0, 0, 0xF0).bytes, "unknown flag bits 0xF0", base3);
   expect_malformed(Payload(0, 3, 0, 0, 0, std::numeric_limits<float>::quiet_NaN()).bytes,
                    "error range [nan, 0] is not finite and ordered", base3);
   expect_malformed(Payload(0, 3, 0, 0, 0, 1, 0).bytes, "error range [1, 0] is not finite", base3);
@@ -515,8 +723,12 @@ TEST(VsplSection, MalformedFields) {
   };
   expect_malformed(patched(19, {3 | 1 << 2 | 2 << 4}),
                    "split 0 (vs 3, vl 1, vr 2) has an index out of range (3 vertices before it, "
-                   "vr 3 means none)",
+                   "a wing of 3 means none)",
                    base3);
+  expect_malformed(patched(19, {0 | 3 << 2 | 3 << 4}),
+                   "split 0 (vs 0) has neither wing (vl and vr are both 3, none)", base3);
+  expect_malformed(patched(19, {2 | 3 << 2 | 2 << 4}),
+                   "split 0 (vs 2, vl none, vr 2) repeats a vertex", base3);
   expect_malformed(patched(19, {0 | 0 << 2 | 2 << 4}),
                    "split 0 (vs 0, vl 0, vr 2) repeats a vertex", base3);
   expect_malformed(patched(19, {0 | 1 << 2 | 1 << 4}),
@@ -543,12 +755,17 @@ TEST(VsplSection, MalformedFields) {
     expect_malformed(q.bytes, "nonzero padding bits after the input permutation", base_of(5));
   }
   {
-    // n = 4: vr takes 3 bits, so 5 and above are out of range.
+    // n = 4: the wings take 3 bits, so 5 and above are out of range.
     Payload p(1, 4, 0, 0, 0);
-    p.w.write(uint8_t{0 | 1 << 2 | 5 << 4});
+    p.w.write(uint8_t{0 | 1 << 2 | 5 << 5});
     for (int i = 0; i < 4; ++i)
       p.w.write(0.0f);
     expect_malformed(p.bytes, "split 0 (vs 0, vl 1, vr 5) has an index out of range", base_of(4));
+    Payload q(1, 4, 0, 0, 0);
+    q.w.write(uint8_t{0 | 6 << 2 | 1 << 5});
+    for (int i = 0; i < 4; ++i)
+      q.w.write(0.0f);
+    expect_malformed(q.bytes, "split 0 (vs 0, vl 6, vr 1) has an index out of range", base_of(4));
   }
   {
     // Quantized at 5 bits: 15 position bits, bit 15 is padding.
@@ -560,6 +777,27 @@ TEST(VsplSection, MalformedFields) {
     p.w.write(uint8_t{0x80});
     p.w.write(0.0f);
     expect_malformed(p.bytes, "nonzero padding bits after the positions", base3);
+  }
+  {
+    // The attribute parts: byte 36..47 the normal, 48..55 the texture
+    // coordinates of docs/format.md's second example.
+    const Bytes with_attributes = encode_vspl(open_quad_with_attributes_pm(), {}).value();
+    ASSERT_EQ(with_attributes.size(), 56u);
+    Bytes b = with_attributes;
+    std::copy_n(Bytes{0x00, 0x00, 0xC0, 0xFF}.begin(), 4, b.begin() + 36);
+    expect_malformed(b, "split 0: normal component 0 is not finite", base3);
+    b = with_attributes;
+    std::copy_n(Bytes{0x00, 0x00, 0x80, 0x7F}.begin(), 4, b.begin() + 52);
+    expect_malformed(b, "split 0: texture coordinate component 1 is not finite", base3);
+    expect_malformed(Bytes(with_attributes.begin(), with_attributes.begin() + 47),
+                     "the normals of 1 splits need 12 bytes at offset 36, only 11 remain", base3);
+    expect_malformed(Bytes(with_attributes.begin(), with_attributes.end() - 1),
+                     "the texture coordinates of 1 splits need 8 bytes at offset 48, only 7 remain",
+                     base3);
+    // Flags announcing texture coordinates that are not there.
+    b = with_attributes;
+    b[10] = kVsplStoresNormals;
+    expect_malformed(b, "8 trailing bytes after the last field (offset 48)", base3);
   }
 }
 
@@ -611,6 +849,20 @@ TEST(VsplSection, DecodeProgressiveMeshFromBaseAndVspl) {
   ASSERT_TRUE(back.is_ok()) << back.status().message();
   EXPECT_EQ(back.value(), pm);
   EXPECT_EQ(back.value().full_vertex_count(), 440u);
+
+  // With attributes, quantized: the attributes come back exact.
+  ProgressiveMesh attributed = pm;
+  add_attributes(&attributed, true, true, 9);
+  const Bytes attributed_base = encode_base(attributed.base, {true, 12}).value();
+  const Bytes attributed_vspl = encode_vspl(attributed, {true, 12}).value();
+  Result<ProgressiveMesh> decoded =
+      decode_progressive_mesh(attributed_base.data(), attributed_base.size(),
+                              attributed_vspl.data(), attributed_vspl.size());
+  ASSERT_TRUE(decoded.is_ok()) << decoded.status().message();
+  EXPECT_EQ(decoded.value().normals, attributed.normals);
+  EXPECT_EQ(decoded.value().texcoords, attributed.texcoords);
+  EXPECT_EQ(decoded.value().base.normals, attributed.base.normals);
+  EXPECT_TRUE(validate_vspl(decoded.value()).empty());
 
   const Bytes other_base = encode_base(tetrahedron_pm().base, {}).value();
   Result<ProgressiveMesh> mismatch =
@@ -684,6 +936,17 @@ TEST(VsplSection, ContainerValidationCrossChecks) {
       findings_of(container_of({{"BASE", base}, {"VSPL", broken}}));
   ASSERT_EQ(findings.size(), 1u);
   EXPECT_EQ(findings[0].rfind("VSPL: LBK-E023: section VSPL: split 0 (vs 3, vl 1, vr 2)", 0), 0u);
+
+  // Attributes in VSPL but not in BASE.
+  const ProgressiveMesh attributed = open_quad_with_attributes_pm();
+  const Bytes attributed_vspl = encode_vspl(attributed, {}).value();
+  EXPECT_TRUE(findings_of(container_of({{"BASE", encode_base(attributed.base, {}).value()},
+                                        {"VSPL", attributed_vspl}}))
+                  .empty());
+  EXPECT_EQ(findings_of(container_of({{"BASE", encode_base(open_quad_pm().base, {}).value()},
+                                      {"VSPL", attributed_vspl}})),
+            (std::vector<std::string>{"VSPL: LBK-E023: section VSPL: VSPL stores the split "
+                                      "vertices' normals but BASE has none for its vertices"}));
 
   const std::vector<std::string> truncated =
       findings_of(container_of({{"BASE", base}, {"VSPL", Bytes(vspl.begin(), vspl.end() - 1)}}));
