@@ -114,4 +114,29 @@ void print_repair_actions(const Tool& tool, const std::string& file, const Repai
     tool.info(file, "repair: " + action);
 }
 
+int load_input(const Tool& tool, const std::string& path, const LoadOptions& options,
+               LoadedMesh* loaded) {
+  Status status = load_mesh(path, options, loaded);
+  print_import_notes(tool, path, loaded->import);
+  if (loaded->repair) print_repair_actions(tool, path, *loaded->repair);
+  if (!status.is_ok()) return tool.fail(path, status);
+  const MeshCheckReport& check =
+      loaded->check_after_repair ? *loaded->check_after_repair : loaded->check;
+  for (MeshProblem problem : kAllMeshProblems) {
+    if (problem == MeshProblem::kUnreferencedVertices && options.drop_unreferenced) continue;
+    if (check.count(problem) == 0) continue;
+    tool.warn(path, "kept as it is: " + check.describe(problem) + " (use --repair to fix)");
+  }
+  if (loaded->dropped_unreferenced != 0)
+    tool.info(path, "dropped " + std::to_string(loaded->dropped_unreferenced) +
+                        " unreferenced vertices (no triangle uses them)");
+  return 0;
+}
+
+MetaInput meta_input(const std::string& path, const LoadedMesh& loaded) {
+  size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  return MetaInput{to_valid_utf8(name), loaded.sha256, loaded.file_bytes};
+}
+
 }  // namespace lodbake::cli

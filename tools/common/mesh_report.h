@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "formats/sections/meta.h"
 #include "lib/check/mesh_check.h"
+#include "lib/ingest/load_mesh.h"
 #include "lib/meshio/import_report.h"
 #include "lib/repair/mesh_repair.h"
 #include "tools/common/cli.h"
@@ -29,6 +31,18 @@ void print_repair_actions(const Tool& tool, const std::string& file, const Repai
 // `text` with every byte that is not part of valid UTF-8 replaced by U+FFFD,
 // for strings that must be valid UTF-8 (META) but come from file names.
 std::string to_valid_utf8(const std::string& text);
+
+// Loads a tool's input mesh the way every baking tool does: prints the
+// import notes and repair actions, a warning per problem kept, and how many
+// unreferenced vertices were dropped. Returns 0, or the exit code after
+// printing the error.
+int load_input(const Tool& tool, const std::string& path, const LoadOptions& options,
+               LoadedMesh* loaded);
+
+// META's record of the input: its base name (so the same input baked from
+// another folder gives the same bytes; bytes that are not UTF-8 become
+// U+FFFD), size and SHA-256.
+MetaInput meta_input(const std::string& path, const LoadedMesh& loaded);
 
 // A float printed as the shortest text that reads back to the same value.
 std::string format_float(float value);

@@ -25,38 +25,19 @@ struct PackOptions {
   int quantize_bits = 0;  // 0: float32 positions
 };
 
-std::string base_name(const std::string& path) {
-  size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 int pack(const Tool& tool, const std::string& input, const PackOptions& options) {
   LoadOptions load;
   load.repair = options.repair;
   load.drop_unreferenced = true;
   LoadedMesh loaded;
-  Status status = load_mesh(input, load, &loaded);
-  print_import_notes(tool, input, loaded.import);
-  if (loaded.repair) print_repair_actions(tool, input, *loaded.repair);
-  if (!status.is_ok()) return tool.fail(input, status);
-  const MeshCheckReport& final_check =
-      loaded.check_after_repair ? *loaded.check_after_repair : loaded.check;
-  for (MeshProblem problem : kAllMeshProblems) {
-    if (problem == MeshProblem::kUnreferencedVertices || final_check.count(problem) == 0) continue;
-    tool.warn(input, "kept as it is: " + final_check.describe(problem) + " (use --repair to fix)");
-  }
-  if (loaded.dropped_unreferenced != 0)
-    tool.info(input, "dropped " + std::to_string(loaded.dropped_unreferenced) +
-                         " unreferenced vertices (no triangle uses them)");
+  if (int code = load_input(tool, input, load, &loaded); code != 0) return code;
 
   MetaSection meta = make_meta("lodbake-pack");
   meta.options = {
       {"repair", options.repair},
       {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
                                                    : nlohmann::json(options.quantize_bits)}};
-  // The base name, not the path, so that the same input baked from another
-  // folder gives the same bytes; META is UTF-8, file names are only bytes.
-  meta.input = MetaInput{to_valid_utf8(base_name(input)), loaded.sha256, loaded.file_bytes};
+  meta.input = meta_input(input, loaded);
   meta.counts = {{"vertices", loaded.mesh.vertex_count()},
                  {"triangles", loaded.mesh.triangle_count()}};
   Result<Bytes> meta_bytes = encode_meta(meta);

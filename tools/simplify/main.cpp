@@ -40,11 +40,6 @@ struct Request {
   SimplifyOptions options;
 };
 
-std::string base_name(const std::string& path) {
-  size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 Result<std::vector<double>> parse_ratios(const std::string& text) {
   std::vector<double> ratios;
   std::stringstream in(text);
@@ -114,7 +109,7 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
   if (request.options.target_triangles)
     meta.options["triangles"] = *request.options.target_triangles;
   if (request.options.max_error) meta.options["error"] = *request.options.max_error;
-  meta.input = MetaInput{base_name(request.input), loaded.sha256, loaded.file_bytes};
+  meta.input = meta_input(request.input, loaded);
   meta.counts = {{"vertices", pm.base.vertex_count()},
                  {"triangles", pm.base.triangle_count()},
                  {"splits", pm.splits.size()},
@@ -144,10 +139,7 @@ int run(const Tool& tool, Request& request) {
   load.repair = request.repair;
   load.drop_unreferenced = true;
   LoadedMesh loaded;
-  Status status = load_mesh(request.input, load, &loaded);
-  print_import_notes(tool, request.input, loaded.import);
-  if (loaded.repair) print_repair_actions(tool, request.input, *loaded.repair);
-  if (!status.is_ok()) return tool.fail(request.input, status);
+  if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
 
   const std::vector<double>& ratios = request.ratios;
   if (!ratios.empty()) {
