@@ -25,6 +25,8 @@
 //   its own cost, only if that is within the pass's limit (even before the
 //   pass's minimum share is reached: the reverse of a cheap collapse can be
 //   arbitrarily dear);
+// - cracks: a boundary vertex at the same position as another one costs at
+//   least the squared edge length to remove (the crack it opens);
 // - legality: link condition; an interior edge between two boundary vertices
 //   is refused, and a boundary vertex is removed only along a boundary edge
 //   (meshoptimizer's collapse table), so a border never caves in; every vertex keeps at least three
@@ -186,6 +188,7 @@ class Engine {
         if (boundary_[v]) no_remove_[v] = fixed_[v] = 1;
       }
     }
+    mark_coincident_boundary_vertices();
     // A vertex whose corners carry different attribute values lies on a seam:
     // removing or moving it would drag one side's values across the other,
     // so without `permissive` it is locked entirely.
@@ -204,6 +207,33 @@ class Engine {
             break;
           }
         }
+      }
+    }
+  }
+
+  // Boundary vertices sharing their position with another boundary vertex
+  // sit on an unwelded seam (two sheets meeting along a crack). Removing one
+  // moves its sheet's border while the twin stays, opening the crack by up to
+  // the edge's length, which the quadric (planes of tiny fringe faces,
+  // averaged away) does not see: the cost of removing one is at least the
+  // squared edge length, and in optimal placement they never move.
+  // meshoptimizer welds by position and moves such twins in pairs (its Seam
+  // kind); a PM records single vertices. Sorted by position then index:
+  // deterministic.
+  void mark_coincident_boundary_vertices() {
+    coincident_.assign(boundary_.size(), 0);
+    std::vector<uint32_t> order;
+    for (uint32_t v = 0; v < boundary_.size(); ++v) {
+      if (boundary_[v] && count_[v] > 0) order.push_back(v);
+    }
+    const std::vector<Vec3f>& pos = state_.positions;
+    std::sort(order.begin(), order.end(), [&pos](uint32_t a, uint32_t b) {
+      return pos[a] < pos[b] || (pos[a] == pos[b] && a < b);
+    });
+    for (size_t i = 1; i < order.size(); ++i) {
+      if (pos[order[i]] != pos[order[i - 1]]) continue;
+      for (uint32_t v : {order[i], order[i - 1]}) {
+        coincident_[v] = fixed_[v] = 1;
       }
     }
   }
@@ -422,6 +452,7 @@ class Engine {
   // The cost of collapsing vt into vs, infinite when the locks forbid it.
   double cost(uint32_t vt, uint32_t vs) const {
     if (no_remove_[vt] || no_keep_[vs]) return kInfinity;
+
     // Evaluating both quadrics at p is cheaper than summing them first.
     const Quadric& qt = quadric_[vt];
     const Quadric& qs = quadric_[vs];
@@ -431,7 +462,10 @@ class Engine {
     // error of a small vertex; vs does not move, so its own planes gain no
     // error from this collapse (meshoptimizer ranks collapses the same way).
     if (options_.placement == Placement::kHalf) {
-      return qt.weight > 0 ? qt.evaluate(to_d(state_.positions[vs])) / qt.weight : 0;
+      const double e = qt.weight > 0 ? qt.evaluate(to_d(state_.positions[vs])) / qt.weight : 0;
+      if (!coincident_[vt]) return e;
+      const Vec3d d = sub(to_d(state_.positions[vt]), to_d(state_.positions[vs]));
+      return std::max(e, dot(d, d));
     }
     // Optimal placement moves both endpoints: both quadrics count.
     const Vec3d p = to_d(placement(vt, vs));
@@ -663,6 +697,7 @@ class Engine {
   std::vector<uint8_t> no_remove_;
   std::vector<uint8_t> no_keep_;
   std::vector<uint8_t> fixed_;
+  std::vector<uint8_t> coincident_;  // boundary vertex with a twin at its position
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<Quadric> quadric_;
   std::vector<uint32_t> ring_;            // check()'s scratch: vt's neighbours
