@@ -5,9 +5,12 @@
 // (docs/simplify.md has the full discussion):
 // - cost: the quadric's weighted MEAN squared distance, Q(p) / sum of weights
 //   (like meshoptimizer), so that sqrt(cost) is a distance comparable with
-//   the bounding-box diagonal for max_error;
-// - boundary: each boundary edge adds the plane through it perpendicular to
-//   its face, weighted by boundary_weight * |edge|^2 (an area, like faces);
+//   the bounding-box diagonal for max_error; in half placement only the
+//   removed vertex's quadric (the survivor does not move), in optimal
+//   placement both;
+// - weights: faces by sqrt(area), each boundary edge's plane (through it,
+//   perpendicular to its face) by boundary_weight * |edge|: both lengths,
+//   as in meshoptimizer, whose border weight 10 is the default;
 // - order: passes, as in meshoptimizer. Each pass lists every edge once in
 //   its cheaper direction, sorts the list by cost (stable radix sort, so ties
 //   keep the listing order: triangle order) and walks it, collapsing every
@@ -19,10 +22,15 @@
 //   pass come before expensive ones of this one; an edge refused in one pass
 //   is listed again in the next;
 // - direction: when the cheaper direction is illegal the other is tried at
-//   its own cost, if that is within the pass's limit;
+//   its own cost, only if that is within the pass's limit (even before the
+//   pass's minimum share is reached: the reverse of a cheap collapse can be
+//   arbitrarily dear);
+// - cracks: a boundary vertex at the same position as another one costs at
+//   least the squared edge length to remove (the crack it opens);
 // - legality: link condition; an interior edge between two boundary vertices
-//   is refused; every vertex keeps at least three faces (one on a boundary),
-//   which rules out tetrahedron pockets, duplicate faces and vanishing
+//   is refused, and a boundary vertex is removed only along a boundary edge
+//   (meshoptimizer's collapse table), so a border never caves in; every vertex keeps at least three
+//   faces (one on a boundary), which rules out tetrahedron pockets, duplicate faces and vanishing
 //   components; no moved face may turn more than max_normal_change_degrees or
 //   become (nearly) degenerate;
 // - adjacency: per-vertex face lists in one flat array, rebuilt at each pass
@@ -145,11 +153,6 @@ class Engine {
 
     setup_locks(mesh);
     setup_quadrics();
-    if (options.placement == Placement::kHalf) {
-      self_error_.resize(n);
-      for (size_t v = 0; v < n; ++v)
-        self_error_[v] = quadric_[v].evaluate(to_d(state_.positions[v]));
-    }
     locked_.assign(n, 0);
     max_cost_float_ = static_cast<float>(settings.max_cost);
     if (max_cost_float_ < settings.max_cost) {
@@ -185,6 +188,7 @@ class Engine {
         if (boundary_[v]) no_remove_[v] = fixed_[v] = 1;
       }
     }
+    mark_coincident_boundary_vertices();
     // A vertex whose corners carry different attribute values lies on a seam:
     // removing or moving it would drag one side's values across the other,
     // so without `permissive` it is locked entirely.
@@ -207,6 +211,33 @@ class Engine {
     }
   }
 
+  // Boundary vertices sharing their position with another boundary vertex
+  // sit on an unwelded seam (two sheets meeting along a crack). Removing one
+  // moves its sheet's border while the twin stays, opening the crack by up to
+  // the edge's length, which the quadric (planes of tiny fringe faces,
+  // averaged away) does not see: the cost of removing one is at least the
+  // squared edge length, and in optimal placement they never move.
+  // meshoptimizer welds by position and moves such twins in pairs (its Seam
+  // kind); a PM records single vertices. Sorted by position then index:
+  // deterministic.
+  void mark_coincident_boundary_vertices() {
+    coincident_.assign(boundary_.size(), 0);
+    std::vector<uint32_t> order;
+    for (uint32_t v = 0; v < boundary_.size(); ++v) {
+      if (boundary_[v] && count_[v] > 0) order.push_back(v);
+    }
+    const std::vector<Vec3f>& pos = state_.positions;
+    std::sort(order.begin(), order.end(), [&pos](uint32_t a, uint32_t b) {
+      return pos[a] < pos[b] || (pos[a] == pos[b] && a < b);
+    });
+    for (size_t i = 1; i < order.size(); ++i) {
+      if (pos[order[i]] != pos[order[i - 1]]) continue;
+      for (uint32_t v : {order[i], order[i - 1]}) {
+        coincident_[v] = fixed_[v] = 1;
+      }
+    }
+  }
+
   void setup_quadrics() {
     const size_t n = state_.positions.size();
     quadric_.assign(n, Quadric());
@@ -215,7 +246,11 @@ class Engine {
       const Vec3d p0 = to_d(state_.positions[t[0]]);
       const Vec3d p1 = to_d(state_.positions[t[1]]);
       const Vec3d p2 = to_d(state_.positions[t[2]]);
-      const Quadric q = Quadric::from_triangle(p0, p1, p2);
+      // Weighted by sqrt(area), a length (meshoptimizer's choice): area
+      // weights let a few large faces outvote many small ones in a vertex's
+      // mean error, and a small curved feature then looks flat.
+      Quadric q = Quadric::from_triangle(p0, p1, p2);
+      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
       for (uint32_t v : t)
         quadric_[v] += q;
       if (!(bw > 0) || (!boundary_[t[0]] && !boundary_[t[1]] && !boundary_[t[2]])) continue;
@@ -230,7 +265,7 @@ class Engine {
         const double len = std::sqrt(dot(pn, pn));
         if (!(len > 0)) continue;
         pn = {pn[0] / len, pn[1] / len, pn[2] / len};
-        const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * dot(e, e));
+        const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * std::sqrt(dot(e, e)));
         quadric_[a] += bq;
         quadric_[b] += bq;
       }
@@ -258,8 +293,14 @@ class Engine {
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
-        if (a > b && !(boundary_[a] && boundary_[b] && is_boundary_half_edge(a, b))) continue;
-        add_candidate(a, b);
+        const bool boundary_edge = boundary_[a] && boundary_[b] && is_boundary_half_edge(a, b);
+        if (a > b && !boundary_edge) continue;
+        // An interior edge between two boundary vertices would pinch the
+        // surface; along any other interior edge a boundary vertex may only
+        // be the survivor (meshoptimizer's collapse table: a border vertex
+        // moves only along the border).
+        if (!boundary_edge && boundary_[a] && boundary_[b]) continue;
+        add_candidate(a, b, boundary_edge);
       }
     }
   }
@@ -315,7 +356,7 @@ class Engine {
       if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther) {
         // The other direction, when it fits in this pass.
         const double reverse = cost(c.vs, c.vt);
-        if (reverse <= limit() || !past_limit) verdict = try_collapse(c.vs, c.vt);
+        if (reverse <= limit()) verdict = try_collapse(c.vs, c.vt);
       }
       if (verdict == Verdict::kOk) {
         ++collapses;
@@ -411,23 +452,31 @@ class Engine {
   // The cost of collapsing vt into vs, infinite when the locks forbid it.
   double cost(uint32_t vt, uint32_t vs) const {
     if (no_remove_[vt] || no_keep_[vs]) return kInfinity;
+
     // Evaluating both quadrics at p is cheaper than summing them first.
     const Quadric& qt = quadric_[vt];
     const Quadric& qs = quadric_[vs];
-    if (!self_error_.empty()) {
-      const double weight = qt.weight + qs.weight;
-      const double e = qt.evaluate(to_d(state_.positions[vs])) + self_error_[vs];
-      return weight > 0 ? e / weight : 0;
+    // Half placement: the error vt's quadric sees at vs, as a mean over vt's
+    // own weight. Adding vs's quadric (and weight) would let a survivor with a
+    // large weight (long boundary edges, many merged vertices) dilute the
+    // error of a small vertex; vs does not move, so its own planes gain no
+    // error from this collapse (meshoptimizer ranks collapses the same way).
+    if (options_.placement == Placement::kHalf) {
+      const double e = qt.weight > 0 ? qt.evaluate(to_d(state_.positions[vs])) / qt.weight : 0;
+      if (!coincident_[vt]) return e;
+      const Vec3d d = sub(to_d(state_.positions[vt]), to_d(state_.positions[vs]));
+      return std::max(e, dot(d, d));
     }
-    const Vec3d p =
-        to_d(options_.placement == Placement::kHalf ? state_.positions[vs] : placement(vt, vs));
+    // Optimal placement moves both endpoints: both quadrics count.
+    const Vec3d p = to_d(placement(vt, vs));
     const double weight = qt.weight + qs.weight;
     return weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
   }
 
-  void add_candidate(uint32_t a, uint32_t b) {
-    const double ab = cost(a, b);  // removing a, keeping b
-    const double ba = cost(b, a);
+  void add_candidate(uint32_t a, uint32_t b, bool boundary_edge) {
+    // removing a, keeping b
+    const double ab = !boundary_edge && boundary_[a] ? kInfinity : cost(a, b);
+    const double ba = !boundary_edge && boundary_[b] ? kInfinity : cost(b, a);
     if (!(ab < kInfinity) && !(ba < kInfinity)) return;
     const auto fab = static_cast<float>(ab);
     const auto fba = static_cast<float>(ba);
@@ -477,6 +526,7 @@ class Engine {
     if (shared == 0) return Verdict::kNotAnEdge;
     const bool edge_boundary = shared == 1;
     if (!edge_boundary && vt_boundary && boundary_[vs]) return Verdict::kLink;
+    if (!edge_boundary && vt_boundary) return Verdict::kOther;
     const bool vs_boundary_after = vt_boundary || boundary_[vs];
     if (count_[vs] + count_[vt] - 2 * shared < (vs_boundary_after ? 1u : 3u)) {
       return Verdict::kOther;
@@ -579,9 +629,6 @@ class Engine {
     state_.vertex_alive[vt] = 0;
 
     quadric_[vs] += quadric_[vt];
-    if (!self_error_.empty()) {
-      self_error_[vs] = quadric_[vs].evaluate(to_d(state_.positions[vs]));
-    }
     boundary_[vs] = boundary_[vs] | boundary_[vt];
     if (options_.placement == Placement::kOptimal) move_vertex(vt, vs, p);
     state_.log.push_back(rec);
@@ -650,11 +697,9 @@ class Engine {
   std::vector<uint8_t> no_remove_;
   std::vector<uint8_t> no_keep_;
   std::vector<uint8_t> fixed_;
+  std::vector<uint8_t> coincident_;  // boundary vertex with a twin at its position
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<Quadric> quadric_;
-  // Half placement: Q_v(position of v), the survivor's share of each cost
-  // (empty in optimal placement, where the survivor moves).
-  std::vector<double> self_error_;
   std::vector<uint32_t> ring_;            // check()'s scratch: vt's neighbours
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<Candidate> candidates_;

@@ -25,8 +25,9 @@ struct SimplifyOptions {
   std::optional<double> target_ratio;        // of the input triangles, in (0, 1]
   std::optional<double> max_error;           // largest collapse error allowed, relative to the
                                     // bounding-box diagonal (like meshoptimizer's target_error)
-  double boundary_weight = 1.0;  // weight of the perpendicular boundary constraint quadrics
-  bool lock_border = false;      // never move or remove boundary vertices
+  double boundary_weight = 10.0;  // boundary constraint planes weigh this * edge length (faces:
+                                  // sqrt(area)); 10 is meshoptimizer's border weight
+  bool lock_border = false;       // never move or remove boundary vertices
   double max_normal_change_degrees = 150.0;  // refuse collapses turning a face normal more
   bool permissive = false;                   // allow collapses across texture seams
   bool record_pm = false;                    // also record the progressive mesh

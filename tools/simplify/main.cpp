@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
       "half (default): the surviving vertex keeps an endpoint's position; optimal: the "
       "quadric's minimiser")("boundary-weight",
                              po::value<double>(&request.options.boundary_weight)->value_name("W"),
-                             "weight of the boundary-preserving quadrics (default 1)")(
+                             "weight of the boundary-preserving quadrics (default 10)")(
       "lock-border", po::bool_switch(&request.options.lock_border),
       "never move or remove boundary vertices")(
       "max-normal-change",
