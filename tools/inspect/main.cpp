@@ -229,7 +229,10 @@ Result<TriangleMesh> mesh_to_extract(const Container& container,
                            decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size));
   size_t vertices = lod_vertex_count(pm, *lod);
   (*report)["lod_vertices"] = vertices;
-  return mesh_at_lod(pm, vertices);
+  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, mesh_at_lod(pm, vertices));
+  // The fully refined mesh is the input: give it the input's vertex order.
+  if (vertices == pm.full_vertex_count()) return map_to_input(pm, mesh);
+  return mesh;
 }
 
 FileStatus extract_base(const Tool& tool, const std::string& path, const Container& container,
