@@ -44,6 +44,16 @@ std::vector<std::string> Tool::positionals(const std::string& name) const {
   return vm_[name].as<std::vector<std::string>>();
 }
 
+std::optional<int> Tool::single_positional(const std::string& name, const std::string& label,
+                                           std::string* value) const {
+  std::vector<std::string> values = positionals(name);
+  if (values.empty()) return usage_error("missing " + label);
+  if (values.size() > 1)
+    return usage_error("expected one " + label + ", got " + std::to_string(values.size()));
+  *value = values.front();
+  return std::nullopt;
+}
+
 std::optional<int> Tool::parse(int argc, char** argv) {
   po::options_description all;
   all.add(options_).add(hidden_);

@@ -43,6 +43,11 @@ class Tool {
     return vm_[name].as<T>();
   }
   std::vector<std::string> positionals(const std::string& name) const;
+  // Stores the one positional argument `name` in `*value`; when there is
+  // none or more than one, prints "missing LABEL" / "expected one LABEL,
+  // got N" as a usage error and returns its exit code.
+  std::optional<int> single_positional(const std::string& name, const std::string& label,
+                                       std::string* value) const;
 
   const std::string& name() const { return name_; }
   bool json() const { return json_; }

@@ -1,5 +1,7 @@
 #include "tools/common/mesh_report.h"
 
+#include "formats/support/quantization.h"
+
 #include <charconv>
 #include <iomanip>
 
@@ -131,6 +133,14 @@ int load_input(const Tool& tool, const std::string& path, const LoadOptions& opt
     tool.info(path, "dropped " + std::to_string(loaded->dropped_unreferenced) +
                         " unreferenced vertices (no triangle uses them)");
   return 0;
+}
+
+std::optional<int> check_quantize_bits(const Tool& tool, int bits) {
+  if (!tool.has("quantize") || (bits >= kMinQuantizationBits && bits <= kMaxQuantizationBits))
+    return std::nullopt;
+  return tool.usage_error("--quantize takes " + std::to_string(kMinQuantizationBits) + " to " +
+                          std::to_string(kMaxQuantizationBits) + " bits, not " +
+                          std::to_string(bits));
 }
 
 MetaInput meta_input(const std::string& path, const LoadedMesh& loaded) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 
 #include "formats/sections/meta.h"
@@ -43,6 +44,10 @@ int load_input(const Tool& tool, const std::string& path, const LoadOptions& opt
 // another folder gives the same bytes; bytes that are not UTF-8 become
 // U+FFFD), size and SHA-256.
 MetaInput meta_input(const std::string& path, const LoadedMesh& loaded);
+
+// Checks a --quantize BITS value (1..30 bits, formats/support/quantization.h)
+// when the option was given; the usage error's exit code otherwise.
+std::optional<int> check_quantize_bits(const Tool& tool, int bits);
 
 // A float printed as the shortest text that reads back to the same value.
 std::string format_float(float value);

@@ -382,10 +382,8 @@ int main(int argc, char** argv) {
       "a triangle count (5000t) or a ratio of the full mesh's triangles (0.25)");
   tool.positional("file", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
-  std::vector<std::string> files = tool.positionals("file");
-  if (files.size() != 1)
-    return tool.usage_error(
-        files.empty() ? "missing FILE" : "expected one FILE, got " + std::to_string(files.size()));
+  std::string path;
+  if (std::optional<int> code = tool.single_positional("file", "FILE", &path)) return *code;
   if (tool.has("extract") && options.extract.empty())
     return tool.usage_error("--extract needs a file name");
   if (tool.has("lod")) {
@@ -394,7 +392,6 @@ int main(int argc, char** argv) {
     if (!lod.is_ok()) return tool.usage_error(lod.status().message());
     options.lod = lod.value();
   }
-  const std::string& path = files.front();
   if (!options.extract.empty() && same_file(path, options.extract))
     return tool.usage_error("--extract '" + options.extract + "' would overwrite the container");
   return tool.run([&] {

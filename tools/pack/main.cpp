@@ -115,16 +115,11 @@ int main(int argc, char** argv) {
       "store positions quantized to BITS (1..30) bits per coordinate instead of float32");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
-  std::vector<std::string> inputs = tool.positionals("mesh");
-  if (inputs.size() != 1)
-    return tool.usage_error(inputs.empty()
-                                ? "missing MESH"
-                                : "expected one MESH, got " + std::to_string(inputs.size()));
+  std::string input;
+  if (std::optional<int> code = tool.single_positional("mesh", "MESH", &input)) return *code;
   if (options.output.empty()) return tool.usage_error("missing -o OUT.lbk");
-  if (same_file(inputs.front(), options.output))
+  if (same_file(input, options.output))
     return tool.usage_error("the output '" + options.output + "' is the input mesh itself");
-  if (tool.has("quantize") && (options.quantize_bits < 1 || options.quantize_bits > 30))
-    return tool.usage_error("--quantize takes 1 to 30 bits, not " +
-                            std::to_string(options.quantize_bits));
-  return tool.run([&] { return pack(tool, inputs.front(), options); });
+  if (std::optional<int> code = check_quantize_bits(tool, options.quantize_bits)) return *code;
+  return tool.run([&] { return pack(tool, input, options); });
 }

@@ -280,12 +280,8 @@ int main(int argc, char** argv) {
       "no-metrics", "skip measuring the Hausdorff and mean distance to the input");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
-  std::vector<std::string> inputs = tool.positionals("mesh");
-  if (inputs.size() != 1)
-    return tool.usage_error(inputs.empty()
-                                ? "missing MESH"
-                                : "expected one MESH, got " + std::to_string(inputs.size()));
-  request.input = inputs.front();
+  if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
+    return *code;
   request.metrics = !tool.has("no-metrics");
   if (request.output.empty() && request.pm_output.empty())
     return tool.usage_error("nothing to write: give -o OUT and/or --pm OUT.lbk");
@@ -315,9 +311,7 @@ int main(int argc, char** argv) {
           "--lods sets the ratios; do not combine it with --ratio, "
           "--triangles or --error");
   }
-  if (tool.has("quantize") && (request.quantize_bits < 1 || request.quantize_bits > 30))
-    return tool.usage_error("--quantize takes 1 to 30 bits, not " +
-                            std::to_string(request.quantize_bits));
+  if (std::optional<int> code = check_quantize_bits(tool, request.quantize_bits)) return *code;
   for (const std::string& out : {request.output, request.pm_output})
     if (!out.empty() && same_file(request.input, out))
       return tool.usage_error("the output '" + out + "' is the input mesh itself");
