@@ -1,0 +1,210 @@
+// Sequential vertex-split replay for the DAG and vertex-tree builders. The
+// fan walk is PmRefiner's (lib/simplify/pm_replay.cpp): counter-clockwise
+// around vs from the face (vs, vr, .) until (vs, ., vl) or the boundary,
+// then clockwise from (vs, ., vl) to the boundary when vl was not reached.
+// It is repeated here rather than shared because the builders need the face
+// slots that move, which the refiner keeps private; the DAG tests compare
+// both replays on every mesh.
+#include "lib/dag/split_simulator.h"
+
+#include <algorithm>
+#include <string>
+
+namespace lodbake {
+namespace {
+
+int corner_of(const Triangle& t, uint32_t v) {
+  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+}
+
+}  // namespace
+
+Result<SplitSimulator> SplitSimulator::create(const ProgressiveMesh& pm) {
+  const size_t n0 = pm.base.positions.size();
+  if (pm.full_vertex_count() >= kNoVertex) {
+    return invalid_input("progressive mesh has too many vertices");
+  }
+  SplitSimulator s(pm);
+  s.faces_of_.resize(n0);
+  s.faces_.reserve(pm.base.triangles.size() + 2 * pm.splits.size());
+  for (size_t t = 0; t < pm.base.triangles.size(); ++t) {
+    const Triangle& tri = pm.base.triangles[t];
+    if (tri[0] >= n0 || tri[1] >= n0 || tri[2] >= n0 || tri[0] == tri[1] || tri[1] == tri[2] ||
+        tri[0] == tri[2]) {
+      return invalid_input("base triangle " + std::to_string(t) +
+                           " has an out-of-range or repeated vertex index");
+    }
+    s.faces_.push_back(tri);
+    for (uint32_t v : tri)
+      s.faces_of_[v].push_back(static_cast<uint32_t>(t));
+  }
+  return s;
+}
+
+uint32_t SplitSimulator::face_with_next(uint32_t v, uint32_t next) const {
+  for (uint32_t f : faces_of_[v]) {
+    const Triangle& t = faces_[f];
+    if (t[(corner_of(t, v) + 1) % 3] == next) return f;
+  }
+  return kNoVertex;
+}
+
+uint32_t SplitSimulator::face_with_prev(uint32_t v, uint32_t prev) const {
+  for (uint32_t f : faces_of_[v]) {
+    const Triangle& t = faces_[f];
+    if (t[(corner_of(t, v) + 2) % 3] == prev) return f;
+  }
+  return kNoVertex;
+}
+
+Status SplitSimulator::split_next(Effect* effect) {
+  effect->moved.clear();
+  effect->added.clear();
+  if (applied_ >= pm_->splits.size()) return invalid_input("no vertex split left to apply");
+  const VertexSplit& s = pm_->splits[applied_];
+  const uint32_t vt = static_cast<uint32_t>(faces_of_.size());
+  const std::string where = "vertex split " + std::to_string(applied_) + ": ";
+  const uint32_t vs = s.vs;
+  const uint32_t vl = s.vl;
+  const uint32_t vr = s.vr;
+  if (vs >= vt || (vl != kNoVertex && vl >= vt) || (vr != kNoVertex && vr >= vt)) {
+    return invalid_input(where + "vertex index out of range (" + std::to_string(vt) + " vertices)");
+  }
+  if (vl == kNoVertex && vr == kNoVertex) return invalid_input(where + "both wings are missing");
+  if (vl == vs || vr == vs || vl == vr) return invalid_input(where + "repeated vertex");
+  for (uint32_t w : {vl, vr}) {
+    if (w != kNoVertex && face_with_next(vs, w) == kNoVertex &&
+        face_with_prev(vs, w) == kNoVertex) {
+      return invalid_input(where + "wing vertex " + std::to_string(w) +
+                           " is not adjacent to the split vertex");
+    }
+  }
+  std::vector<uint32_t>& moved = effect->moved;
+  const size_t limit = faces_of_[vs].size();
+  bool reached_vl = false;
+  if (vr != kNoVertex) {
+    uint32_t next = vr;
+    for (;;) {
+      const uint32_t f = face_with_next(vs, next);
+      if (f == kNoVertex) break;
+      if (moved.size() >= limit) {
+        moved.clear();
+        return invalid_input(where + "the fan around vertex " + std::to_string(vs) +
+                             " does not end");
+      }
+      moved.push_back(f);
+      const Triangle& t = faces_[f];
+      next = t[(corner_of(t, vs) + 2) % 3];
+      if (next == vl) {
+        reached_vl = true;
+        break;
+      }
+    }
+  }
+  if (vl != kNoVertex && !reached_vl) {
+    uint32_t prev = vl;
+    for (;;) {
+      const uint32_t f = face_with_prev(vs, prev);
+      if (f == kNoVertex) break;
+      if (moved.size() >= limit) {
+        moved.clear();
+        return invalid_input(where + "the fan around vertex " + std::to_string(vs) +
+                             " does not end");
+      }
+      moved.push_back(f);
+      const Triangle& t = faces_[f];
+      prev = t[(corner_of(t, vs) + 1) % 3];
+    }
+  }
+
+  faces_of_.emplace_back();
+  std::vector<uint32_t>& vs_faces = faces_of_[vs];
+  for (uint32_t f : moved) {
+    Triangle& t = faces_[f];
+    t[corner_of(t, vs)] = vt;
+    vs_faces.erase(std::find(vs_faces.begin(), vs_faces.end(), f));
+    faces_of_[vt].push_back(f);
+  }
+  auto add = [&](const Triangle& t) {
+    const uint32_t f = static_cast<uint32_t>(faces_.size());
+    faces_.push_back(t);
+    for (uint32_t v : t)
+      faces_of_[v].push_back(f);
+    effect->added.push_back(f);
+  };
+  if (vl != kNoVertex) add({vs, vt, vl});
+  if (vr != kNoVertex) add({vt, vs, vr});
+  ++applied_;
+  return Status::ok();
+}
+
+void SplitSimulator::boundary_half_edges(uint32_t v, std::vector<HalfEdgeKey>* out) const {
+  // v -> a exists for every face (v, a, .), b -> v for every face (v, ., b).
+  for (uint32_t f : faces_of_[v]) {
+    const Triangle& t = faces_[f];
+    const int c = corner_of(t, v);
+    const uint32_t a = t[(c + 1) % 3];
+    const uint32_t b = t[(c + 2) % 3];
+    if (face_with_next(a, v) == kNoVertex) out->push_back(half_edge_key(a, v));
+    if (face_with_prev(b, v) == kNoVertex) out->push_back(half_edge_key(v, b));
+  }
+}
+
+std::vector<FanRun> SplitSimulator::fan(uint32_t v) const {
+  // Counter-clockwise successor of each neighbour a: the b of face (v, a, b).
+  std::vector<std::pair<uint32_t, uint32_t>> next;
+  for (uint32_t f : faces_of_[v]) {
+    const Triangle& t = faces_[f];
+    const int c = corner_of(t, v);
+    next.emplace_back(t[(c + 1) % 3], t[(c + 2) % 3]);
+  }
+  std::sort(next.begin(), next.end());
+  std::vector<uint8_t> used(next.size(), 0);
+  auto find_from = [&](uint32_t a) -> size_t {
+    auto it = std::lower_bound(next.begin(), next.end(), std::make_pair(a, uint32_t{0}));
+    while (it != next.end() && it->first == a) {
+      if (!used[static_cast<size_t>(it - next.begin())])
+        return static_cast<size_t>(it - next.begin());
+      ++it;
+    }
+    return next.size();
+  };
+  std::vector<uint32_t> targets;
+  for (const auto& e : next)
+    targets.push_back(e.second);
+  std::sort(targets.begin(), targets.end());
+  std::vector<FanRun> runs;
+  // Open runs start at a neighbour that is no face's successor.
+  auto walk = [&](size_t start, bool closed) {
+    std::vector<uint32_t> ccw{next[start].first};
+    size_t e = start;
+    while (e < next.size()) {
+      used[e] = 1;
+      ccw.push_back(next[e].second);
+      e = find_from(next[e].second);
+    }
+    if (closed) ccw.pop_back();  // the walk came back to its start
+    FanRun run;
+    run.closed = closed;
+    run.vertices.assign(ccw.rbegin(), ccw.rend());
+    if (closed) {
+      const auto smallest = std::min_element(run.vertices.begin(), run.vertices.end());
+      std::rotate(run.vertices.begin(), smallest, run.vertices.end());
+    }
+    runs.push_back(std::move(run));
+  };
+  for (size_t e = 0; e < next.size(); ++e) {
+    if (!used[e] && !std::binary_search(targets.begin(), targets.end(), next[e].first)) {
+      walk(e, false);
+    }
+  }
+  for (size_t e = 0; e < next.size(); ++e) {
+    if (!used[e]) walk(e, true);
+  }
+  std::sort(runs.begin(), runs.end(), [](const FanRun& a, const FanRun& b) {
+    return a.vertices.front() < b.vertices.front();
+  });
+  return runs;
+}
+
+}  // namespace lodbake
