@@ -10,6 +10,9 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kMetaTag, "provenance: tool, version, options, input, counts (JSON)"},
       {kBaseTag, "base triangle mesh: positions, triangles, normals, texture coordinates"},
       {kVsplTag, "progressive mesh: vertex-split records and the input vertex permutation"},
+      {kDageTag, "DAG of vertex splits: each split's parent splits (Zheng & Chan)"},
+      {kVtreTag,
+       "vertex trees: base, left and right node records with vertex fans (To, Lau & Green)"},
   };
   return kinds;
 }

@@ -52,6 +52,9 @@ class BitReader {
   /// Bytes touched so far (a partially read byte counts as whole).
   size_t bytes_consumed() const { return static_cast<size_t>((bit_pos_ + 7) / 8); }
 
+  /// Bits read so far.
+  uint64_t bits_consumed() const { return bit_pos_; }
+
   /// True when the unread bits of the last touched byte are all zero; a
   /// strict decoder requires this so every stream has one canonical form.
   bool padding_is_zero() const;
