@@ -9,8 +9,10 @@
 
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/vspl.h"
+#include "formats/sections/vtre.h"
 
 namespace lodbake {
 namespace {
@@ -24,6 +26,8 @@ struct Decoded {
   const Section* vspl_section = nullptr;
   std::optional<VsplSummary> vspl;         // its fixed fields read
   std::optional<uint64_t> full_triangles;  // when VSPL decoded in full
+  const Section* dage_section = nullptr;
+  const Section* vtre_section = nullptr;
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -98,6 +102,49 @@ void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
     findings->push_back({kVsplTag, std::move(finding)});
 }
 
+// DAGE and VTRE describe the container's progressive mesh: one DAG node,
+// and one pair of tree children, per VSPL record over BASE's vertices.
+void check_split_counts(const char* tag, uint64_t splits, uint64_t base_vertices, const Decoded& d,
+                        std::vector<SectionFinding>* findings) {
+  if (d.vspl_section == nullptr) {
+    findings->push_back(
+        {tag, "no VSPL section holds the " + std::to_string(splits) + " splits it describes"});
+  }
+  if (d.vspl && d.vspl->split_count != splits) {
+    findings->push_back({tag, "holds " + std::to_string(splits) + " splits but VSPL holds " +
+                                  std::to_string(d.vspl->split_count)});
+  }
+  if (d.base && d.base->vertex_count != base_vertices) {
+    findings->push_back({tag, "base vertex count " + std::to_string(base_vertices) +
+                                  " but BASE holds " + std::to_string(d.base->vertex_count) +
+                                  " vertices"});
+  }
+}
+
+void check_dage(const Decoded& d, std::vector<SectionFinding>* findings) {
+  DageSummary summary;
+  Result<VsplitDag> dag = decode_dage(d.dage_section->data, d.dage_section->size, &summary);
+  if (!dag.is_ok()) {
+    findings->push_back({kDageTag, dag.status().message()});
+    return;
+  }
+  for (std::string& finding : validate_dage(dag.value()))
+    findings->push_back({kDageTag, std::move(finding)});
+  check_split_counts(kDageTag, summary.node_count, summary.base_vertex_count, d, findings);
+}
+
+void check_vtre(const Decoded& d, std::vector<SectionFinding>* findings) {
+  VtreSummary summary;
+  Result<VertexTrees> trees = decode_vtre(d.vtre_section->data, d.vtre_section->size, &summary);
+  if (!trees.is_ok()) {
+    findings->push_back({kVtreTag, trees.status().message()});
+    return;
+  }
+  for (std::string& finding : validate_vtre(trees.value()))
+    findings->push_back({kVtreTag, std::move(finding)});
+  check_split_counts(kVtreTag, summary.split_count, summary.base_vertex_count, d, findings);
+}
+
 }  // namespace
 
 std::vector<SectionFinding> validate_sections(const Container& container) {
@@ -127,9 +174,15 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       }
     } else if (section.tag() == kVsplTag) {
       d.vspl_section = &section;
+    } else if (section.tag() == kDageTag) {
+      d.dage_section = &section;
+    } else if (section.tag() == kVtreTag) {
+      d.vtre_section = &section;
     }
   }
   if (d.vspl_section != nullptr) check_vspl(&d, &findings);
+  if (d.dage_section != nullptr) check_dage(d, &findings);
+  if (d.vtre_section != nullptr) check_vtre(d, &findings);
   if (d.meta) check_meta_counts(d, &findings);
   return findings;
 }

@@ -9,7 +9,13 @@
 #include <vector>
 
 #include "formats/container/container_errors.h"
+#include "formats/container/container_reader.h"
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
 #include "formats/sections/dage.h"
+#include "formats/sections/section_validation.h"
+#include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/simplify/simplify.h"
@@ -191,6 +197,45 @@ TEST(VtreSection, ValidationFindsFansNamingMissingVertices) {
   Result<Bytes> refused = encode_vtre(broken);
   ASSERT_FALSE(refused.is_ok());
   EXPECT_NE(refused.status().message().find("cannot encode VTRE"), std::string::npos);
+}
+
+// A container with BASE + VSPL + DAGE + VTRE of one PM validates clean; the
+// DAGE and VTRE of another PM are reported as not matching its VSPL.
+std::vector<SectionFinding> container_findings(const ProgressiveMesh& pm,
+                                               const ProgressiveMesh& structures_from) {
+  ContainerWriter writer;
+  EXPECT_TRUE(writer.add_section(kBaseTag, encode_base(pm.base, {}).value(), true).is_ok());
+  EXPECT_TRUE(writer.add_section(kVsplTag, encode_vspl(pm, {}).value(), true).is_ok());
+  EXPECT_TRUE(writer
+                  .add_section(kDageTag,
+                               encode_dage(build_vsplit_dag(structures_from).value()).value(),
+                               false)
+                  .is_ok());
+  EXPECT_TRUE(writer
+                  .add_section(kVtreTag,
+                               encode_vtre(build_vertex_trees(structures_from).value()).value(),
+                               false)
+                  .is_ok());
+  const Bytes file = writer.finish().value();
+  Result<Container> container = read_container(file.data(), file.size());
+  EXPECT_TRUE(container.is_ok()) << container.status().message();
+  if (!container.is_ok()) return {};
+  return validate_sections(container.value());
+}
+
+TEST(DagVtreSections, ContainerValidationChecksThemAgainstVspl) {
+  const std::vector<std::pair<std::string, ProgressiveMesh>> pms = seed_pms();
+  for (const SectionFinding& f : container_findings(pms[0].second, pms[0].second))
+    ADD_FAILURE() << f.tag << ": " << f.message;
+  const std::vector<SectionFinding> findings = container_findings(pms[0].second, pms[1].second);
+  size_t dage = 0;
+  size_t vtre = 0;
+  for (const SectionFinding& f : findings) {
+    dage += f.tag == kDageTag && f.message.find("but VSPL holds") != std::string::npos;
+    vtre += f.tag == kVtreTag && f.message.find("but VSPL holds") != std::string::npos;
+  }
+  EXPECT_EQ(dage, 1u);
+  EXPECT_EQ(vtre, 1u);
 }
 
 }  // namespace

@@ -10,9 +10,11 @@
 #include "formats/container/container_reader.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/section_validation.h"
 #include "formats/sections/vspl.h"
+#include "formats/sections/vtre.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/file_name.h"
@@ -163,6 +165,38 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
       if (v.position_encoding == PositionEncoding::kQuantized)
         jv["quantization_bits"] = v.quantization_bits;
       contents[kVsplTag] = std::move(jv);
+    } else if (section.tag() == kDageTag) {
+      Result<DageSummary> dage = read_dage_summary(section.data, section.size);
+      if (!dage.is_ok()) {
+        contents[kDageTag] = keep(dage.status());
+        continue;
+      }
+      const DageSummary& g = dage.value();
+      contents[kDageTag] = {
+          {"nodes", g.node_count},
+          {"edges", g.edge_count},
+          {"roots", g.root_count},
+          {"leaves", g.leaf_count},
+          {"parent_bits", g.parent_bits},
+          {"degree_bits", g.degree_bits},
+          {"bytes", section.size},
+          {"bytes_per_node", g.node_count == 0 ? 0.0 : double(section.size) / g.node_count}};
+    } else if (section.tag() == kVtreTag) {
+      Result<VtreSummary> vtre = read_vtre_summary(section.data, section.size);
+      if (!vtre.is_ok()) {
+        contents[kVtreTag] = keep(vtre.status());
+        continue;
+      }
+      const VtreSummary& t = vtre.value();
+      contents[kVtreTag] = {
+          {"base_nodes", t.base_vertex_count},
+          {"splits", t.split_count},
+          {"nodes", t.node_count()},
+          {"fan_runs", t.run_count},
+          {"fan_vertices", t.fan_vertex_count},
+          {"id_bits", t.id_bits},
+          {"bytes", section.size},
+          {"bytes_per_node", t.node_count() == 0 ? 0.0 : double(section.size) / t.node_count()}};
     }
   }
   return contents;
@@ -210,6 +244,37 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
         << " vertices, collapse errors " << v["error_range"][0].get<double>() << " .. "
         << v["error_range"][1].get<double>() << ", positions " << v["positions"].get<std::string>()
         << "\n";
+  }
+  if (contents.contains(kDageTag)) {
+    const nlohmann::json& g = contents[kDageTag];
+    out << "DAGE          ";
+    if (g.is_object()) {
+      char line[200];
+      std::snprintf(line, sizeof(line),
+                    "split DAG: %llu nodes, %llu edges, %llu roots, %llu leaves, %.2f bytes/node\n",
+                    g["nodes"].get<unsigned long long>(), g["edges"].get<unsigned long long>(),
+                    g["roots"].get<unsigned long long>(), g["leaves"].get<unsigned long long>(),
+                    g["bytes_per_node"].get<double>());
+      out << line;
+    } else {
+      out << g.get<std::string>() << "\n";
+    }
+  }
+  if (contents.contains(kVtreTag)) {
+    const nlohmann::json& t = contents[kVtreTag];
+    out << "VTRE          ";
+    if (t.is_object()) {
+      char line[200];
+      std::snprintf(line, sizeof(line),
+                    "vertex trees: %llu base nodes, %llu splits, %llu nodes, %llu fan vertices, "
+                    "%.2f bytes/node\n",
+                    t["base_nodes"].get<unsigned long long>(),
+                    t["splits"].get<unsigned long long>(), t["nodes"].get<unsigned long long>(),
+                    t["fan_vertices"].get<unsigned long long>(), t["bytes_per_node"].get<double>());
+      out << line;
+    } else {
+      out << t.get<std::string>() << "\n";
+    }
   }
 }
 
