@@ -171,6 +171,18 @@ TEST(DagVtreSections, TruncationsAndTrailingBytesAreRefused) {
   }
 }
 
+TEST(DageSection, TheFormatDocumentsExampleBytes) {
+  VsplitDag dag;  // docs/format.md section 15
+  dag.base_vertex_count = 3;
+  dag.parent_offsets = {0, 0, 1, 2};
+  dag.parents = {0, 1};
+  const Bytes expected = {3, 0, 0, 0, 3, 0, 0, 0, 2, 0, 0, 0,   1,
+                          0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0, 0x26};
+  Result<Bytes> bytes = encode_dage(dag);
+  ASSERT_TRUE(bytes.is_ok());
+  EXPECT_EQ(bytes.value(), expected);
+}
+
 TEST(DageSection, ValidationFindsRedundantEdgesAndEncodeRefusesCycles) {
   VsplitDag dag;
   dag.parent_offsets = {0, 0, 1, 3};
