@@ -70,6 +70,22 @@ inline std::string mesh_problem(const std::vector<Triangle>& tris) {
   return "";
 }
 
+/// Empty when every vertex of `tris` exists on the front `applied` (a base
+/// vertex, or the vertex B + i of an applied split i); else the first one
+/// that does not.
+inline std::string missing_vertex(const std::vector<Triangle>& tris,
+                                  const std::vector<uint8_t>& applied, uint32_t base_vertices) {
+  for (const Triangle& t : tris) {
+    for (uint32_t v : t) {
+      if (v >= base_vertices &&
+          (v - base_vertices >= applied.size() || !applied[v - base_vertices])) {
+        return "vertex " + std::to_string(v) + " is used but its split is not applied";
+      }
+    }
+  }
+  return "";
+}
+
 /// Applies the splits i with `applied[i]` to the base mesh in split order;
 /// split i creates vertex B + i. Same walk as PmRefiner; a failed walk
 /// (wing not adjacent, fan not found) is a test failure.
@@ -96,6 +112,20 @@ inline std::vector<Triangle> replay_subset(const ProgressiveMesh& pm,
     if (!applied[i]) continue;
     const VertexSplit& s = pm.splits[i];
     const uint32_t vt = n0 + i;
+    // The split needs vs and its wings to exist and the wings to be
+    // adjacent to vs (PmRefiner's checks).
+    for (uint32_t v : {s.vs, s.vl, s.vr}) {
+      if (v != kNoVertex && v >= n0 && !applied[v - n0]) {
+        ADD_FAILURE() << "split " << i << " needs vertex " << v << ", whose split is not applied";
+        return {};
+      }
+    }
+    for (uint32_t w : {s.vl, s.vr}) {
+      if (w != kNoVertex && with_next(s.vs, w) == kNoVertex && with_prev(s.vs, w) == kNoVertex) {
+        ADD_FAILURE() << "split " << i << ": wing " << w << " is not adjacent to " << s.vs;
+        return {};
+      }
+    }
     std::vector<uint32_t> moved;
     bool reached = false;
     if (s.vr != kNoVertex) {

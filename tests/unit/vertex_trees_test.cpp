@@ -136,6 +136,8 @@ TEST_P(VertexTreesOnSharedMesh, RandomFrontsGiveTheDagCutAndTheReplay) {
       std::vector<uint8_t> flags(fronts.node_count());
       for (uint32_t i = 0; i < flags.size(); ++i)
         flags[i] = fronts.is_split(i);
+      ASSERT_EQ(front_test::missing_vertex(tris, flags, trees_.base_vertex_count), "")
+          << "step " << step;
       ASSERT_EQ(got, sorted_canonical(replay_subset(pm_, flags))) << "step " << step;
     }
   }

@@ -127,7 +127,10 @@ TEST_P(DagOnSharedMesh, RandomWalksKeepAValidMeshEqualToReplay) {
     if (step % 25 == 0 || step == steps - 1) {
       const std::vector<Triangle> cut = dag_cut_triangles(lineage_, fronts);
       ASSERT_EQ(mesh_problem(cut), "") << "step " << step;
-      ASSERT_EQ(sorted_canonical(cut), sorted_canonical(replay_subset(pm_, split_flags(fronts))))
+      const std::vector<uint8_t> flags = split_flags(fronts);
+      ASSERT_EQ(front_test::missing_vertex(cut, flags, lineage_.base_vertex_count), "")
+          << "step " << step;
+      ASSERT_EQ(sorted_canonical(cut), sorted_canonical(replay_subset(pm_, flags)))
           << "step " << step;
       ASSERT_TRUE(fronts.check_counters().empty()) << "step " << step;
     }
