@@ -213,8 +213,7 @@ TEST(VtreSection, ValidationFindsFansNamingMissingVertices) {
 
 // A container with BASE + VSPL + DAGE + VTRE of one PM validates clean; the
 // DAGE and VTRE of another PM are reported as not matching its VSPL.
-std::vector<SectionFinding> container_findings(const ProgressiveMesh& pm,
-                                               const ProgressiveMesh& structures_from) {
+Bytes container_bytes(const ProgressiveMesh& pm, const ProgressiveMesh& structures_from) {
   ContainerWriter writer;
   EXPECT_TRUE(writer.add_section(kBaseTag, encode_base(pm.base, {}).value(), true).is_ok());
   EXPECT_TRUE(writer.add_section(kVsplTag, encode_vspl(pm, {}).value(), true).is_ok());
@@ -228,7 +227,12 @@ std::vector<SectionFinding> container_findings(const ProgressiveMesh& pm,
                                encode_vtre(build_vertex_trees(structures_from).value()).value(),
                                false)
                   .is_ok());
-  const Bytes file = writer.finish().value();
+  return writer.finish().value();
+}
+
+std::vector<SectionFinding> container_findings(const ProgressiveMesh& pm,
+                                               const ProgressiveMesh& structures_from) {
+  const Bytes file = container_bytes(pm, structures_from);
   Result<Container> container = read_container(file.data(), file.size());
   EXPECT_TRUE(container.is_ok()) << container.status().message();
   if (!container.is_ok()) return {};
@@ -248,6 +252,25 @@ TEST(DagVtreSections, ContainerValidationChecksThemAgainstVspl) {
   }
   EXPECT_EQ(dage, 1u);
   EXPECT_EQ(vtre, 1u);
+}
+
+// The CLI cases' containers (tests/data/containers/README.md) are these;
+// LODBAKE_WRITE_CONTAINERS=<dir> writes them there instead of comparing.
+TEST(DagVtreSections, CliContainersAreTheCurrentEncodings) {
+  const std::vector<std::pair<std::string, ProgressiveMesh>> pms = seed_pms();
+  const std::vector<std::pair<std::string, Bytes>> files = {
+      {"torus_dag_vtrees.lbk", container_bytes(pms[0].second, pms[0].second)},
+      {"torus_dag_vtrees_of_square.lbk", container_bytes(pms[0].second, pms[1].second)}};
+  const std::string write_dir = testing_util::env_or("LODBAKE_WRITE_CONTAINERS", "");
+  const std::string dir = std::string(LODBAKE_TEST_SOURCE_DIR) + "/tests/data/containers/";
+  for (const auto& [name, bytes] : files) {
+    EXPECT_LT(bytes.size(), 2048u) << name;
+    if (!write_dir.empty()) {
+      ASSERT_TRUE(write_file_atomic(write_dir + "/" + name, bytes).is_ok());
+    } else {
+      EXPECT_EQ(testing_util::read_bytes(dir + name), bytes) << name;
+    }
+  }
 }
 
 }  // namespace
