@@ -166,6 +166,23 @@ TEST(VertexTrees, RefusesAPmThatMovesTheSplitVertex) {
   pm.splits[0].vs_position = {0, 0, 0};
   trees = build_vertex_trees(pm);
   ASSERT_TRUE(trees.is_ok()) << trees.status().message();
+  // Equations (1)-(3): the one collapse's TRing holds both faces, all at
+  // state 0, so vs (base vertex 0) and vt get state 1, the others keep 0.
+  EXPECT_EQ(trees.value().vertex_states, (std::vector<uint8_t>{1, 0, 0, 1}));
+  // Fans right after the split, clockwise: vt (3) sees 0, 1, 2 as an open
+  // fan ending at 2; vs (0) sees only 1 and 3.
+  ASSERT_EQ(trees.value().node_count(), 5u);
+  const VertexTrees& t = trees.value();
+  auto fan = [&](size_t node) {
+    std::vector<uint32_t> out;
+    for (uint32_t r = t.run_offsets[node]; r < t.run_offsets[node + 1]; ++r)
+      out.insert(out.end(), t.fan_vertices.begin() + t.vertex_offsets[r],
+                 t.fan_vertices.begin() + t.vertex_offsets[r + 1]);
+    return out;
+  };
+  EXPECT_EQ(fan(3), (std::vector<uint32_t>{2, 1, 0}));  // left node: vertex 3
+  EXPECT_EQ(fan(4), (std::vector<uint32_t>{3, 1}));     // right node: vertex 0
+  EXPECT_EQ(fan(0), (std::vector<uint32_t>{2, 1}));     // base node 0
   Result<VisibleVertexList> list = VisibleVertexList::create(trees.value());
   ASSERT_TRUE(list.is_ok());
   ASSERT_TRUE(list.value().split(0).is_ok());
