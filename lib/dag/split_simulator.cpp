@@ -139,14 +139,31 @@ Status SplitSimulator::split_next(Effect* effect) {
 }
 
 void SplitSimulator::boundary_half_edges(uint32_t v, std::vector<HalfEdgeKey>* out) const {
-  // v -> a exists for every face (v, a, .), b -> v for every face (v, ., b).
-  for (uint32_t f : faces_of_[v]) {
+  // Every face holding v -> a or a -> v is a face of v: v -> a exists for each
+  // face (v, a, .) and b -> v for each face (v, ., b), so v's faces alone
+  // tell which of the two directions of each edge at v is missing.
+  const std::vector<uint32_t>& faces = faces_of_[v];
+  auto has_next = [&](uint32_t a) {  // v -> a exists
+    for (uint32_t f : faces) {
+      const Triangle& t = faces_[f];
+      if (t[(corner_of(t, v) + 1) % 3] == a) return true;
+    }
+    return false;
+  };
+  auto has_prev = [&](uint32_t b) {  // b -> v exists
+    for (uint32_t f : faces) {
+      const Triangle& t = faces_[f];
+      if (t[(corner_of(t, v) + 2) % 3] == b) return true;
+    }
+    return false;
+  };
+  for (uint32_t f : faces) {
     const Triangle& t = faces_[f];
     const int c = corner_of(t, v);
     const uint32_t a = t[(c + 1) % 3];
     const uint32_t b = t[(c + 2) % 3];
-    if (face_with_next(a, v) == kNoVertex) out->push_back(half_edge_key(a, v));
-    if (face_with_prev(b, v) == kNoVertex) out->push_back(half_edge_key(v, b));
+    if (!has_prev(a)) out->push_back(half_edge_key(a, v));
+    if (!has_next(b)) out->push_back(half_edge_key(v, b));
   }
 }
 
