@@ -87,6 +87,7 @@ TEST_P(DagOnSharedMesh, RandomLegalOrdersEndAtTheInputMesh) {
   ASSERT_TRUE(refiner.is_ok());
   ASSERT_TRUE(refiner.value().refine_to(pm_.full_vertex_count()).is_ok());
   const std::vector<Triangle> full = sorted_canonical(refiner.value().mesh().triangles);
+  TriangleMesh input = load_clean_mesh(GetParam());
   std::mt19937 rng(12345);
   for (int order = 0; order < 8; ++order) {
     Result<DagFronts> created = DagFronts::create(dag_);
@@ -99,7 +100,15 @@ TEST_P(DagOnSharedMesh, RandomLegalOrdersEndAtTheInputMesh) {
     }
     ASSERT_EQ(fronts.split_count(), fronts.node_count()) << "a node never became legal";
     EXPECT_TRUE(fronts.check_counters().empty());
-    EXPECT_EQ(sorted_canonical(dag_cut_triangles(lineage_, fronts)), full) << "order " << order;
+    TriangleMesh cut;
+    cut.positions = refiner.value().mesh().positions;
+    cut.triangles = dag_cut_triangles(lineage_, fronts);
+    EXPECT_EQ(sorted_canonical(cut.triangles), full) << "order " << order;
+    // In the input's numbering: the input's triangles, same orientation.
+    Result<TriangleMesh> mapped = map_to_input(pm_, cut);
+    ASSERT_TRUE(mapped.is_ok());
+    EXPECT_TRUE(same_oriented_triangles(mapped.value(), input)) << "order " << order;
+    EXPECT_EQ(mapped.value().positions, input.positions);
   }
 }
 
@@ -162,6 +171,41 @@ INSTANTIATE_TEST_SUITE_P(SharedMeshes, DagOnSharedMesh,
                          ::testing::Values("igl_decimated-knight.off", "npm_bunny.obj",
                                            "cgal_mushroom.off", "cgal_elephant.off",
                                            "cgal_elephant-with-holes.off"));
+
+// The DAG is topological: a PM recorded with optimal placement (vs moves)
+// gives the same guarantees for the triangle sets.
+TEST(VsplitDag, OptimalPlacementPmRandomWalk) {
+  TriangleMesh input = load_clean_mesh("cgal_mushroom.off");
+  SimplifyOptions options;
+  options.record_pm = true;
+  options.placement = Placement::kOptimal;
+  Result<SimplifyResult> simplified = simplify(input, options);
+  ASSERT_TRUE(simplified.is_ok());
+  const ProgressiveMesh& pm = *simplified.value().pm;
+  Result<SplitLineage> lineage = build_split_lineage(pm);
+  ASSERT_TRUE(lineage.is_ok());
+  Result<VsplitDag> dag = reduce_dependencies(lineage.value());
+  ASSERT_TRUE(dag.is_ok());
+  Result<DagFronts> created = DagFronts::create(dag.value());
+  ASSERT_TRUE(created.is_ok());
+  DagFronts& fronts = created.value();
+  std::mt19937 rng(99);
+  for (int step = 0; step < 2000; ++step) {
+    const auto& fs = fronts.split_front();
+    const auto& fc = fronts.collapse_front();
+    const bool do_split =
+        fc.empty() || (!fs.empty() && std::uniform_real_distribution<>(0, 1)(rng) < 0.6);
+    const auto& front = do_split ? fs : fc;
+    const uint32_t node = front[std::uniform_int_distribution<size_t>(0, front.size() - 1)(rng)];
+    ASSERT_TRUE((do_split ? fronts.split(node) : fronts.collapse(node)).is_ok());
+    if (step % 50 == 0) {
+      const std::vector<Triangle> cut = dag_cut_triangles(lineage.value(), fronts);
+      ASSERT_EQ(mesh_problem(cut), "") << step;
+      ASSERT_EQ(sorted_canonical(cut), sorted_canonical(replay_subset(pm, split_flags(fronts))))
+          << step;
+    }
+  }
+}
 
 TEST(DagFronts, CountersFollowFigureOne) {
   // A diamond 0 -> {1, 2} -> 3, plus 4 under 2.
