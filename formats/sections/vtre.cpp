@@ -101,7 +101,8 @@ Status parse_fixed(const uint8_t* data, size_t size, VtreSummary* s) {
                                   " vertices (2..32, 0 without runs)",
                                   s->run_length_bits, s->run_count, vertices));
   }
-  if (uint64_t{s->fan_vertex_count} < 2 * uint64_t{s->run_count}) {
+  if (uint64_t{s->fan_vertex_count} < 2 * uint64_t{s->run_count} ||
+      (s->run_count == 0 && s->fan_vertex_count != 0)) {
     return bad_vtre(string_printf("%u fan vertices cannot fill %u runs of at least 2",
                                   s->fan_vertex_count, s->run_count));
   }

@@ -197,6 +197,23 @@ TEST(DageSection, ValidationFindsRedundantEdgesAndEncodeRefusesCycles) {
   EXPECT_FALSE(encode_dage(dag).is_ok());
 }
 
+TEST(VtreSection, CountsThePayloadCannotHoldAreRefusedBeforeAllocating) {
+  // One vertex (0 id bits), no runs, but 2^32 - 16 fan entries claimed.
+  Bytes bytes = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xF0, 0xFF, 0xFF, 0xFF, 0, 0, 0, 0};
+  bytes.resize(bytes.size() + 12, 0);
+  Result<VertexTrees> trees = decode_vtre(bytes.data(), bytes.size());
+  expect_e023(trees.status(), "fan entries without runs");
+  // 2^31 base vertices in 44 bytes.
+  Bytes huge = {0, 0, 0, 0x80, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 31, 0, 0, 0};
+  huge.resize(44, 0);
+  expect_e023(decode_vtre(huge.data(), huge.size()).status(), "2^31 vertices");
+  // DAGE: 2^32 - 2 nodes in 8 bytes of stream.
+  Bytes dage = {0xFE, 0xFF, 0xFF, 0xFF, 3, 0, 0, 0, 0, 0,  0, 0,
+                1,    0,    0,    0,    1, 0, 0, 0, 1, 32, 0, 0};
+  dage.resize(32, 0);
+  expect_e023(decode_dage(dage.data(), dage.size()).status(), "2^32 - 2 nodes");
+}
+
 TEST(VtreSection, ValidationFindsFansNamingMissingVertices) {
   const ProgressiveMesh pm = seed_pms()[0].second;
   Result<VertexTrees> trees = build_vertex_trees(pm);
