@@ -10,6 +10,8 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kMetaTag, "provenance: tool, version, options, input, counts (JSON)"},
       {kBaseTag, "base triangle mesh: positions, triangles, normals, texture coordinates"},
       {kVsplTag, "progressive mesh: vertex-split records and the input vertex permutation"},
+      {kVhieTag, "balanced vertex hierarchy: trees, fundamental cut vertices, split positions"},
+      {kRfinTag, "refinement data per split: sphere, normal cone, screen-space error terms"},
   };
   return kinds;
 }

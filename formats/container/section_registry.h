@@ -12,6 +12,8 @@ namespace lodbake {
 inline constexpr char kMetaTag[] = "META";  ///< JSON provenance (formats/sections/meta.h)
 inline constexpr char kBaseTag[] = "BASE";  ///< base triangle mesh (formats/sections/base.h)
 inline constexpr char kVsplTag[] = "VSPL";  ///< vertex-split records (formats/sections/vspl.h)
+inline constexpr char kVhieTag[] = "VHIE";  ///< balanced vertex hierarchy (formats/sections/vhie.h)
+inline constexpr char kRfinTag[] = "RFIN";  ///< per-split refinement data (formats/sections/rfin.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters
