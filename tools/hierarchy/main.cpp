@@ -121,15 +121,10 @@ int run(const Tool& tool, const Request& request) {
                   {"max_normal_change_degrees", request.options.max_normal_change_degrees},
                   {"repair", request.repair}};
   meta.input = in.meta;
-  meta.counts = {{"vertices", h.base.vertex_count()},
-                 {"triangles", h.base.triangle_count()},
-                 {"nodes", shape.nodes},
-                 {"roots", shape.roots},
-                 {"splits", shape.splits},
-                 {"depth", shape.depth},
-                 {"id_bits", shape.id_bits},
-                 {"full_vertices", in.mesh.vertex_count()},
-                 {"full_triangles", in.mesh.triangle_count()}};
+  meta.counts = {
+      {"vertices", h.base.vertex_count()},        {"triangles", h.base.triangle_count()},
+      {"hierarchy_nodes", shape.nodes},           {"hierarchy_depth", shape.depth},
+      {"input_vertices", in.mesh.vertex_count()}, {"input_triangles", in.mesh.triangle_count()}};
   Result<Bytes> meta_bytes = encode_meta(meta);
   if (!meta_bytes.is_ok()) return tool.fail(request.output, meta_bytes.status());
   Result<Bytes> base_bytes = encode_base(h.base, BaseEncodeOptions());

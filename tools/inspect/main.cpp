@@ -11,8 +11,11 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/rfin.h"
 #include "formats/sections/section_validation.h"
+#include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
+#include "formats/support/bit_packing.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/file_name.h"
@@ -163,6 +166,23 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
       if (v.position_encoding == PositionEncoding::kQuantized)
         jv["quantization_bits"] = v.quantization_bits;
       contents[kVsplTag] = std::move(jv);
+    } else if (section.tag() == kVhieTag) {
+      Result<VhieSummary> vhie = read_vhie_summary(section.data, section.size);
+      if (!vhie.is_ok()) {
+        contents[kVhieTag] = keep(vhie.status());
+        continue;
+      }
+      const VhieSummary& v = vhie.value();
+      const uint64_t splits = (uint64_t{v.node_count} - v.root_count) / 2;
+      const int tree_bits = bits_for_count(v.root_count);
+      contents[kVhieTag] = {
+          {"nodes", v.node_count},     {"roots", v.root_count},
+          {"splits", splits},          {"depth", v.depth},
+          {"tree_id_bits", tree_bits}, {"id_bits", tree_bits + static_cast<int>(v.depth)}};
+    } else if (section.tag() == kRfinTag) {
+      Result<uint32_t> rfin = read_rfin_summary(section.data, section.size);
+      contents[kRfinTag] =
+          rfin.is_ok() ? nlohmann::json{{"records", rfin.value()}} : keep(rfin.status());
     }
   }
   return contents;
@@ -210,6 +230,29 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
         << " vertices, collapse errors " << v["error_range"][0].get<double>() << " .. "
         << v["error_range"][1].get<double>() << ", positions " << v["positions"].get<std::string>()
         << "\n";
+  }
+  if (contents.contains(kVhieTag)) {
+    const nlohmann::json& v = contents[kVhieTag];
+    out << "VHIE          ";
+    if (!v.is_object()) {
+      out << v.get<std::string>() << "\n";
+    } else {
+      out << "balanced vertex hierarchy: " << v["nodes"].get<uint64_t>() << " nodes, "
+          << v["roots"].get<uint64_t>() << " roots, " << v["splits"].get<uint64_t>()
+          << " splits, depth " << v["depth"].get<uint64_t>() << ", <tree-id, node-id> = <"
+          << v["tree_id_bits"].get<int>() << ", " << v["depth"].get<uint64_t>()
+          << "> = " << v["id_bits"].get<int>() << " bits\n";
+    }
+  }
+  if (contents.contains(kRfinTag)) {
+    const nlohmann::json& r = contents[kRfinTag];
+    out << "RFIN          ";
+    if (!r.is_object()) {
+      out << r.get<std::string>() << "\n";
+    } else {
+      out << "refinement data: " << r["records"].get<uint64_t>()
+          << " split records (sphere, normal cone, mu^2, delta^2)\n";
+    }
   }
 }
 
