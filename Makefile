@@ -76,10 +76,15 @@ BENCH_MESHES := $(BUILD)/data/dragon_vrip.ply $(SHARED_DATA)/meshes/stanford_bun
 BENCH_RUNS ?= 3
 SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
+# Balanced vertex hierarchy against OpenMesh-mkbalancedpm (build time,
+# depth, <tree-id, node-id> bits, output bytes; docs/benchmarks.md).
+HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
+  $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
 bench: build
-	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify
+	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

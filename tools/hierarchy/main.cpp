@@ -161,6 +161,7 @@ int run(const Tool& tool, const Request& request) {
       {"splits", shape.splits},
       {"depth", shape.depth},
       {"levels_built", built.value().stats.levels_built},
+      {"vertices_after_level", built.value().stats.vertices_after_level},
       {"tree_id_bits", shape.tree_bits},
       {"node_id_bits", shape.depth},
       {"id_bits", shape.id_bits},
