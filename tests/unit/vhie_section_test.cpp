@@ -11,6 +11,7 @@
 #include "formats/sections/vhie.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/refinement_data.h"
+#include "lib/hierarchy/selective_refiner.h"
 
 namespace lodbake {
 namespace {
@@ -121,6 +122,66 @@ TEST(VhieSection, ValidationFindsBrokenStructure) {
   }
   EXPECT_FALSE(validate_hierarchy(order).empty());
   EXPECT_FALSE(encode_vhie(cut).is_ok());
+}
+
+// A hand-made forest whose first tree is a chain 40 levels deep (each split
+// peels one leaf off), so its ids need more than 32 bits.
+VertexHierarchy deep_chain(uint32_t levels) {
+  VertexHierarchy h;
+  h.base.positions = {{0, 0, 0}, {1, 0, 0}};
+  const uint32_t splits = levels - 1;
+  const uint32_t n = 2 + 2 * splits;
+  h.parent.assign(n, kNoNode);
+  h.first_child.assign(n, kNoNode);
+  h.position.assign(n, Vec3f{0, 0, 0});
+  h.cut_left.assign(n, kNoNode);
+  h.cut_right.assign(n, kNoNode);
+  h.input_vertex.assign(n, kNoVertex);
+  h.error.assign(n, 0.5f);
+  h.position[1] = {1, 0, 0};
+  uint32_t chain = 0;
+  for (uint32_t k = 0; k < splits; ++k) {
+    const uint32_t c = 2 + 2 * k;
+    h.first_child[chain] = c;
+    h.parent[c] = h.parent[c + 1] = chain;
+    h.position[c] = h.position[chain];
+    h.position[c + 1] = {0, static_cast<float>(k + 1), 0};
+    h.cut_left[chain] = 1;  // the other tree's lone root, a leaf
+    chain = c;
+  }
+  uint32_t v = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (h.first_child[i] == kNoNode) h.input_vertex[i] = v++;
+    if (h.first_child[i] == kNoNode) h.error[i] = 0;
+  }
+  return h;
+}
+
+TEST(VhieSection, DeepTreesUse64BitIds) {
+  const VertexHierarchy h = deep_chain(40);
+  ASSERT_TRUE(validate_hierarchy(h).empty()) << validate_hierarchy(h).front();
+  const HierarchyShape s = hierarchy_shape(h);
+  EXPECT_EQ(s.depth, 40u);
+  EXPECT_EQ(s.tree_bits, 1);
+  EXPECT_EQ(s.id_bits, 41);
+  EXPECT_EQ(s.id_bytes, 8);
+  const std::vector<HierarchyNodeId> ids = hierarchy_node_ids(h);
+  // The deepest left child: heap id 2^39.
+  EXPECT_EQ(ids[h.node_count() - 2].heap, uint64_t{1} << 39);
+  EXPECT_EQ(ids[h.node_count() - 1].heap, (uint64_t{1} << 39) + 1);
+  Result<Bytes> bytes = encode_vhie(h);
+  ASSERT_TRUE(bytes.is_ok()) << bytes.status().message();
+  Result<VertexHierarchy> back = decode_vhie(bytes.value().data(), bytes.value().size(), h.base);
+  ASSERT_TRUE(back.is_ok()) << back.status().message();
+  EXPECT_EQ(back.value().parent, h.parent);
+  EXPECT_EQ(hierarchy_shape(back.value()).depth, 40u);
+  Result<SelectiveRefiner> r = SelectiveRefiner::create(h);
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  const uint32_t deepest = static_cast<uint32_t>(h.node_count() - 1);
+  EXPECT_EQ(r.value().active_ancestor_id(r.value().id_of(deepest)), (HierarchyNodeId{0, 1}));
+  EXPECT_EQ(r.value().active_ancestor(deepest), 0u);
+  // 65 levels do not fit 64-bit heap ids.
+  EXPECT_FALSE(validate_hierarchy(deep_chain(65)).empty());
 }
 
 TEST(RfinSection, RoundTripTruncationAndRanges) {
