@@ -21,6 +21,10 @@
 //   node costs the tall one nothing more). The quadric error orders the
 //   rest. On the shared meshes this gives 1 to 3 fewer levels than ordering
 //   by height and error alone (docs/hierarchy.md);
+// - which of the tie-breaks after height wins depends on the mesh by a
+//   level either way, so up to three orderings are built (valence then
+//   short partner; valence; short partner) and the hierarchy with the
+//   fewest <tree-id, node-id> bits is kept;
 // - error: lib/simplify's quadrics (faces weighted by sqrt(area), boundary
 //   planes by boundary_weight * length), half placement, the removed
 //   vertex's weighted mean squared distance at the survivor;
@@ -44,8 +48,10 @@
 #include <cmath>
 #include <deque>
 #include <new>
+#include <optional>
 #include <string>
 
+#include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/quadric.h"
@@ -102,8 +108,8 @@ struct Candidate {
 
 class Builder {
  public:
-  Builder(const TriangleMesh& mesh, const BalancedBuildOptions& options)
-      : mesh_(mesh), options_(options) {}
+  Builder(const TriangleMesh& mesh, const BalancedBuildOptions& options, int ordering)
+      : mesh_(mesh), options_(options), ordering_(ordering) {}
 
   Result<BalancedHierarchy> run() {
     simplify_internal::MeshTopology topology;
@@ -226,7 +232,11 @@ class Builder {
         // Low-valence vertices first: each removal blocks its neighbours
         // for the level, so they leave the largest independent set.
         const uint32_t ht = nodes_[node_of_[t]].height;
-        const uint32_t sec = static_cast<uint32_t>(ring.size()) * 64 + std::min(hu, ht);
+        const auto valence = static_cast<uint32_t>(ring.size());
+        const uint32_t shorter = std::min(hu, ht);
+        const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
+                             : ordering_ == 1 ? valence
+                                              : shorter;
         candidates_.push_back({h, sec, cost(u, t), u, t});
       }
     }
@@ -423,6 +433,7 @@ class Builder {
 
   const TriangleMesh& mesh_;
   const BalancedBuildOptions& options_;
+  const int ordering_;
   std::vector<Triangle> tris_;
   std::vector<uint8_t> face_alive_;
   std::vector<std::vector<uint32_t>> vertex_faces_;
@@ -451,8 +462,24 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
                          " vertices, a hierarchy holds fewer than 2^31");
   }
   try {
-    Builder builder(mesh, options);
-    return builder.run();
+    // Each ordering is deterministic; the one with the fewest id bits wins
+    // (then the shallower, then the one with fewer roots, then the first).
+    std::optional<BalancedHierarchy> best;
+    HierarchyShape best_shape;
+    const int orderings = std::max(1, std::min(3, options.orderings));
+    for (int ordering = 0; ordering < orderings; ++ordering) {
+      Builder builder(mesh, options, ordering);
+      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built, builder.run());
+      const HierarchyShape shape = hierarchy_shape(built.hierarchy);
+      if (!best || shape.id_bits < best_shape.id_bits ||
+          (shape.id_bits == best_shape.id_bits &&
+           (shape.depth < best_shape.depth ||
+            (shape.depth == best_shape.depth && shape.roots < best_shape.roots)))) {
+        best = std::move(built);
+        best_shape = shape;
+      }
+    }
+    return std::move(*best);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory building the balanced hierarchy");
   }

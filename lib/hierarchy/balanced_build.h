@@ -19,6 +19,10 @@ struct BalancedBuildOptions {
   double boundary_weight = 10.0;
   /// A collapse may not turn a moved face's normal by more than this.
   double max_normal_change_degrees = 150.0;
+  /// How many of the three fixed candidate orderings to build (1..3); the
+  /// hierarchy with the fewest <tree-id, node-id> bits is kept. Time grows
+  /// with the count.
+  int orderings = 3;
 };
 
 struct BalancedBuildStats {
