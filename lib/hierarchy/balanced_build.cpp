@@ -22,9 +22,10 @@
 //   rest. On the shared meshes this gives 1 to 3 fewer levels than ordering
 //   by height and error alone (docs/hierarchy.md);
 // - which of the tie-breaks after height wins depends on the mesh by a
-//   level either way, so up to three orderings are built (valence then
-//   short partner; valence; short partner) and the hierarchy with the
-//   fewest <tree-id, node-id> bits is kept;
+//   level either way, so up to three orderings (valence then short partner;
+//   valence; short partner) finish the build from a shared state at 1/16 of
+//   the vertices, and the hierarchy with the fewest <tree-id, node-id> bits
+//   is kept;
 // - error: lib/simplify's quadrics (faces weighted by sqrt(area), boundary
 //   planes by boundary_weight * length), half placement, the removed
 //   vertex's weighted mean squared distance at the survivor;
@@ -111,7 +112,7 @@ class Builder {
   Builder(const TriangleMesh& mesh, const BalancedBuildOptions& options, int ordering)
       : mesh_(mesh), options_(options), ordering_(ordering) {}
 
-  Result<BalancedHierarchy> run() {
+  Status setup() {
     simplify_internal::MeshTopology topology;
     LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(mesh_, &topology));
     const size_t n = mesh_.positions.size();
@@ -138,18 +139,26 @@ class Builder {
     // Round 0 is the input itself.
     level_vertices_.push_back(n);
     cap_ = 1;
-    for (uint32_t round = 1;;) {
+    round_ = 1;
+    return Status::ok();
+  }
+
+  void set_ordering(int ordering) { ordering_ = ordering; }
+  Result<BalancedHierarchy> result() const { return pack(); }
+
+  // Levels until at most `vertices` remain or no collapse is legal.
+  void build_until(uint64_t vertices) {
+    while (level_vertices_.back() > vertices) {
       capped_ = false;
-      const uint64_t made = run_round(round);
+      const uint64_t made = run_round(round_);
       if (made == 0) {
-        if (!capped_) break;
+        if (!capped_) return;
         ++cap_;
         continue;
       }
       level_vertices_.push_back(level_vertices_.back() - made);
-      ++round;
+      ++round_;
     }
-    return pack();
   }
 
  private:
@@ -356,8 +365,8 @@ class Builder {
     removed_[u] = 1;
   }
 
-  // The hierarchy of the rounds up to the best one, packed breadth first.
-  Result<BalancedHierarchy> pack() {
+  // The hierarchy, packed breadth first.
+  Result<BalancedHierarchy> pack() const {
     BalancedHierarchy out;
     const size_t rounds = level_vertices_.size() - 1;
     out.stats.levels_built = static_cast<uint32_t>(rounds);
@@ -433,7 +442,8 @@ class Builder {
 
   const TriangleMesh& mesh_;
   const BalancedBuildOptions& options_;
-  const int ordering_;
+  int ordering_;
+  uint32_t round_ = 1;
   std::vector<Triangle> tris_;
   std::vector<uint8_t> face_alive_;
   std::vector<std::vector<uint32_t>> vertex_faces_;
@@ -467,9 +477,18 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
     std::optional<BalancedHierarchy> best;
     HierarchyShape best_shape;
     const int orderings = std::max(1, std::min(3, options.orderings));
+    Builder shared(mesh, options, 0);
+    LODBAKE_RETURN_IF_ERROR(shared.setup());
+    // The orderings share the levels down to 1/16 of the vertices: the
+    // tie-breaks matter in the last levels, where few vertices remain and
+    // the trees' heights are decided; sharing the rest makes three
+    // orderings cost little more than one.
+    shared.build_until(orderings > 1 ? mesh.positions.size() / 16 : 0);
     for (int ordering = 0; ordering < orderings; ++ordering) {
-      Builder builder(mesh, options, ordering);
-      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built, builder.run());
+      Builder builder = ordering + 1 == orderings ? std::move(shared) : shared;
+      builder.set_ordering(ordering);
+      builder.build_until(0);
+      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built, builder.result());
       const HierarchyShape shape = hierarchy_shape(built.hierarchy);
       if (!best || shape.id_bits < best_shape.id_bits ||
           (shape.id_bits == best_shape.id_bits &&

@@ -19,9 +19,9 @@ struct BalancedBuildOptions {
   double boundary_weight = 10.0;
   /// A collapse may not turn a moved face's normal by more than this.
   double max_normal_change_degrees = 150.0;
-  /// How many of the three fixed candidate orderings to build (1..3); the
-  /// hierarchy with the fewest <tree-id, node-id> bits is kept. Time grows
-  /// with the count.
+  /// How many of the three fixed candidate orderings finish the build (1..3)
+  /// from the state shared down to 1/16 of the vertices; the hierarchy with
+  /// the fewest <tree-id, node-id> bits is kept.
   int orderings = 3;
 };
 
