@@ -16,6 +16,7 @@
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/hierarchy/selective_refiner.h"
+#include "lib/hierarchy/view_criteria.h"
 #include "lib/simplify/pm_replay.h"
 #include "simplify_test_meshes.h"
 
@@ -304,6 +305,76 @@ TEST_P(HierarchyOnMesh, DeterministicAndSectionsRoundTrip) {
     const double between = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dd);
     EXPECT_GE(y.cone_half_angle + 1e-6, std::min(3.14159265, between + x.cone_half_angle));
   }
+}
+
+// The client loop of section 5.3 on RFIN data: a near view refines more
+// than a far one, the mesh stays valid, and backing away coarsens again.
+TEST_P(HierarchyOnMesh, AdaptsToTheView) {
+  const TriangleMesh input = load(GetParam());
+  const VertexHierarchy h = build(input);
+  Result<std::vector<NodeRefinement>> data = compute_refinement_data(h, input);
+  ASSERT_TRUE(data.is_ok()) << data.status().message();
+  Vec3f lo = input.positions[0], hi = input.positions[0];
+  for (const Vec3f& p : input.positions) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  const float diag =
+      std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const Vec3f center{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+  Result<SelectiveRefiner> created = SelectiveRefiner::create(h);
+  ASSERT_TRUE(created.is_ok());
+  SelectiveRefiner& r = created.value();
+  ViewParameters view;
+  view.kappa = 0.002f;
+  view.eye = {center[0], center[1], center[2] + 1.5f * diag};
+  Result<AdaptStats> near = adapt_to_view(&r, h, data.value(), view);
+  ASSERT_TRUE(near.is_ok()) << near.status().message();
+  const size_t near_front = r.front_size();
+  EXPECT_GT(near_front, h.root_count());
+  EXPECT_EQ(triangulation_problem(r.triangles()), "");
+  view.eye = {center[0], center[1], center[2] + 200.0f * diag};
+  Result<AdaptStats> far = adapt_to_view(&r, h, data.value(), view);
+  ASSERT_TRUE(far.is_ok()) << far.status().message();
+  EXPECT_GT(far.value().collapses, 0u);
+  EXPECT_LT(r.front_size(), near_front);
+  EXPECT_EQ(triangulation_problem(r.triangles()), "");
+}
+
+TEST(Qrefine, FrustumBackFacingAndScreenSpaceError) {
+  NodeRefinement d;
+  d.radius = 1;
+  d.cone_axis = {0, 0, 1};
+  d.cone_half_angle = 0.2f;
+  d.mu2 = 0.01f;  // mu = 0.1
+  d.delta2 = 0;
+  ViewParameters view;
+  view.kappa = 0.01f;
+  view.eye = {0, 0, 5};                      // facing the node's normal
+  EXPECT_TRUE(qrefine(d, {0, 0, 0}, view));  // 0.1 / 5 = 0.02 > kappa
+  view.eye = {0, 0, 50};
+  EXPECT_FALSE(qrefine(d, {0, 0, 0}, view));  // 0.1 / 50 = 0.002 < kappa
+  view.eye = {0, 0, -5};
+  EXPECT_FALSE(qrefine(d, {0, 0, 0}, view));  // the cone faces away
+  d.cone_half_angle = 2.0f;
+  EXPECT_TRUE(qrefine(d, {0, 0, 0}, view));  // a wide cone never faces away
+  view.eye = {0, 0, 5};
+  view.frustum = {{1, 0, 0, -3}};  // x >= 3: the sphere (x in [-1, 1]) is outside
+  EXPECT_FALSE(qrefine(d, {0, 0, 0}, view));
+  view.frustum = {{1, 0, 0, 0.5f}};
+  EXPECT_TRUE(qrefine(d, {0, 0, 0}, view));
+  // delta only counts where the surface is seen edge-on.
+  d.mu2 = 0;
+  d.delta2 = 0.01f;
+  view.frustum.clear();
+  EXPECT_FALSE(qrefine(d, {0, 0, 0}, view));  // face-on: no projected deviation
+  view.eye = {5, 0, 0.1f};
+  EXPECT_TRUE(qrefine(d, {0, 0, 0}, view));  // edge-on
+  NodeRefinement leaf;
+  EXPECT_FALSE(qrefine(leaf, {0, 0, 0}, view));
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, HierarchyOnMesh,
