@@ -147,7 +147,10 @@ int run(const Tool& tool, const Request& request) {
   if (!written.is_ok()) return tool.fail(request.output, written);
 
   const double nodes = shape.nodes > 0 ? static_cast<double>(shape.nodes) : 1.0;
-  const double splits = shape.splits > 0 ? static_cast<double>(shape.splits) : 1.0;
+  // Per-split figures are null (JSON) / omitted (text) without splits.
+  const double splits = static_cast<double>(shape.splits);
+  const nlohmann::json rfin_per_split =
+      shape.splits > 0 ? nlohmann::json(sizes[3] / splits) : nlohmann::json(nullptr);
   nlohmann::json report = {
       {"schema", kHierarchySchema},
       {"input", request.input},
@@ -173,7 +176,7 @@ int run(const Tool& tool, const Request& request) {
        {{"META", {{"bytes", sizes[0]}}},
         {"BASE", {{"bytes", sizes[1]}}},
         {"VHIE", {{"bytes", sizes[2]}, {"bytes_per_node", sizes[2] / nodes}}},
-        {"RFIN", {{"bytes", sizes[3]}, {"bytes_per_split", sizes[3] / splits}}}}}};
+        {"RFIN", {{"bytes", sizes[3]}, {"bytes_per_split", rfin_per_split}}}}}};
   if (tool.json()) {
     tool.print_json(report);
     return 0;
@@ -190,8 +193,9 @@ int run(const Tool& tool, const Request& request) {
   std::ostringstream per;
   per.precision(3);
   per << "VHIE " << sizes[2] << " bytes (" << sizes[2] / nodes << " per node), RFIN " << sizes[3]
-      << " bytes (" << sizes[3] / splits << " per split), BASE " << sizes[1] << ", META "
-      << sizes[0];
+      << " bytes";
+  if (shape.splits > 0) per << " (" << sizes[3] / splits << " per split)";
+  per << ", BASE " << sizes[1] << ", META " << sizes[0];
   std::cout << "wrote       " << request.output << ": " << container.value().size() << " bytes; "
             << per.str() << "\n";
   return 0;
