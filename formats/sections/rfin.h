@@ -30,7 +30,7 @@ Result<Bytes> encode_rfin(const VertexHierarchy& h, const std::vector<NodeRefine
 /// Decodes an RFIN payload for `h` (from VHIE): one entry per node, leaves
 /// all zero. \return LBK-E023 "section RFIN: ..." when the split count is
 /// not VHIE's, the size is not exact, flags are unknown, a value is negative
-/// or not finite, a half-angle is above pi.
+/// or not finite (16-bit half-angles cannot exceed pi).
 Result<std::vector<NodeRefinement>> decode_rfin(const uint8_t* data, size_t size,
                                                 const VertexHierarchy& h);
 
