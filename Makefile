@@ -78,12 +78,17 @@ SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
 # Split DAG and vertex trees (docs/hierarchy-dag-vtrees.md): bunny and full dragon.
 DAG_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
+# Balanced vertex hierarchy against OpenMesh-mkbalancedpm (build time,
+# depth, <tree-id, node-id> bits, output bytes; docs/benchmarks.md).
+HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
+  $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
 bench: build
-	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify
+	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	cmake --build $(BUILD) --target bench_dag
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -36,6 +36,10 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 "$bin/lodbake-inspect" -q "$out/elephant-pm.lbk" --extract "$out/elephant-pm-full.obj" --lod 1.0 > /dev/null
 "$bin/lodbake-inspect" --strict -q "$out/elephant-pm-full.obj" | grep -E '^(triangles|genus|problems)'
 
+step "6. balanced vertex hierarchy for selective refinement (lodbake-hierarchy)"
+"$bin/lodbake-hierarchy" "$mesh" -o "$out/elephant-hierarchy.lbk"
+"$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" | grep -E '^(VHIE|RFIN|validation)'
+
 size() { stat -c %s "$1"; }
 step "summary"
 printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
@@ -44,4 +48,5 @@ printf '%-28s %10s bytes\n' "elephant-q16.lbk (16 bits)" "$(size "$out/elephant-
 printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.glb")"
 printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
+printf '%-28s %10s bytes\n' "elephant-hierarchy.lbk" "$(size "$out/elephant-hierarchy.lbk")"
 echo "all steps passed; outputs in $out"

@@ -13,6 +13,8 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kDageTag, "DAG of vertex splits: each split's parent splits (Zheng & Chan)"},
       {kVtreTag,
        "vertex trees: base, left and right node records with vertex fans (To, Lau & Green)"},
+      {kVhieTag, "balanced vertex hierarchy: trees, fundamental cut vertices, split positions"},
+      {kRfinTag, "refinement data per split: sphere, normal cone, screen-space error terms"},
   };
   return kinds;
 }

@@ -14,6 +14,8 @@ inline constexpr char kBaseTag[] = "BASE";  ///< base triangle mesh (formats/sec
 inline constexpr char kVsplTag[] = "VSPL";  ///< vertex-split records (formats/sections/vspl.h)
 inline constexpr char kDageTag[] = "DAGE";  ///< DAG of vertex splits (formats/sections/dage.h)
 inline constexpr char kVtreTag[] = "VTRE";  ///< vertex trees (formats/sections/vtre.h)
+inline constexpr char kVhieTag[] = "VHIE";  ///< balanced vertex hierarchy (formats/sections/vhie.h)
+inline constexpr char kRfinTag[] = "RFIN";  ///< per-split refinement data (formats/sections/rfin.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters

@@ -11,6 +11,8 @@
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/rfin.h"
+#include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
 
@@ -28,6 +30,8 @@ struct Decoded {
   std::optional<uint64_t> full_triangles;  // when VSPL decoded in full
   const Section* dage_section = nullptr;
   const Section* vtre_section = nullptr;
+  const Section* vhie_section = nullptr;
+  const Section* rfin_section = nullptr;
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -145,6 +149,51 @@ void check_vtre(const Decoded& d, std::vector<SectionFinding>* findings) {
   check_split_counts(kVtreTag, summary.split_count, summary.base_vertex_count, d, findings);
 }
 
+// VHIE decodes onto BASE (its roots are BASE's vertices) and passes the
+// hierarchy's structural checks; RFIN needs VHIE's splits. META's
+// hierarchy counts must match.
+void check_vhie(const Decoded& d, std::vector<SectionFinding>* findings) {
+  if (d.vhie_section == nullptr) {
+    if (d.rfin_section != nullptr) {
+      findings->push_back({kRfinTag, "no VHIE section holds the hierarchy RFIN refers to"});
+    }
+    return;
+  }
+  const Section& section = *d.vhie_section;
+  Result<VhieSummary> summary = read_vhie_summary(section.data, section.size);
+  if (!summary.is_ok()) {
+    findings->push_back({kVhieTag, summary.status().message()});
+    return;
+  }
+  if (!d.base_mesh) {
+    findings->push_back({kVhieTag, "no decodable BASE section holds the " +
+                                       std::to_string(summary.value().root_count) + " roots"});
+    return;
+  }
+  Result<VertexHierarchy> h = decode_vhie(section.data, section.size, *d.base_mesh);
+  if (!h.is_ok()) {
+    findings->push_back({kVhieTag, h.status().message()});
+    return;
+  }
+  if (d.meta) {
+    const HierarchyShape shape = hierarchy_shape(h.value());
+    for (const auto& [key, actual] : {std::make_pair("hierarchy_nodes", shape.nodes),
+                                      std::make_pair("hierarchy_depth", uint64_t{shape.depth}),
+                                      std::make_pair("input_vertices", shape.leaves)}) {
+      auto it = d.meta->counts.find(key);
+      if (it != d.meta->counts.end() && it->second != actual) {
+        findings->push_back({kMetaTag, std::string("counts.") + key + " is " +
+                                           std::to_string(it->second) + " but VHIE has " +
+                                           std::to_string(actual)});
+      }
+    }
+  }
+  if (d.rfin_section == nullptr) return;
+  Result<std::vector<NodeRefinement>> rfin =
+      decode_rfin(d.rfin_section->data, d.rfin_section->size, h.value());
+  if (!rfin.is_ok()) findings->push_back({kRfinTag, rfin.status().message()});
+}
+
 }  // namespace
 
 std::vector<SectionFinding> validate_sections(const Container& container) {
@@ -178,8 +227,13 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       d.dage_section = &section;
     } else if (section.tag() == kVtreTag) {
       d.vtre_section = &section;
+    } else if (section.tag() == kVhieTag) {
+      d.vhie_section = &section;
+    } else if (section.tag() == kRfinTag) {
+      d.rfin_section = &section;
     }
   }
+  check_vhie(d, &findings);
   if (d.vspl_section != nullptr) check_vspl(&d, &findings);
   if (d.dage_section != nullptr) check_dage(d, &findings);
   if (d.vtre_section != nullptr) check_vtre(d, &findings);

@@ -12,9 +12,12 @@
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/rfin.h"
 #include "formats/sections/section_validation.h"
+#include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
+#include "formats/support/bit_packing.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/file_name.h"
@@ -197,6 +200,23 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
           {"id_bits", t.id_bits},
           {"bytes", section.size},
           {"bytes_per_node", t.node_count() == 0 ? 0.0 : double(section.size) / t.node_count()}};
+    } else if (section.tag() == kVhieTag) {
+      Result<VhieSummary> vhie = read_vhie_summary(section.data, section.size);
+      if (!vhie.is_ok()) {
+        contents[kVhieTag] = keep(vhie.status());
+        continue;
+      }
+      const VhieSummary& v = vhie.value();
+      const uint64_t splits = (uint64_t{v.node_count} - v.root_count) / 2;
+      const int tree_bits = bits_for_count(v.root_count);
+      contents[kVhieTag] = {
+          {"nodes", v.node_count},     {"roots", v.root_count},
+          {"splits", splits},          {"depth", v.depth},
+          {"tree_id_bits", tree_bits}, {"id_bits", tree_bits + static_cast<int>(v.depth)}};
+    } else if (section.tag() == kRfinTag) {
+      Result<uint32_t> rfin = read_rfin_summary(section.data, section.size);
+      contents[kRfinTag] =
+          rfin.is_ok() ? nlohmann::json{{"records", rfin.value()}} : keep(rfin.status());
     }
   }
   return contents;
@@ -274,6 +294,29 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
       out << line;
     } else {
       out << t.get<std::string>() << "\n";
+    }
+  }
+  if (contents.contains(kVhieTag)) {
+    const nlohmann::json& v = contents[kVhieTag];
+    out << "VHIE          ";
+    if (!v.is_object()) {
+      out << v.get<std::string>() << "\n";
+    } else {
+      out << "balanced vertex hierarchy: " << v["nodes"].get<uint64_t>() << " nodes, "
+          << v["roots"].get<uint64_t>() << " roots, " << v["splits"].get<uint64_t>()
+          << " splits, depth " << v["depth"].get<uint64_t>() << ", <tree-id, node-id> = <"
+          << v["tree_id_bits"].get<int>() << ", " << v["depth"].get<uint64_t>()
+          << "> = " << v["id_bits"].get<int>() << " bits\n";
+    }
+  }
+  if (contents.contains(kRfinTag)) {
+    const nlohmann::json& r = contents[kRfinTag];
+    out << "RFIN          ";
+    if (!r.is_object()) {
+      out << r.get<std::string>() << "\n";
+    } else {
+      out << "refinement data: " << r["records"].get<uint64_t>()
+          << " split records (sphere, normal cone, mu^2, delta^2)\n";
     }
   }
 }

@@ -1,0 +1,507 @@
+// Balanced vertex hierarchy by level-wise independent half-edge collapses:
+// the hybrid of Kim, Lee and Kobbelt section 6.2 (maximally independent edge
+// sets, Xia & Varshney / El-Sana & Varshney, ordered by an error that
+// reflects subtree depth, Hoppe 1997). Choices where the paper is vague:
+// - a level (round) lists every half-edge collapse u -> t of the current
+//   mesh whose new node is no taller than the height cap, with the key
+//   (height of the node it makes, valence of u, the smaller child height,
+//   quadric error), sorted, and walks the list greedily: a collapse is taken
+//   when neither u nor t took part in a collapse of this level and u is not
+//   adjacent to a vertex removed in this level. So the stars of the removed
+//   vertices (the faces a collapse changes) of one level are disjoint, a
+//   vertex is split at most once per level, and the set is maximal for the
+//   walk under the cap;
+// - the depth-aware error taken to its limit: height comes first, so short
+//   subtrees merge before tall ones grow, and the cap (the tallest tree
+//   allowed so far) rises by one only when a level under it finds no legal
+//   collapse, so the forest grows a level only when every vertex that can
+//   still merge has reached the current height. Low valence next: a removal
+//   blocks its neighbours for the level, so low-valence vertices leave the
+//   largest independent sets; a short partner next (merging with a short
+//   node costs the tall one nothing more). The quadric error orders the
+//   rest. On the shared meshes this gives 1 to 3 fewer levels than ordering
+//   by height and error alone (docs/hierarchy.md);
+// - which of the tie-breaks after height wins depends on the mesh by a
+//   level either way, so up to three orderings (valence then short partner;
+//   valence; short partner) finish the build from a shared state at 1/16 of
+//   the vertices, and the hierarchy with the fewest <tree-id, node-id> bits
+//   is kept;
+// - error: lib/simplify's quadrics (faces weighted by sqrt(area), boundary
+//   planes by boundary_weight * length), half placement, the removed
+//   vertex's weighted mean squared distance at the survivor;
+// - legality at the moment of the collapse, as lib/simplify's engine: link
+//   condition, a boundary vertex is removed only along a boundary edge, every
+//   vertex keeps three faces (one on a boundary), no moved face turns more
+//   than max_normal_change_degrees or becomes degenerate;
+// - stopping: the rounds go on until no collapse is legal (the coarsest
+//   base mesh, as the paper's table compares). Stopping earlier would always
+//   save id bits (a round removes fewer than half of the vertices but may
+//   add a level), so the bit count is not a useful stopping rule;
+// - fundamental cut vertices: faces are only ever re-labelled by collapses,
+//   so a current face keeps its input face's index; the fundamental cut
+//   vertex of a wing face (t, u, l) is the input vertex at l's corner of
+//   that input face (docs/hierarchy.md has the argument);
+// - packing: roots ordered by their survivor's input index, nodes breadth
+//   first over all trees, left (surviving) child before right.
+#include "lib/hierarchy/balanced_build.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <new>
+#include <optional>
+#include <string>
+
+#include "formats/sections/vhie.h"
+#include "formats/support/bit_packing.h"
+#include "lib/simplify/mesh_topology.h"
+#include "lib/simplify/quadric.h"
+
+namespace lodbake {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr uint32_t kNone = 0xffffffffu;
+
+Vec3d to_d(const Vec3f& p) {
+  return {p[0], p[1], p[2]};
+}
+Vec3d sub(const Vec3d& a, const Vec3d& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3d& a, const Vec3d& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+int corner_of(const Triangle& t, uint32_t v) {
+  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+}
+
+struct TempNode {
+  uint32_t left = kNone;   // surviving child
+  uint32_t right = kNone;  // removed child
+  uint32_t parent = kNone;
+  uint32_t height = 0;         // 0 for leaves
+  uint32_t round = 0;          // round that made it (leaves 0)
+  uint32_t survivor = 0;       // input vertex of its leftmost leaf
+  uint32_t cut_left = kNone;   // input vertex
+  uint32_t cut_right = kNone;  // input vertex
+  float error = 0;
+};
+
+struct Candidate {
+  uint32_t height;
+  uint32_t secondary;
+  float cost;
+  uint32_t u;  // removed
+  uint32_t t;  // survivor
+  bool operator<(const Candidate& o) const {
+    if (height != o.height) return height < o.height;
+    if (secondary != o.secondary) return secondary < o.secondary;
+    if (cost != o.cost) return cost < o.cost;
+    if (u != o.u) return u < o.u;
+    return t < o.t;
+  }
+};
+
+class Builder {
+ public:
+  Builder(const TriangleMesh& mesh, const BalancedBuildOptions& options, int ordering)
+      : mesh_(mesh), options_(options), ordering_(ordering) {}
+
+  Status setup() {
+    simplify_internal::MeshTopology topology;
+    LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(mesh_, &topology));
+    const size_t n = mesh_.positions.size();
+    tris_ = mesh_.triangles;
+    face_alive_.assign(tris_.size(), 1);
+    vertex_faces_.resize(n);
+    for (size_t v = 0; v < n; ++v) {
+      vertex_faces_[v].assign(topology.faces.begin() + topology.face_start[v],
+                              topology.faces.begin() + topology.face_start[v + 1]);
+    }
+    boundary_ = topology.boundary;
+    cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
+    setup_quadrics();
+    nodes_.resize(n);
+    node_of_.resize(n);
+    for (uint32_t v = 0; v < n; ++v) {
+      node_of_[v] = v;
+      nodes_[v].survivor = v;
+    }
+    used_.assign(n, 0);
+    near_.assign(n, 0);
+    removed_.assign(n, 0);
+
+    // Round 0 is the input itself.
+    level_vertices_.push_back(n);
+    cap_ = 1;
+    round_ = 1;
+    return Status::ok();
+  }
+
+  void set_ordering(int ordering) { ordering_ = ordering; }
+  Result<BalancedHierarchy> result() const { return pack(); }
+
+  // Levels until at most `vertices` remain or no collapse is legal.
+  void build_until(uint64_t vertices) {
+    while (level_vertices_.back() > vertices) {
+      capped_ = false;
+      const uint64_t made = run_round(round_);
+      if (made == 0) {
+        if (!capped_) return;
+        ++cap_;
+        continue;
+      }
+      level_vertices_.push_back(level_vertices_.back() - made);
+      ++round_;
+    }
+  }
+
+ private:
+  void setup_quadrics() {
+    const size_t n = mesh_.positions.size();
+    quadric_.assign(n, Quadric());
+    for (const Triangle& t : tris_) {
+      const Vec3d p0 = to_d(mesh_.positions[t[0]]);
+      const Vec3d p1 = to_d(mesh_.positions[t[1]]);
+      const Vec3d p2 = to_d(mesh_.positions[t[2]]);
+      Quadric q = Quadric::from_triangle(p0, p1, p2);
+      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
+      for (uint32_t v : t)
+        quadric_[v] += q;
+      if (!(options_.boundary_weight > 0)) continue;
+      const Vec3d normal = cross(sub(p1, p0), sub(p2, p0));
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = t[k];
+        const uint32_t b = t[(k + 1) % 3];
+        if (!boundary_[a] || !boundary_[b] || has_half_edge(b, a)) continue;
+        const Vec3d pa = to_d(mesh_.positions[a]);
+        const Vec3d e = sub(to_d(mesh_.positions[b]), pa);
+        Vec3d pn = cross(e, normal);
+        const double len = std::sqrt(dot(pn, pn));
+        if (!(len > 0)) continue;
+        pn = {pn[0] / len, pn[1] / len, pn[2] / len};
+        const Quadric bq =
+            Quadric::from_plane(pn, -dot(pn, pa), options_.boundary_weight * std::sqrt(dot(e, e)));
+        quadric_[a] += bq;
+        quadric_[b] += bq;
+      }
+    }
+  }
+
+  // True when a live face has the half-edge a -> b.
+  bool has_half_edge(uint32_t a, uint32_t b) const {
+    for (uint32_t f : vertex_faces_[a]) {
+      const Triangle& t = tris_[f];
+      if (t[(corner_of(t, a) + 1) % 3] == b) return true;
+    }
+    return false;
+  }
+
+  void neighbours(uint32_t v, std::vector<uint32_t>* out) const {
+    out->clear();
+    for (uint32_t f : vertex_faces_[v]) {
+      const Triangle& t = tris_[f];
+      const int k = corner_of(t, v);
+      out->push_back(t[(k + 1) % 3]);
+      out->push_back(t[(k + 2) % 3]);
+    }
+    std::sort(out->begin(), out->end());
+    out->erase(std::unique(out->begin(), out->end()), out->end());
+  }
+
+  float cost(uint32_t u, uint32_t t) const {
+    const Quadric& q = quadric_[u];
+    const double e = q.weight > 0 ? q.evaluate(to_d(mesh_.positions[t])) / q.weight : 0;
+    return static_cast<float>(e);
+  }
+
+  uint64_t run_round(uint32_t round) {
+    const size_t n = mesh_.positions.size();
+    candidates_.clear();
+    std::vector<uint32_t> ring;
+    for (uint32_t u = 0; u < n; ++u) {
+      if (vertex_faces_[u].empty()) continue;
+      const uint32_t hu = nodes_[node_of_[u]].height;
+      if (hu + 1 > cap_) {
+        capped_ = true;
+        continue;
+      }
+      neighbours(u, &ring);
+      for (uint32_t t : ring) {
+        const uint32_t h = std::max(hu, nodes_[node_of_[t]].height) + 1;
+        if (h > cap_) {
+          capped_ = true;
+          continue;
+        }
+        // Low-valence vertices first: each removal blocks its neighbours
+        // for the level, so they leave the largest independent set.
+        const uint32_t ht = nodes_[node_of_[t]].height;
+        const auto valence = static_cast<uint32_t>(ring.size());
+        const uint32_t shorter = std::min(hu, ht);
+        const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
+                             : ordering_ == 1 ? valence
+                                              : shorter;
+        candidates_.push_back({h, sec, cost(u, t), u, t});
+      }
+    }
+    std::sort(candidates_.begin(), candidates_.end());
+    uint64_t made = 0;
+    for (const Candidate& c : candidates_) {
+      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) continue;
+      uint32_t vl = kNone;
+      uint32_t vr = kNone;
+      if (!legal(c.u, c.t, &vl, &vr)) continue;
+      neighbours(c.u, &ring);
+      for (uint32_t w : ring)
+        near_[w] = round;
+      used_[c.u] = used_[c.t] = round;
+      collapse(c.u, c.t, vl, round, c.cost);
+      ++made;
+    }
+    return made;
+  }
+
+  bool legal(uint32_t u, uint32_t t, uint32_t* vl, uint32_t* vr) {
+    uint32_t shared = 0;
+    for (uint32_t f : vertex_faces_[u]) {
+      const Triangle& tri = tris_[f];
+      const int k = corner_of(tri, u);
+      if (tri[(k + 1) % 3] == t) {
+        *vr = tri[(k + 2) % 3];  // the face (u, t, vr)
+        ++shared;
+      } else if (tri[(k + 2) % 3] == t) {
+        *vl = tri[(k + 1) % 3];  // the face (t, u, vl)
+        ++shared;
+      }
+    }
+    if (shared == 0) return false;
+    const bool boundary_edge = shared == 1;
+    if (boundary_[u] && !boundary_edge) return false;
+    const bool boundary_after = boundary_[u] || boundary_[t];
+    if (vertex_faces_[u].size() + vertex_faces_[t].size() - 2 * shared <
+        (boundary_after ? 1u : 3u)) {
+      return false;
+    }
+    for (uint32_t w : {*vl, *vr}) {
+      if (w != kNone && vertex_faces_[w].size() - 1 < (boundary_[w] ? 1u : 3u)) return false;
+    }
+    neighbours(u, &ring_u_);
+    neighbours(t, &ring_t_);
+    for (uint32_t w : ring_u_) {
+      if (w == t || w == *vl || w == *vr) continue;
+      if (std::binary_search(ring_t_.begin(), ring_t_.end(), w)) return false;
+    }
+    // Faces of u not containing t move to t's position.
+    const Vec3d p = to_d(mesh_.positions[t]);
+    for (uint32_t f : vertex_faces_[u]) {
+      const Triangle& tri = tris_[f];
+      if (tri[0] == t || tri[1] == t || tri[2] == t) continue;
+      const int k = corner_of(tri, u);
+      const Vec3d a = to_d(mesh_.positions[u]);
+      const Vec3d b = to_d(mesh_.positions[tri[(k + 1) % 3]]);
+      const Vec3d c = to_d(mesh_.positions[tri[(k + 2) % 3]]);
+      const Vec3d eb = sub(b, p);
+      const Vec3d ec = sub(c, p);
+      const Vec3d n_new = cross(eb, ec);
+      const double len_new = dot(n_new, n_new);
+      if (!(len_new > 1e-20 * dot(eb, eb) * dot(ec, ec))) return false;
+      const Vec3d n_old = cross(sub(b, a), sub(c, a));
+      const double len_old = dot(n_old, n_old);
+      if (!(len_old > 0)) continue;
+      if (dot(n_old, n_new) < cos_limit_ * std::sqrt(len_old * len_new)) return false;
+    }
+    return true;
+  }
+
+  void remove_face_of(uint32_t v, uint32_t f) {
+    std::vector<uint32_t>& faces = vertex_faces_[v];
+    faces.erase(std::find(faces.begin(), faces.end(), f));
+  }
+
+  void collapse(uint32_t u, uint32_t t, uint32_t vl, uint32_t round, float cost) {
+    TempNode node;
+    node.left = node_of_[t];
+    node.right = node_of_[u];
+    node.height = std::max(nodes_[node.left].height, nodes_[node.right].height) + 1;
+    node.round = round;
+    node.survivor = t;
+    node.error = std::sqrt(cost);
+    std::vector<uint32_t> moved;
+    for (uint32_t f : vertex_faces_[u]) {
+      Triangle& tri = tris_[f];
+      const int k = corner_of(tri, u);
+      const bool shared = tri[(k + 1) % 3] == t || tri[(k + 2) % 3] == t;
+      if (!shared) {
+        tri[k] = t;
+        moved.push_back(f);
+        continue;
+      }
+      // The fundamental cut vertex: the input vertex at the wing's corner.
+      const uint32_t wing = tri[(k + 1) % 3] == t ? tri[(k + 2) % 3] : tri[(k + 1) % 3];
+      const uint32_t fine = mesh_.triangles[f][corner_of(tri, wing)];
+      if (wing == vl) {
+        node.cut_left = fine;
+      } else {
+        node.cut_right = fine;
+      }
+      face_alive_[f] = 0;
+      remove_face_of(wing, f);
+      remove_face_of(t, f);
+    }
+    vertex_faces_[u].clear();
+    std::vector<uint32_t>& tf = vertex_faces_[t];
+    tf.insert(tf.end(), moved.begin(), moved.end());
+    quadric_[t] += quadric_[u];
+    const auto id = static_cast<uint32_t>(nodes_.size());
+    nodes_[node.left].parent = id;
+    nodes_[node.right].parent = id;
+    nodes_.push_back(node);
+    node_of_[t] = id;
+    removed_[u] = 1;
+  }
+
+  // The hierarchy, packed breadth first.
+  Result<BalancedHierarchy> pack() const {
+    BalancedHierarchy out;
+    const size_t rounds = level_vertices_.size() - 1;
+    out.stats.levels_built = static_cast<uint32_t>(rounds);
+    out.stats.vertices_after_level = level_vertices_;
+    const auto kept = static_cast<uint32_t>(rounds);
+    // Roots: kept nodes whose parent is not kept.
+    std::vector<uint32_t> roots;
+    for (uint32_t i = 0; i < nodes_.size(); ++i) {
+      const TempNode& nd = nodes_[i];
+      if (nd.round > kept) continue;
+      if (nd.parent == kNone || nodes_[nd.parent].round > kept) roots.push_back(i);
+    }
+    std::sort(roots.begin(), roots.end(),
+              [this](uint32_t a, uint32_t b) { return nodes_[a].survivor < nodes_[b].survivor; });
+    VertexHierarchy& h = out.hierarchy;
+    std::vector<uint32_t> order(roots.begin(), roots.end());
+    std::vector<uint32_t> final_of(nodes_.size(), kNone);
+    std::vector<uint8_t> depth;
+    for (size_t i = 0; i < order.size(); ++i)
+      depth.push_back(1);
+    for (size_t i = 0; i < order.size(); ++i) {
+      const TempNode& nd = nodes_[order[i]];
+      final_of[order[i]] = static_cast<uint32_t>(i);
+      h.parent.push_back(kNone);
+      h.first_child.push_back(kNone);
+      if (nd.left == kNone) continue;
+      if (depth[i] >= 64) {
+        return runtime_error("a tree of the hierarchy is deeper than 64 levels");
+      }
+      h.first_child[i] = static_cast<uint32_t>(order.size());
+      order.push_back(nd.left);
+      order.push_back(nd.right);
+      depth.push_back(depth[i] + 1);
+      depth.push_back(depth[i] + 1);
+    }
+    const size_t count = order.size();
+    h.parent.assign(count, kNone);
+    h.position.resize(count);
+    h.cut_left.assign(count, kNoNode);
+    h.cut_right.assign(count, kNoNode);
+    h.input_vertex.assign(count, kNoVertex);
+    h.error.assign(count, 0.0f);
+    for (uint32_t i = 0; i < count; ++i) {
+      const TempNode& nd = nodes_[order[i]];
+      h.position[i] = mesh_.positions[nd.survivor];
+      h.error[i] = nd.error;
+      if (h.first_child[i] == kNoNode) {
+        h.input_vertex[i] = order[i];  // leaves are temp nodes 0 .. leaves-1
+      } else {
+        h.parent[h.first_child[i]] = i;
+        h.parent[h.first_child[i] + 1] = i;
+      }
+    }
+    for (uint32_t i = 0; i < count; ++i) {
+      const TempNode& nd = nodes_[order[i]];
+      if (h.first_child[i] == kNoNode) continue;
+      h.cut_left[i] = nd.cut_left == kNone ? kNoNode : final_of[nd.cut_left];
+      h.cut_right[i] = nd.cut_right == kNone ? kNoNode : final_of[nd.cut_right];
+    }
+    // The base mesh: the input faces whose corners lie in three trees.
+    std::vector<uint32_t> tree(count);
+    for (uint32_t i = 0; i < count; ++i)
+      tree[i] = h.parent[i] == kNoNode ? i : tree[h.parent[i]];
+    h.base.positions.resize(roots.size());
+    for (size_t r = 0; r < roots.size(); ++r)
+      h.base.positions[r] = h.position[r];
+    for (const Triangle& t : mesh_.triangles) {
+      const Triangle b{tree[final_of[t[0]]], tree[final_of[t[1]]], tree[final_of[t[2]]]};
+      if (b[0] != b[1] && b[1] != b[2] && b[0] != b[2]) h.base.triangles.push_back(b);
+    }
+    return out;
+  }
+
+  const TriangleMesh& mesh_;
+  const BalancedBuildOptions& options_;
+  int ordering_;
+  uint32_t round_ = 1;
+  std::vector<Triangle> tris_;
+  std::vector<uint8_t> face_alive_;
+  std::vector<std::vector<uint32_t>> vertex_faces_;
+  std::vector<uint8_t> boundary_;
+  std::vector<Quadric> quadric_;
+  double cos_limit_ = -1;
+  uint32_t cap_ = 0;
+  bool capped_ = false;
+  std::vector<TempNode> nodes_;
+  std::vector<uint32_t> node_of_;
+  std::vector<uint8_t> removed_;
+  std::vector<uint32_t> used_;
+  std::vector<uint32_t> near_;
+  std::vector<Candidate> candidates_;
+  std::vector<uint32_t> ring_u_;
+  std::vector<uint32_t> ring_t_;
+  std::vector<uint64_t> level_vertices_;
+};
+
+}  // namespace
+
+Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
+                                                   const BalancedBuildOptions& options) {
+  if (mesh.positions.size() >= kNoVertex / 2) {
+    return invalid_input("mesh has " + std::to_string(mesh.positions.size()) +
+                         " vertices, a hierarchy holds fewer than 2^31");
+  }
+  try {
+    // Each ordering is deterministic; the one with the fewest id bits wins
+    // (then the shallower, then the one with fewer roots, then the first).
+    std::optional<BalancedHierarchy> best;
+    HierarchyShape best_shape;
+    const int orderings = std::max(1, std::min(3, options.orderings));
+    Builder shared(mesh, options, 0);
+    LODBAKE_RETURN_IF_ERROR(shared.setup());
+    // The orderings share the levels down to 1/16 of the vertices: the
+    // tie-breaks matter in the last levels, where few vertices remain and
+    // the trees' heights are decided; sharing the rest makes three
+    // orderings cost little more than one.
+    shared.build_until(orderings > 1 ? mesh.positions.size() / 16 : 0);
+    for (int ordering = 0; ordering < orderings; ++ordering) {
+      Builder builder = ordering + 1 == orderings ? std::move(shared) : shared;
+      builder.set_ordering(ordering);
+      builder.build_until(0);
+      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built, builder.result());
+      const HierarchyShape shape = hierarchy_shape(built.hierarchy);
+      if (!best || shape.id_bits < best_shape.id_bits ||
+          (shape.id_bits == best_shape.id_bits &&
+           (shape.depth < best_shape.depth ||
+            (shape.depth == best_shape.depth && shape.roots < best_shape.roots)))) {
+        best = std::move(built);
+        best_shape = shape;
+      }
+    }
+    return std::move(*best);
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory building the balanced hierarchy");
+  }
+}
+
+}  // namespace lodbake
