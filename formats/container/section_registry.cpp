@@ -10,6 +10,7 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kMetaTag, "provenance: tool, version, options, input, counts (JSON)"},
       {kBaseTag, "base triangle mesh: positions, triangles, normals, texture coordinates"},
       {kVsplTag, "progressive mesh: vertex-split records and the input vertex permutation"},
+      {kFanhTag, "fan-merge hierarchy: nodes, fine-path children, modified and removed triangles"},
   };
   return kinds;
 }

@@ -1,0 +1,75 @@
+// The mutable triangle mesh that fan-merges and their fine paths edit, shared
+// by the construction (fan_build.cpp) and the runtime (fan_runtime.cpp):
+// input triangles by index with their current corners, alive flags, a live
+// degree per vertex, lazily compacted vertex-to-triangle lists, and the local
+// check that an edit left a valid triangulation around the vertices it
+// touched. Internal to lib/fanmerge.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/triangle_mesh.h"
+
+namespace lodbake {
+namespace fan_internal {
+
+class FanMeshState {
+ public:
+  /// Every triangle of `mesh` alive with its input corners; a vertex is
+  /// present when a triangle uses it.
+  /// \pre indices in range (the caller checked the mesh).
+  void init(const TriangleMesh& mesh);
+
+  const Triangle& corners(uint32_t t) const { return corners_[t]; }
+  bool alive(uint32_t t) const { return alive_[t] != 0; }
+  bool present(uint32_t v) const { return present_[v] != 0; }
+  uint32_t degree(uint32_t v) const { return degree_[v]; }
+  size_t alive_count() const { return alive_count_; }
+  size_t present_count() const { return present_count_; }
+  size_t triangle_count() const { return corners_.size(); }
+
+  /// The alive triangles with a corner `v`, ascending, into *out (replaced).
+  /// Compacts v's list as a side effect.
+  void star(uint32_t v, std::vector<uint32_t>* out);
+
+  /// The half-edge collapse of c into v: the `removed` triangles die, `c`
+  /// becomes `v` in the `modified` ones, c is no longer present.
+  /// \pre the lists are c's star split by whether a triangle holds v.
+  void collapse(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
+                const uint32_t* modified, size_t modified_count);
+  /// The inverse vertex split: c present again, the `modified` triangles'
+  /// corner `v` becomes `c`, the `removed` ones live again with the corners
+  /// they died with.
+  void split(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
+             const uint32_t* modified, size_t modified_count);
+
+  /// True when around every vertex of `vertices` the mesh is a valid
+  /// triangulation: a present vertex has at least one triangle, and its
+  /// triangles form one fan (a chain or a cycle) in which no neighbour
+  /// follows or precedes it twice (edge-manifold, consistently oriented) and
+  /// no two triangles share all three vertices; an absent vertex has none.
+  bool stars_valid(const std::vector<uint32_t>& vertices);
+
+  /// The alive triangles, in input order, with their current corners.
+  std::vector<Triangle> alive_triangles() const;
+
+ private:
+  std::vector<Triangle> corners_;
+  std::vector<uint8_t> alive_;
+  std::vector<uint8_t> present_;
+  std::vector<uint32_t> degree_;
+  std::vector<std::vector<uint32_t>> incident_;  // may hold stale or repeated entries
+  size_t alive_count_ = 0;
+  size_t present_count_ = 0;
+  std::vector<uint32_t> scratch_;
+};
+
+/// True when triangle `t` has a corner `v`.
+inline bool has_corner(const Triangle& t, uint32_t v) {
+  return t[0] == v || t[1] == v || t[2] == v;
+}
+
+}  // namespace fan_internal
+}  // namespace lodbake
