@@ -9,6 +9,7 @@
 
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/vspl.h"
 
@@ -24,6 +25,8 @@ struct Decoded {
   const Section* vspl_section = nullptr;
   std::optional<VsplSummary> vspl;         // its fixed fields read
   std::optional<uint64_t> full_triangles;  // when VSPL decoded in full
+  const Section* fanh_section = nullptr;
+  std::optional<TriangleMesh> fanh_base;  // BASE's mesh, kept for FANH's replay
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -98,6 +101,27 @@ void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
     findings->push_back({kVsplTag, std::move(finding)});
 }
 
+// FANH is a hierarchy over BASE's mesh: its lists are replayed over it.
+void check_fanh(const Decoded& d, std::vector<SectionFinding>* findings) {
+  const Section& section = *d.fanh_section;
+  if (d.base_section == nullptr) {
+    findings->push_back({kFanhTag, "no BASE section holds the mesh the hierarchy refers to"});
+    return;
+  }
+  Result<FanHierarchy> h = decode_fanh(section.data, section.size);
+  if (!h.is_ok()) {
+    findings->push_back({kFanhTag, h.status().message()});
+    return;
+  }
+  if (!d.fanh_base) {
+    for (std::string& finding : validate_fanh_structure(h.value()))
+      findings->push_back({kFanhTag, std::move(finding)});
+    return;  // BASE's own finding says why the replay cannot run
+  }
+  for (std::string& finding : validate_fanh(h.value(), *d.fanh_base))
+    findings->push_back({kFanhTag, std::move(finding)});
+}
+
 }  // namespace
 
 std::vector<SectionFinding> validate_sections(const Container& container) {
@@ -127,8 +151,12 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       }
     } else if (section.tag() == kVsplTag) {
       d.vspl_section = &section;
+    } else if (section.tag() == kFanhTag) {
+      d.fanh_section = &section;
     }
   }
+  if (d.fanh_section != nullptr && d.base_mesh) d.fanh_base = *d.base_mesh;
+  if (d.fanh_section != nullptr) check_fanh(d, &findings);
   if (d.vspl_section != nullptr) check_vspl(&d, &findings);
   if (d.meta) check_meta_counts(d, &findings);
   return findings;

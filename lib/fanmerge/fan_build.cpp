@@ -20,15 +20,14 @@
 //   the whole merge is undone and skipped. A skipped vertex is retried when
 //   a neighbour's merge changes its link (its error is then recomputed and it
 //   goes back into the heap);
-// - heap: a binary heap with lazy deletion (a version number per vertex),
-//   ordered by priority then vertex index, so the result is deterministic;
+// - heap: a binary heap of vertices updated in place, ordered by priority
+//   then vertex index, so the result is deterministic;
 // - stop: heap empty, the vertex target, or (per candidate) the error limit.
 #include "lib/fanmerge/fan_build.h"
 
 #include <algorithm>
 #include <cmath>
 #include <new>
-#include <queue>
 
 #include "lib/fanmerge/fan_mesh_state.h"
 #include "lib/simplify/mesh_topology.h"
@@ -49,15 +48,78 @@ Vec3d cross(const Vec3d& a, const Vec3d& b) {
 }
 double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-struct HeapEntry {
-  double priority;
-  uint32_t vertex;
-  uint32_t version;
-  // std::priority_queue keeps the largest on top: invert for a min-heap.
-  bool operator<(const HeapEntry& o) const {
-    if (priority != o.priority) return priority > o.priority;
-    return vertex > o.vertex;
+// A binary min-heap of vertices keyed by priority (ties: vertex index), with
+// each vertex's position kept so that a changed priority is updated in place:
+// the heap never holds more than one entry per vertex.
+class VertexHeap {
+ public:
+  void reset(size_t vertex_count) {
+    entries_.clear();
+    position_.assign(vertex_count, kAbsent);
   }
+  bool empty() const { return entries_.empty(); }
+  double top_priority() const { return entries_.front().priority; }
+  uint32_t top() const { return entries_.front().vertex; }
+  void set(uint32_t v, double priority) {
+    if (position_[v] == kAbsent) {
+      position_[v] = static_cast<uint32_t>(entries_.size());
+      entries_.push_back({priority, v});
+      up(position_[v]);
+      return;
+    }
+    const uint32_t i = position_[v];
+    entries_[i].priority = priority;
+    up(i);
+    down(position_[v]);
+  }
+  void pop() {
+    position_[entries_.front().vertex] = kAbsent;
+    entries_.front() = entries_.back();
+    entries_.pop_back();
+    if (!entries_.empty()) {
+      position_[entries_.front().vertex] = 0;
+      down(0);
+    }
+  }
+
+ private:
+  static constexpr uint32_t kAbsent = 0xffffffffu;
+  struct Entry {
+    double priority;
+    uint32_t vertex;
+    bool operator<(const Entry& o) const {
+      return priority < o.priority || (priority == o.priority && vertex < o.vertex);
+    }
+  };
+  void place(uint32_t i, const Entry& e) {
+    entries_[i] = e;
+    position_[e.vertex] = i;
+  }
+  void up(uint32_t i) {
+    const Entry e = entries_[i];
+    while (i > 0) {
+      const uint32_t parent = (i - 1) / 2;
+      if (!(e < entries_[parent])) break;
+      place(i, entries_[parent]);
+      i = parent;
+    }
+    place(i, e);
+  }
+  void down(uint32_t i) {
+    const Entry e = entries_[i];
+    const uint32_t n = static_cast<uint32_t>(entries_.size());
+    for (;;) {
+      uint32_t child = 2 * i + 1;
+      if (child >= n) break;
+      if (child + 1 < n && entries_[child + 1] < entries_[child]) ++child;
+      if (!(entries_[child] < e)) break;
+      place(i, entries_[child]);
+      i = child;
+    }
+    place(i, e);
+  }
+  std::vector<Entry> entries_;
+  std::vector<uint32_t> position_;
 };
 
 class FanBuilder {
@@ -72,7 +134,8 @@ class FanBuilder {
     node_of_.resize(n);
     for (uint32_t v = 0; v < n; ++v)
       node_of_[v] = v;
-    version_.assign(n, 0);
+    heap_.reset(n);
+    mark_.assign(n, 0);
     h_.vertex_count = static_cast<uint32_t>(n);
     h_.triangle_count = static_cast<uint32_t>(input_.triangles.size());
     cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
@@ -85,14 +148,14 @@ class FanBuilder {
     uint64_t next_report = 0;
     while (!heap_.empty()) {
       if (state_.present_count() <= target_) break;
-      const HeapEntry e = heap_.top();
+      const uint32_t v = heap_.top();
       heap_.pop();
-      if (!state_.present(e.vertex) || version_[e.vertex] != e.version) continue;
-      if (error_limit_ && e.priority >= 0 && delta_of(e.vertex) > *error_limit_) {
+      if (!state_.present(v)) continue;
+      if (error_limit_ && delta_of(v) > *error_limit_) {
         ++stats_.skipped_error;
         continue;
       }
-      if (try_merge(e.vertex)) update_after_merge(e.vertex);
+      if (try_merge(v)) update_after_merge(v);
       if (options_.progress && stats_.merges >= next_report) {
         next_report = stats_.merges + 1024;
         const double done = static_cast<double>(start_vertices - state_.present_count());
@@ -182,9 +245,8 @@ class FanBuilder {
 
   // The distinct vertices of v's star other than v, ascending.
   void link(uint32_t v, std::vector<uint32_t>* out) {
-    state_.star(v, &star_);
     out->clear();
-    for (uint32_t t : star_)
+    for (uint32_t t : state_.triangles_of(v))
       for (uint32_t x : state_.corners(t))
         if (x != v) out->push_back(x);
     std::sort(out->begin(), out->end());
@@ -207,7 +269,7 @@ class FanBuilder {
     double priority = sum;
     if (options_.degree_weight != 0 && !link_.empty())
       priority *= std::pow(static_cast<double>(link_.size()) / 6.0, options_.degree_weight);
-    heap_.push({priority, v, ++version_[v]});
+    heap_.set(v, priority);
   }
 
   Vec3d normal(const Triangle& t) const {
@@ -238,6 +300,33 @@ class FanBuilder {
     steps_.clear();
   }
 
+  // The fold-over test of the whole merge, without editing the mesh: a
+  // triangle with exactly one corner in the closed fan is the one modified
+  // by the merge (two or more: removed). Most refused merges fail here, far
+  // cheaper than applying and undoing their fine path.
+  bool final_turns_ok(uint32_t v) {
+    if (++mark_stamp_ == 0) {
+      std::fill(mark_.begin(), mark_.end(), 0);
+      mark_stamp_ = 1;
+    }
+    mark_[v] = mark_stamp_;
+    for (uint32_t u : children_)
+      mark_[u] = mark_stamp_;
+    for (uint32_t u : children_) {
+      for (uint32_t t : state_.triangles_of(u)) {
+        const Triangle& tri = state_.corners(t);
+        if ((mark_[tri[0]] == mark_stamp_) + (mark_[tri[1]] == mark_stamp_) +
+                (mark_[tri[2]] == mark_stamp_) != 1)
+          continue;
+        Triangle moved = tri;
+        for (uint32_t& x : moved)
+          if (x == u) x = v;
+        if (!turn_ok(normal(tri), normal(moved))) return false;
+      }
+    }
+    return true;
+  }
+
   bool try_merge(uint32_t v) {
     link(v, &children_);
     if (children_.empty()) return false;
@@ -245,6 +334,10 @@ class FanBuilder {
     for (uint32_t u : children_)
       order_.push_back({delta(u, v), u});
     std::sort(order_.begin(), order_.end());
+    if (!final_turns_ok(v)) {
+      ++stats_.refused_flip;
+      return false;
+    }
     steps_.clear();
     removed_.clear();
     modified_.clear();
@@ -343,8 +436,9 @@ class FanBuilder {
   FanBuildStats stats_;
   std::vector<Quadric> quadric_;
   std::vector<uint32_t> node_of_;
-  std::vector<uint32_t> version_;
-  std::priority_queue<HeapEntry> heap_;
+  std::vector<uint32_t> mark_;  // final_turns_ok()'s closed-fan marks
+  uint32_t mark_stamp_ = 0;
+  VertexHeap heap_;
   uint64_t target_ = 0;
   std::optional<double> error_limit_;
   double cos_limit_ = 0;

@@ -3,10 +3,10 @@
 //   FANH section can name them; a collapse only renames one corner or kills
 //   the triangle, and a dead triangle keeps the corners it died with, which
 //   is exactly what the inverse split restores;
-// - vertex-to-triangle lists are append-only between compactions (a rename
-//   appends the triangle to the new corner's list, a revival to all three);
-//   star() filters stale entries and rewrites the list, so no edit has to
-//   search a list;
+// - vertex-to-triangle lists are exact (a killed or renamed triangle is
+//   swap-removed from the old corner's list): fans are small, so the removal
+//   scan is cheaper than filtering stale entries on every read, and the
+//   validity check reads the lists without copying;
 // - the validity check is local: a collapse or split changes only triangles
 //   of the two vertices' stars, so checking the stars of every corner of
 //   those triangles covers every edge, vertex and duplicate it can affect.
@@ -22,32 +22,36 @@ void FanMeshState::init(const TriangleMesh& mesh) {
   corners_ = mesh.triangles;
   alive_.assign(corners_.size(), 1);
   present_.assign(n, 0);
-  degree_.assign(n, 0);
   incident_.assign(n, {});
+  std::vector<uint32_t> degree(n, 0);
   for (const Triangle& t : corners_)
     for (uint32_t v : t)
-      ++degree_[v];
+      ++degree[v];
   for (size_t v = 0; v < n; ++v)
-    incident_[v].reserve(degree_[v]);
+    incident_[v].reserve(degree[v]);
   for (uint32_t t = 0; t < corners_.size(); ++t)
     for (uint32_t v : corners_[t])
       incident_[v].push_back(t);
   present_count_ = 0;
   for (size_t v = 0; v < n; ++v) {
-    present_[v] = degree_[v] > 0;
+    present_[v] = degree[v] > 0;
     present_count_ += present_[v];
   }
   alive_count_ = corners_.size();
 }
 
-void FanMeshState::star(uint32_t v, std::vector<uint32_t>* out) {
-  out->clear();
+void FanMeshState::star(uint32_t v, std::vector<uint32_t>* out) const {
+  out->assign(incident_[v].begin(), incident_[v].end());
+}
+
+void FanMeshState::unlink(uint32_t v, uint32_t t) {
   std::vector<uint32_t>& list = incident_[v];
-  for (uint32_t t : list)
-    if (alive_[t] && has_corner(corners_[t], v)) out->push_back(t);
-  std::sort(out->begin(), out->end());
-  out->erase(std::unique(out->begin(), out->end()), out->end());
-  if (list.size() != out->size()) list.assign(out->begin(), out->end());
+  for (size_t i = 0; i < list.size(); ++i)
+    if (list[i] == t) {
+      list[i] = list.back();
+      list.pop_back();
+      return;
+    }
 }
 
 void FanMeshState::collapse(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
@@ -56,17 +60,16 @@ void FanMeshState::collapse(uint32_t c, uint32_t v, const uint32_t* removed, siz
     const uint32_t t = removed[i];
     alive_[t] = 0;
     for (uint32_t x : corners_[t])
-      --degree_[x];
+      unlink(x, t);
   }
   alive_count_ -= removed_count;
   for (size_t i = 0; i < modified_count; ++i) {
     const uint32_t t = modified[i];
     for (uint32_t& x : corners_[t])
       if (x == c) x = v;
+    unlink(c, t);
     incident_[v].push_back(t);
   }
-  degree_[c] -= static_cast<uint32_t>(modified_count);
-  degree_[v] += static_cast<uint32_t>(modified_count);
   present_[c] = 0;
   --present_count_;
 }
@@ -79,17 +82,14 @@ void FanMeshState::split(uint32_t c, uint32_t v, const uint32_t* removed, size_t
     const uint32_t t = modified[i];
     for (uint32_t& x : corners_[t])
       if (x == v) x = c;
+    unlink(v, t);
     incident_[c].push_back(t);
   }
-  degree_[c] += static_cast<uint32_t>(modified_count);
-  degree_[v] -= static_cast<uint32_t>(modified_count);
   for (size_t i = 0; i < removed_count; ++i) {
     const uint32_t t = removed[i];
     alive_[t] = 1;
-    for (uint32_t x : corners_[t]) {
-      ++degree_[x];
+    for (uint32_t x : corners_[t])
       incident_[x].push_back(t);
-    }
   }
   alive_count_ += removed_count;
 }
@@ -98,17 +98,17 @@ bool FanMeshState::stars_valid(const std::vector<uint32_t>& vertices) {
   constexpr uint32_t kNone = 0xffffffffu;
   std::vector<uint32_t> next, prev, successor;
   for (uint32_t v : vertices) {
+    const std::vector<uint32_t>& star = incident_[v];
     if (!present_[v]) {
-      if (degree_[v] != 0) return false;
+      if (!star.empty()) return false;
       continue;
     }
-    star(v, &scratch_);
-    const size_t k = scratch_.size();
+    const size_t k = star.size();
     if (k == 0) return false;
     next.resize(k);
     prev.resize(k);
     for (size_t i = 0; i < k; ++i) {
-      const Triangle& t = corners_[scratch_[i]];
+      const Triangle& t = corners_[star[i]];
       const int at = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
       next[i] = t[(at + 1) % 3];
       prev[i] = t[(at + 2) % 3];

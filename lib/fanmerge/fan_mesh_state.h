@@ -1,7 +1,7 @@
 // The mutable triangle mesh that fan-merges and their fine paths edit, shared
 // by the construction (fan_build.cpp) and the runtime (fan_runtime.cpp):
-// input triangles by index with their current corners, alive flags, a live
-// degree per vertex, lazily compacted vertex-to-triangle lists, and the local
+// input triangles by index with their current corners, alive flags, exact
+// vertex-to-triangle lists, and the local
 // check that an edit left a valid triangulation around the vertices it
 // touched. Internal to lib/fanmerge.
 #pragma once
@@ -25,14 +25,16 @@ class FanMeshState {
   const Triangle& corners(uint32_t t) const { return corners_[t]; }
   bool alive(uint32_t t) const { return alive_[t] != 0; }
   bool present(uint32_t v) const { return present_[v] != 0; }
-  uint32_t degree(uint32_t v) const { return degree_[v]; }
+  uint32_t degree(uint32_t v) const { return static_cast<uint32_t>(incident_[v].size()); }
   size_t alive_count() const { return alive_count_; }
   size_t present_count() const { return present_count_; }
   size_t triangle_count() const { return corners_.size(); }
 
-  /// The alive triangles with a corner `v`, ascending, into *out (replaced).
-  /// Compacts v's list as a side effect.
-  void star(uint32_t v, std::vector<uint32_t>* out);
+  /// The alive triangles with a corner `v`, into *out (replaced), in the
+  /// deterministic order of v's list.
+  void star(uint32_t v, std::vector<uint32_t>* out) const;
+  /// The same without a copy; valid until the next edit.
+  const std::vector<uint32_t>& triangles_of(uint32_t v) const { return incident_[v]; }
 
   /// The half-edge collapse of c into v: the `removed` triangles die, `c`
   /// becomes `v` in the `modified` ones, c is no longer present.
@@ -59,11 +61,10 @@ class FanMeshState {
   std::vector<Triangle> corners_;
   std::vector<uint8_t> alive_;
   std::vector<uint8_t> present_;
-  std::vector<uint32_t> degree_;
-  std::vector<std::vector<uint32_t>> incident_;  // may hold stale or repeated entries
+  std::vector<std::vector<uint32_t>> incident_;  // exactly the alive triangles of each vertex
   size_t alive_count_ = 0;
   size_t present_count_ = 0;
-  std::vector<uint32_t> scratch_;
+  void unlink(uint32_t v, uint32_t t);
 };
 
 /// True when triangle `t` has a corner `v`.

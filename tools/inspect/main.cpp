@@ -12,6 +12,7 @@
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/section_validation.h"
+#include "formats/sections/fanh.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
@@ -163,6 +164,22 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
       if (v.position_encoding == PositionEncoding::kQuantized)
         jv["quantization_bits"] = v.quantization_bits;
       contents[kVsplTag] = std::move(jv);
+    } else if (section.tag() == kFanhTag) {
+      // Depth and fan sizes need the whole forest; decoding is linear and cheap.
+      Result<FanHierarchy> fanh = decode_fanh(section.data, section.size);
+      if (!fanh.is_ok()) {
+        contents[kFanhTag] = keep(fanh.status());
+        continue;
+      }
+      const FanhStats f = fanh_stats(fanh.value());
+      contents[kFanhTag] = {{"internal_nodes", f.internal_nodes},
+                            {"leaves", f.leaves},
+                            {"roots", f.roots},
+                            {"depth", f.depth},
+                            {"average_children", f.average_children},
+                            {"removed_entries", f.removed_entries},
+                            {"modified_entries", f.modified_entries},
+                            {"bytes", section.size}};
     }
   }
   return contents;
@@ -210,6 +227,19 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
         << " vertices, collapse errors " << v["error_range"][0].get<double>() << " .. "
         << v["error_range"][1].get<double>() << ", positions " << v["positions"].get<std::string>()
         << "\n";
+  }
+  if (contents.contains(kFanhTag)) {
+    const nlohmann::json& f = contents[kFanhTag];
+    out << "FANH          ";
+    if (!f.is_object()) {
+      out << f.get<std::string>() << "\n";
+      return;
+    }
+    out << "fan hierarchy: " << f["internal_nodes"].get<uint64_t>() << " internal nodes, "
+        << f["leaves"].get<uint64_t>() << " leaves, " << f["roots"].get<uint64_t>()
+        << " roots, depth " << f["depth"].get<uint64_t>() << ", "
+        << f["average_children"].get<double>() << " children on average, "
+        << f["bytes"].get<uint64_t>() << " bytes\n";
   }
 }
 
