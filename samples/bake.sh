@@ -36,6 +36,10 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 "$bin/lodbake-inspect" -q "$out/elephant-pm.lbk" --extract "$out/elephant-pm-full.obj" --lod 1.0 > /dev/null
 "$bin/lodbake-inspect" --strict -q "$out/elephant-pm-full.obj" | grep -E '^(triangles|genus|problems)'
 
+step "6. build the fan-merge hierarchy (lodbake-fan) and validate it"
+"$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk"
+"$bin/lodbake-inspect" --validate "$out/elephant-fan.lbk" | grep -E '^(FANH|validation)'
+
 size() { stat -c %s "$1"; }
 step "summary"
 printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
@@ -44,4 +48,5 @@ printf '%-28s %10s bytes\n' "elephant-q16.lbk (16 bits)" "$(size "$out/elephant-
 printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.glb")"
 printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
+printf '%-28s %10s bytes\n' "elephant-fan.lbk (FANH)" "$(size "$out/elephant-fan.lbk")"
 echo "all steps passed; outputs in $out"

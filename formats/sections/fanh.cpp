@@ -40,6 +40,18 @@ uint64_t stream_bits(const FanhSummary& s, const Widths& w) {
          (uint64_t{s.removed_entries} + s.modified_entries) * w.triangle_bits;
 }
 
+// Bits of the largest count stored (children - 2, list lengths); at least 1.
+// \pre the offsets are consistent.
+int count_width(const FanHierarchy& h) {
+  uint32_t largest = 0;
+  for (size_t i = 0; i < h.internal_count(); ++i)
+    largest = std::max(largest, h.child_start[i + 1] - h.child_start[i] - 2);
+  for (size_t j = 0; j < h.children.size(); ++j)
+    largest = std::max({largest, h.removed_start[j + 1] - h.removed_start[j],
+                        h.modified_start[j + 1] - h.modified_start[j]});
+  return std::max(1, bits_for_count(uint64_t{largest} + 1));
+}
+
 // One finding per kind of problem: its count and first instance.
 class Findings {
  public:
@@ -212,14 +224,7 @@ Result<Bytes> encode_fanh(const FanHierarchy& h) {
     s.child_entries = static_cast<uint32_t>(h.children.size());
     s.removed_entries = static_cast<uint32_t>(h.removed.size());
     s.modified_entries = static_cast<uint32_t>(h.modified.size());
-    uint32_t largest = 0;
-    for (size_t i = 0; i < h.internal_count(); ++i)
-      largest = std::max(largest, h.child_start[i + 1] - h.child_start[i] - 2);
-    for (size_t j = 0; j < h.children.size(); ++j)
-      largest = std::max({largest, h.removed_start[j + 1] - h.removed_start[j],
-                          h.modified_start[j + 1] - h.modified_start[j]});
-    Widths w{bits_for_count(h.node_count()), bits_for_count(h.triangle_count),
-             std::max(1, bits_for_count(uint64_t{largest} + 1))};
+    Widths w{bits_for_count(h.node_count()), bits_for_count(h.triangle_count), count_width(h)};
     Bytes out;
     out.reserve(kFanhFixedBytes + 4 * h.internal_count() + stream_bits(s, w) / 8 + 1);
     ByteWriter bw(&out);
@@ -366,6 +371,10 @@ Result<FanHierarchy> decode_fanh(const uint8_t* data, size_t size, FanhSummary* 
     for (uint32_t& t : h.modified)
       bits.read(w.triangle_bits, &t);
     if (!bits.padding_is_zero()) return bad_fanh("nonzero padding bits after the last list");
+    // One encoding per hierarchy: the count width is the largest count's.
+    if (w.count_bits != count_width(h))
+      return bad_fanh("count width " + std::to_string(w.count_bits) +
+                      " bits but the largest count needs " + std::to_string(count_width(h)));
     std::vector<std::string> findings = validate_fanh_structure(h);
     if (!findings.empty()) return bad_fanh(findings.front());
     if (summary != nullptr) *summary = s;
