@@ -21,7 +21,12 @@
 //   a neighbour's merge changes its link (its error is then recomputed and it
 //   goes back into the heap);
 // - heap: a binary heap of vertices updated in place, ordered by priority
-//   then vertex index, so the result is deterministic;
+//   then vertex index, so the result is deterministic. After a merge the new
+//   link's keys are refreshed lazily: a vertex is re-keyed when it reaches
+//   the top and goes back in if it is no longer the cheapest (keys mostly
+//   grow as quadrics accumulate, so this is nearly the eager order at a
+//   fraction of the cost: most of those vertices are merged into another
+//   fan before they reach the top);
 // - stop: heap empty, the vertex target, or (per candidate) the error limit.
 #include "lib/fanmerge/fan_build.h"
 
@@ -58,6 +63,7 @@ class VertexHeap {
     position_.assign(vertex_count, kAbsent);
   }
   bool empty() const { return entries_.empty(); }
+  bool contains(uint32_t v) const { return position_[v] != kAbsent; }
   double top_priority() const { return entries_.front().priority; }
   uint32_t top() const { return entries_.front().vertex; }
   void set(uint32_t v, double priority) {
@@ -136,6 +142,8 @@ class FanBuilder {
       node_of_[v] = v;
     heap_.reset(n);
     mark_.assign(n, 0);
+    link_mark_.assign(n, 0);
+    dirty_.assign(n, 0);
     h_.vertex_count = static_cast<uint32_t>(n);
     h_.triangle_count = static_cast<uint32_t>(input_.triangles.size());
     cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
@@ -149,6 +157,13 @@ class FanBuilder {
     while (!heap_.empty()) {
       if (state_.present_count() <= target_) break;
       const uint32_t v = heap_.top();
+      if (dirty_[v]) {
+        // Its link changed since its key was computed: re-key it and let
+        // the heap decide again.
+        dirty_[v] = 0;
+        heap_.set(v, priority(v));
+        continue;
+      }
       heap_.pop();
       if (!state_.present(v)) continue;
       if (error_limit_ && delta_of(v) > *error_limit_) {
@@ -243,14 +258,21 @@ class FanBuilder {
     return q.weight > 0 ? q.evaluate(to_d(input_.positions[v])) / q.weight : 0.0;
   }
 
-  // The distinct vertices of v's star other than v, ascending.
+  // The distinct vertices of v's star other than v, in star order (a stamp
+  // filters repeats; the order is deterministic).
   void link(uint32_t v, std::vector<uint32_t>* out) {
     out->clear();
+    if (++link_stamp_ == 0) {
+      std::fill(link_mark_.begin(), link_mark_.end(), 0);
+      link_stamp_ = 1;
+    }
+    link_mark_[v] = link_stamp_;
     for (uint32_t t : state_.triangles_of(v))
       for (uint32_t x : state_.corners(t))
-        if (x != v) out->push_back(x);
-    std::sort(out->begin(), out->end());
-    out->erase(std::unique(out->begin(), out->end()), out->end());
+        if (link_mark_[x] != link_stamp_) {
+          link_mark_[x] = link_stamp_;
+          out->push_back(x);
+        }
   }
 
   double delta_of(uint32_t v) {
@@ -261,16 +283,17 @@ class FanBuilder {
     return sum;
   }
 
-  void push(uint32_t v) {
+  double priority(uint32_t v) {
     link(v, &link_);
     double sum = 0;
     for (uint32_t u : link_)
       sum += delta(u, v);
-    double priority = sum;
     if (options_.degree_weight != 0 && !link_.empty())
-      priority *= std::pow(static_cast<double>(link_.size()) / 6.0, options_.degree_weight);
-    heap_.set(v, priority);
+      sum *= std::pow(static_cast<double>(link_.size()) / 6.0, options_.degree_weight);
+    return sum;
   }
+
+  void push(uint32_t v) { heap_.set(v, priority(v)); }
 
   Vec3d normal(const Triangle& t) const {
     const Vec3d p0 = to_d(input_.positions[t[0]]);
@@ -330,14 +353,14 @@ class FanBuilder {
   bool try_merge(uint32_t v) {
     link(v, &children_);
     if (children_.empty()) return false;
-    order_.clear();
-    for (uint32_t u : children_)
-      order_.push_back({delta(u, v), u});
-    std::sort(order_.begin(), order_.end());
     if (!final_turns_ok(v)) {
       ++stats_.refused_flip;
       return false;
     }
+    order_.clear();
+    for (uint32_t u : children_)
+      order_.push_back({delta(u, v), u});
+    std::sort(order_.begin(), order_.end());
     steps_.clear();
     removed_.clear();
     modified_.clear();
@@ -362,18 +385,13 @@ class FanBuilder {
           if (!seen) first_normal_.push_back({t, n});
         }
       s.modified_end = static_cast<uint32_t>(modified_.size());
+      touched_.clear();
+      state_.collect_changed(u, v, removed_.data() + s.removed_begin,
+                             s.removed_end - s.removed_begin, modified_.data() + s.modified_begin,
+                             s.modified_end - s.modified_begin, &touched_);
       state_.collapse(u, v, removed_.data() + s.removed_begin, s.removed_end - s.removed_begin,
                       modified_.data() + s.modified_begin, s.modified_end - s.modified_begin);
       steps_.push_back(s);
-      touched_.clear();
-      touched_.push_back(u);
-      touched_.push_back(v);
-      for (uint32_t i = s.removed_begin; i < s.removed_end; ++i)
-        for (uint32_t x : state_.corners(removed_[i]))
-          touched_.push_back(x);
-      for (uint32_t i = s.modified_begin; i < s.modified_end; ++i)
-        for (uint32_t x : state_.corners(modified_[i]))
-          touched_.push_back(x);
       std::sort(touched_.begin(), touched_.end());
       touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
       if (!state_.stars_valid(touched_)) {
@@ -421,12 +439,20 @@ class FanBuilder {
     steps_.clear();
   }
 
+  // The new link's errors changed. A vertex still in the heap is re-keyed
+  // lazily, when it reaches the top (most are merged into a neighbour's fan
+  // before that); one that left the heap (refused or over the error limit)
+  // goes back in with its new key, to be tried again.
   void update_after_merge(uint32_t v) {
-    link(v, &children_);
-    std::vector<uint32_t> around = children_;
+    link(v, &around_);
     push(v);
-    for (uint32_t w : around)
-      push(w);
+    for (uint32_t w : around_) {
+      if (heap_.contains(w)) {
+        dirty_[w] = 1;
+      } else {
+        push(w);
+      }
+    }
   }
 
   const TriangleMesh& input_;
@@ -438,12 +464,15 @@ class FanBuilder {
   std::vector<uint32_t> node_of_;
   std::vector<uint32_t> mark_;  // final_turns_ok()'s closed-fan marks
   uint32_t mark_stamp_ = 0;
+  std::vector<uint8_t> dirty_;  // in the heap with a key from an older link
+  std::vector<uint32_t> link_mark_;  // link()'s repeat filter
+  uint32_t link_stamp_ = 0;
   VertexHeap heap_;
   uint64_t target_ = 0;
   std::optional<double> error_limit_;
   double cos_limit_ = 0;
   // Scratch, kept to avoid allocations per merge.
-  std::vector<uint32_t> star_, link_, children_, removed_, modified_, touched_;
+  std::vector<uint32_t> star_, link_, children_, around_, removed_, modified_, touched_;
   std::vector<std::pair<double, uint32_t>> order_;
   std::vector<Step> steps_;
   std::vector<Vec3d> step_normals_;

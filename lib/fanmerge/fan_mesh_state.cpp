@@ -8,8 +8,11 @@
 //   scan is cheaper than filtering stale entries on every read, and the
 //   validity check reads the lists without copying;
 // - the validity check is local: a collapse or split changes only triangles
-//   of the two vertices' stars, so checking the stars of every corner of
-//   those triangles covers every edge, vertex and duplicate it can affect.
+//   of the two vertices' stars, so checking the stars of the corners of
+//   those triangles covers every edge, vertex and duplicate it can affect;
+//   a corner whose star only sees c renamed to v (it is not otherwise a
+//   neighbour of v) keeps an isomorphic star and is skipped
+//   (collect_changed()).
 #include "lib/fanmerge/fan_mesh_state.h"
 
 #include <algorithm>
@@ -22,6 +25,8 @@ void FanMeshState::init(const TriangleMesh& mesh) {
   corners_ = mesh.triangles;
   alive_.assign(corners_.size(), 1);
   present_.assign(n, 0);
+  mark_.assign(n, 0);
+  stamp_ = 0;
   incident_.assign(n, {});
   std::vector<uint32_t> degree(n, 0);
   for (const Triangle& t : corners_)
@@ -92,6 +97,28 @@ void FanMeshState::split(uint32_t c, uint32_t v, const uint32_t* removed, size_t
       incident_[x].push_back(t);
   }
   alive_count_ += removed_count;
+}
+
+void FanMeshState::collect_changed(uint32_t c, uint32_t v, const uint32_t* removed,
+                                   size_t removed_count, const uint32_t* modified,
+                                   size_t modified_count, std::vector<uint32_t>* out) {
+  if (++stamp_ == 0) {
+    std::fill(mark_.begin(), mark_.end(), 0);
+    stamp_ = 1;
+  }
+  // v's neighbours through triangles that do not hold c (those are the
+  // removed ones, whose corners are all collected anyway).
+  for (uint32_t t : incident_[v])
+    for (uint32_t x : corners_[t])
+      mark_[x] = stamp_;
+  out->push_back(v);
+  out->push_back(c);
+  for (size_t i = 0; i < removed_count; ++i)
+    for (uint32_t x : corners_[removed[i]])
+      if (x != c && x != v) out->push_back(x);
+  for (size_t i = 0; i < modified_count; ++i)
+    for (uint32_t x : corners_[modified[i]])
+      if (x != c && x != v && mark_[x] == stamp_) out->push_back(x);
 }
 
 bool FanMeshState::stars_valid(const std::vector<uint32_t>& vertices) {

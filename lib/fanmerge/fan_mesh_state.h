@@ -47,6 +47,17 @@ class FanMeshState {
   void split(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
              const uint32_t* modified, size_t modified_count);
 
+  /// Appends to *out the vertices whose stars a collapse of c into v (call
+  /// before it) or the split of c off v (call after it) changes other than
+  /// by renaming c to v throughout: v, c, the third corners of `removed`,
+  /// and the other corners of `modified` that are neighbours of v outside
+  /// c's triangles. Every other corner of a modified triangle sees only the
+  /// rename, so a star that was valid stays valid: checking these vertices
+  /// is enough when the mesh was valid before.
+  void collect_changed(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
+                       const uint32_t* modified, size_t modified_count,
+                       std::vector<uint32_t>* out);
+
   /// True when around every vertex of `vertices` the mesh is a valid
   /// triangulation: a present vertex has at least one triangle, and its
   /// triangles form one fan (a chain or a cycle) in which no neighbour
@@ -65,6 +76,8 @@ class FanMeshState {
   size_t alive_count_ = 0;
   size_t present_count_ = 0;
   void unlink(uint32_t v, uint32_t t);
+  std::vector<uint32_t> mark_;  // collect_changed()'s neighbour marks
+  uint32_t stamp_ = 0;
 };
 
 /// True when triangle `t` has a corner `v`.

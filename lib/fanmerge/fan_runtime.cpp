@@ -200,14 +200,8 @@ void FanRuntime::apply_split(uint32_t node, uint32_t k) {
 
 void FanRuntime::touch(uint32_t node, uint32_t k) {
   const Lists l = lists(node, k);
-  touched_.push_back(vertex_[node]);
-  touched_.push_back(vertex_[child(node, k)]);
-  for (size_t i = 0; i < l.removed_count; ++i)
-    for (uint32_t x : state_.corners(l.removed[i]))
-      touched_.push_back(x);
-  for (size_t i = 0; i < l.modified_count; ++i)
-    for (uint32_t x : state_.corners(l.modified[i]))
-      touched_.push_back(x);
+  state_.collect_changed(vertex_[child(node, k)], vertex_[node], l.removed, l.removed_count,
+                         l.modified, l.modified_count, &touched_);
 }
 
 bool FanRuntime::touched_valid() {
@@ -231,12 +225,15 @@ bool FanRuntime::run(uint32_t node, uint32_t steps, bool forward, bool check_eac
       ok = false;
       break;
     }
+    // The changed vertices are collected where c's triangles are apart
+    // from v's: before a collapse, after a split.
     if (forward) {
+      touch(node, k);
       apply_collapse(node, k);
     } else {
       apply_split(node, k);
+      touch(node, k);
     }
-    touch(node, k);
     if (check_each && !touched_valid()) {
       ++done;
       ok = false;
