@@ -26,7 +26,9 @@
 namespace lodbake {
 namespace {
 
-Status bad_fanh(const std::string& detail) { return malformed_section(kFanhTag, detail); }
+Status bad_fanh(const std::string& detail) {
+  return malformed_section(kFanhTag, detail);
+}
 
 struct Widths {
   int node_bits;
@@ -196,8 +198,7 @@ std::vector<std::string> validate_fanh(const FanHierarchy& h, const TriangleMesh
       }
       if (c == v || degree[c] != (re - rb) + (me - mb))
         return {where + ": its lists hold " + std::to_string((re - rb) + (me - mb)) +
-                " triangles but vertex " + std::to_string(c) + " has " +
-                std::to_string(degree[c])};
+                " triangles but vertex " + std::to_string(c) + " has " + std::to_string(degree[c])};
       for (uint32_t r = rb; r < re; ++r) {
         alive[h.removed[r]] = 0;
         for (uint32_t x : corners[h.removed[r]])

@@ -33,8 +33,8 @@ struct FanhSummary {
 struct FanhStats {
   uint64_t internal_nodes = 0;
   uint64_t leaves = 0;
-  uint64_t roots = 0;      ///< nodes without a parent: the coarsest mesh's vertices
-  uint64_t depth = 0;      ///< edges on the longest root-to-leaf path; 0 without merges
+  uint64_t roots = 0;           ///< nodes without a parent: the coarsest mesh's vertices
+  uint64_t depth = 0;           ///< edges on the longest root-to-leaf path; 0 without merges
   double average_children = 0;  ///< collapsed children per internal node (centres not counted)
   uint64_t removed_entries = 0;
   uint64_t modified_entries = 0;

@@ -46,12 +46,18 @@ using fan_internal::has_corner;
 
 constexpr double kPi = 3.14159265358979323846;
 
-Vec3d to_d(const Vec3f& p) { return {p[0], p[1], p[2]}; }
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d to_d(const Vec3f& p) {
+  return {p[0], p[1], p[2]};
+}
+Vec3d sub(const Vec3d& a, const Vec3d& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Vec3d& a, const Vec3d& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // A binary min-heap of vertices keyed by priority (ties: vertex index), with
 // each vertex's position kept so that a changed priority is updated in place:
@@ -193,8 +199,8 @@ class FanBuilder {
     target_ = 0;
     if (options_.target_vertices) target_ = std::max(target_, *options_.target_vertices);
     if (options_.target_ratio)
-      target_ = std::max(target_, static_cast<uint64_t>(std::ceil(*options_.target_ratio *
-                                                                   static_cast<double>(n))));
+      target_ = std::max(target_, static_cast<uint64_t>(
+                                      std::ceil(*options_.target_ratio * static_cast<double>(n))));
     if (options_.max_error) {
       Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
       for (const Vec3f& p : input_.positions)
@@ -230,8 +236,8 @@ class FanBuilder {
       if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
       for (uint32_t v : t)
         quadric_[v] += q;
-      if (!(bw > 0) || (!topology.boundary[t[0]] && !topology.boundary[t[1]] &&
-                        !topology.boundary[t[2]]))
+      if (!(bw > 0) ||
+          (!topology.boundary[t[0]] && !topology.boundary[t[1]] && !topology.boundary[t[2]]))
         continue;
       const Vec3d normal = cross(sub(p1, p0), sub(p2, p0));
       for (int k = 0; k < 3; ++k) {
@@ -339,7 +345,8 @@ class FanBuilder {
       for (uint32_t t : state_.triangles_of(u)) {
         const Triangle& tri = state_.corners(t);
         if ((mark_[tri[0]] == mark_stamp_) + (mark_[tri[1]] == mark_stamp_) +
-                (mark_[tri[2]] == mark_stamp_) != 1)
+                (mark_[tri[2]] == mark_stamp_) !=
+            1)
           continue;
         Triangle moved = tri;
         for (uint32_t& x : moved)
@@ -464,7 +471,7 @@ class FanBuilder {
   std::vector<uint32_t> node_of_;
   std::vector<uint32_t> mark_;  // final_turns_ok()'s closed-fan marks
   uint32_t mark_stamp_ = 0;
-  std::vector<uint8_t> dirty_;  // in the heap with a key from an older link
+  std::vector<uint8_t> dirty_;       // in the heap with a key from an older link
   std::vector<uint32_t> link_mark_;  // link()'s repeat filter
   uint32_t link_stamp_ = 0;
   VertexHeap heap_;

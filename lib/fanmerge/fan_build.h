@@ -37,7 +37,7 @@ struct FanBuildOptions {
 };
 
 struct FanBuildStats {
-  uint64_t merges = 0;           ///< internal nodes created
+  uint64_t merges = 0;            ///< internal nodes created
   uint64_t refused_topology = 0;  ///< attempts leaving a non-manifold or degenerate fan
   uint64_t refused_flip = 0;      ///< attempts folding a modified triangle over
   uint64_t skipped_error = 0;     ///< candidates over max_error

@@ -55,8 +55,7 @@ class FanMeshState {
   /// rename, so a star that was valid stays valid: checking these vertices
   /// is enough when the mesh was valid before.
   void collect_changed(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
-                       const uint32_t* modified, size_t modified_count,
-                       std::vector<uint32_t>* out);
+                       const uint32_t* modified, size_t modified_count, std::vector<uint32_t>* out);
 
   /// True when around every vertex of `vertices` the mesh is a valid
   /// triangulation: a present vertex has at least one triangle, and its

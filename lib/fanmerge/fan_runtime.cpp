@@ -62,8 +62,8 @@ Result<FanRuntime> FanRuntime::create(const TriangleMesh& input, const FanHierar
       input.triangle_count() != hierarchy.triangle_count)
     return invalid_input("fan hierarchy over " + std::to_string(hierarchy.vertex_count) +
                          " vertices and " + std::to_string(hierarchy.triangle_count) +
-                         " triangles, mesh with " + std::to_string(input.vertex_count()) +
-                         " and " + std::to_string(input.triangle_count()));
+                         " triangles, mesh with " + std::to_string(input.vertex_count()) + " and " +
+                         std::to_string(input.triangle_count()));
   for (size_t t = 0; t < input.triangles.size(); ++t)
     for (uint32_t v : input.triangles[t])
       if (v >= input.vertex_count())
@@ -136,8 +136,7 @@ bool FanRuntime::can_collapse(uint32_t node, uint32_t k) const {
   if (state_.degree(c) != l.removed_count + l.modified_count) return false;
   for (size_t i = 0; i < l.removed_count; ++i) {
     const uint32_t t = l.removed[i];
-    if (!state_.alive(t) || !has_corner(state_.corners(t), c) ||
-        !has_corner(state_.corners(t), v))
+    if (!state_.alive(t) || !has_corner(state_.corners(t), c) || !has_corner(state_.corners(t), v))
       return false;
   }
   for (size_t i = 0; i < l.modified_count; ++i) {
@@ -255,9 +254,13 @@ bool FanRuntime::run(uint32_t node, uint32_t steps, bool forward, bool check_eac
   return false;
 }
 
-bool FanRuntime::advance(uint32_t node) { return run(node, 1, true, true); }
+bool FanRuntime::advance(uint32_t node) {
+  return run(node, 1, true, true);
+}
 
-bool FanRuntime::retreat(uint32_t node) { return run(node, 1, false, true); }
+bool FanRuntime::retreat(uint32_t node) {
+  return run(node, 1, false, true);
+}
 
 bool FanRuntime::fan_merge(uint32_t node) {
   if (node >= node_count() || is_leaf(node)) return false;

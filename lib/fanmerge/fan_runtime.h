@@ -91,7 +91,9 @@ class FanRuntime {
   uint32_t merge_pointer(uint32_t node) const {
     return is_leaf(node) ? 0 : pointer_[node - h_.vertex_count];
   }
-  float error(uint32_t node) const { return is_leaf(node) ? 0.f : h_.error[node - h_.vertex_count]; }
+  float error(uint32_t node) const {
+    return is_leaf(node) ? 0.f : h_.error[node - h_.vertex_count];
+  }
   /// A leaf, or an internal node with every child merged.
   bool fully_merged(uint32_t node) const {
     return merge_pointer(node) == collapsible_children(node);

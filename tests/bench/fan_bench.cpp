@@ -172,8 +172,8 @@ int main(int argc, char** argv) {
       status = 3;
     }
     const Timing fan_t = median(fan_times), pm_t = median(pm_times);
-    const double node_ratio =
-        static_cast<double>(pm_nodes) / static_cast<double>(std::max<uint64_t>(1, stats.internal_nodes));
+    const double node_ratio = static_cast<double>(pm_nodes) /
+                              static_cast<double>(std::max<uint64_t>(1, stats.internal_nodes));
     const double size_ratio =
         static_cast<double>(vspl_bytes) / static_cast<double>(std::max<size_t>(1, fanh_bytes));
     if (markdown) {
@@ -184,11 +184,12 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(stats.internal_nodes),
           static_cast<unsigned long long>(stats.depth), stats.average_children, fanh_bytes,
           pm_t.wall, pm_t.cpu, static_cast<unsigned long long>(pm_nodes), vspl_bytes, node_ratio,
-          size_ratio, coarse.wall, static_cast<unsigned long long>(stats.internal_nodes),
-          fine.wall, static_cast<unsigned long long>(fine_ops));
+          size_ratio, coarse.wall, static_cast<unsigned long long>(stats.internal_nodes), fine.wall,
+          static_cast<unsigned long long>(fine_ops));
     } else {
       std::printf("%s: %zu triangles -> %llu vertices, %llu triangles\n", name.c_str(),
-                  input.triangle_count(), static_cast<unsigned long long>(fan.stats.output_vertices),
+                  input.triangle_count(),
+                  static_cast<unsigned long long>(fan.stats.output_vertices),
                   static_cast<unsigned long long>(fan.stats.output_triangles));
       std::printf(
           "  fan hierarchy  build %.3f s (cpu %.3f s), %llu internal nodes, depth %llu, %.2f "

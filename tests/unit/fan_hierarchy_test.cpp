@@ -231,10 +231,18 @@ TEST(FanRuntime, AnyMixOfPartialFinePathsIsAValidTriangulation) {
           const uint32_t parent = rt.parent(picked);
           bool ok = false;
           switch (rng() % 4) {
-            case 0: ok = parent != kNoNode && rt.advance(parent); break;
-            case 1: ok = rt.retreat(picked); break;
-            case 2: ok = parent != kNoNode && rt.fan_merge(parent); break;
-            default: ok = rt.fan_split(picked); break;
+            case 0:
+              ok = parent != kNoNode && rt.advance(parent);
+              break;
+            case 1:
+              ok = rt.retreat(picked);
+              break;
+            case 2:
+              ok = parent != kNoNode && rt.fan_merge(parent);
+              break;
+            default:
+              ok = rt.fan_split(picked);
+              break;
           }
           ++tried;
           accepted += ok;

@@ -49,9 +49,8 @@ Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
   LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
   LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(loaded.mesh, BaseEncodeOptions()));
   LODBAKE_ASSIGN_OR_RETURN(Bytes fanh_bytes, encode_fanh(built.hierarchy));
-  *sections = {{"META", meta_bytes.size()},
-               {"BASE", base_bytes.size()},
-               {"FANH", fanh_bytes.size()}};
+  *sections = {
+      {"META", meta_bytes.size()}, {"BASE", base_bytes.size()}, {"FANH", fanh_bytes.size()}};
   ContainerWriter writer;
   LODBAKE_RETURN_IF_ERROR(writer.add_section(kMetaTag, std::move(meta_bytes), false));
   LODBAKE_RETURN_IF_ERROR(writer.add_section(kBaseTag, std::move(base_bytes), true));
@@ -90,8 +89,7 @@ int run(const Tool& tool, Request& request) {
       {"input_counts",
        {{"vertices", loaded.mesh.vertex_count()}, {"triangles", loaded.mesh.triangle_count()}}},
       {"coarsest_counts",
-       {{"vertices", result.stats.output_vertices},
-        {"triangles", result.stats.output_triangles}}},
+       {{"vertices", result.stats.output_vertices}, {"triangles", result.stats.output_triangles}}},
       {"build_seconds", seconds},
       {"fan_hierarchy",
        {{"internal_nodes", stats.internal_nodes},
@@ -144,9 +142,9 @@ int main(int argc, char** argv) {
   tool.options().add_options()("output,o",
                                po::value<std::string>(&request.output)->value_name("OUT.lbk"),
                                "the container to write")(
-      "vertices", po::value<uint64_t>(&vertices)->value_name("N"),
-      "stop at N vertices or fewer")("ratio", po::value<double>(&ratio)->value_name("R"),
-                                     "stop at R times the input's vertices, 0 < R <= 1")(
+      "vertices", po::value<uint64_t>(&vertices)->value_name("N"), "stop at N vertices or fewer")(
+      "ratio", po::value<double>(&ratio)->value_name("R"),
+      "stop at R times the input's vertices, 0 < R <= 1")(
       "error", po::value<double>(&error)->value_name("E"),
       "skip fan-merges whose error sqrt(Delta) exceeds E times the bounding-box diagonal")(
       "degree-weight", po::value<double>(&request.options.degree_weight)->value_name("W"),
