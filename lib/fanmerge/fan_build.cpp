@@ -148,7 +148,6 @@ class FanBuilder {
       node_of_[v] = v;
     heap_.reset(n);
     mark_.assign(n, 0);
-    link_mark_.assign(n, 0);
     dirty_.assign(n, 0);
     h_.vertex_count = static_cast<uint32_t>(n);
     h_.triangle_count = static_cast<uint32_t>(input_.triangles.size());
@@ -264,19 +263,24 @@ class FanBuilder {
     return q.weight > 0 ? q.evaluate(to_d(input_.positions[v])) / q.weight : 0.0;
   }
 
+  uint32_t next_stamp() {
+    if (++stamp_ == 0) {
+      std::fill(mark_.begin(), mark_.end(), 0);
+      stamp_ = 1;
+    }
+    return stamp_;
+  }
+
   // The distinct vertices of v's star other than v, in star order (a stamp
   // filters repeats; the order is deterministic).
   void link(uint32_t v, std::vector<uint32_t>* out) {
     out->clear();
-    if (++link_stamp_ == 0) {
-      std::fill(link_mark_.begin(), link_mark_.end(), 0);
-      link_stamp_ = 1;
-    }
-    link_mark_[v] = link_stamp_;
+    const uint32_t stamp = next_stamp();
+    mark_[v] = stamp;
     for (uint32_t t : state_.triangles_of(v))
       for (uint32_t x : state_.corners(t))
-        if (link_mark_[x] != link_stamp_) {
-          link_mark_[x] = link_stamp_;
+        if (mark_[x] != stamp) {
+          mark_[x] = stamp;
           out->push_back(x);
         }
   }
@@ -334,19 +338,14 @@ class FanBuilder {
   // by the merge (two or more: removed). Most refused merges fail here, far
   // cheaper than applying and undoing their fine path.
   bool final_turns_ok(uint32_t v) {
-    if (++mark_stamp_ == 0) {
-      std::fill(mark_.begin(), mark_.end(), 0);
-      mark_stamp_ = 1;
-    }
-    mark_[v] = mark_stamp_;
+    const uint32_t stamp = next_stamp();
+    mark_[v] = stamp;
     for (uint32_t u : children_)
-      mark_[u] = mark_stamp_;
+      mark_[u] = stamp;
     for (uint32_t u : children_) {
       for (uint32_t t : state_.triangles_of(u)) {
         const Triangle& tri = state_.corners(t);
-        if ((mark_[tri[0]] == mark_stamp_) + (mark_[tri[1]] == mark_stamp_) +
-                (mark_[tri[2]] == mark_stamp_) !=
-            1)
+        if ((mark_[tri[0]] == stamp) + (mark_[tri[1]] == stamp) + (mark_[tri[2]] == stamp) != 1)
           continue;
         Triangle moved = tri;
         for (uint32_t& x : moved)
@@ -469,11 +468,11 @@ class FanBuilder {
   FanBuildStats stats_;
   std::vector<Quadric> quadric_;
   std::vector<uint32_t> node_of_;
-  std::vector<uint32_t> mark_;  // final_turns_ok()'s closed-fan marks
-  uint32_t mark_stamp_ = 0;
-  std::vector<uint8_t> dirty_;       // in the heap with a key from an older link
-  std::vector<uint32_t> link_mark_;  // link()'s repeat filter
-  uint32_t link_stamp_ = 0;
+  // Per-vertex marks for link() and final_turns_ok() (one array for both,
+  // so fewer cache lines): a vertex is marked when it holds the current stamp.
+  std::vector<uint32_t> mark_;
+  uint32_t stamp_ = 0;
+  std::vector<uint8_t> dirty_;  // in the heap with a key from an older link
   VertexHeap heap_;
   uint64_t target_ = 0;
   std::optional<double> error_limit_;
