@@ -319,7 +319,8 @@ Result<FanHierarchy> decode_fanh(const uint8_t* data, size_t size, FanhSummary* 
     h.vertex_count = s.vertex_count;
     h.triangle_count = s.triangle_count;
     h.error.resize(s.internal_count);
-    std::memcpy(h.error.data(), data + kFanhFixedBytes, 4 * size_t{s.internal_count});
+    if (s.internal_count != 0)
+      std::memcpy(h.error.data(), data + kFanhFixedBytes, 4 * size_t{s.internal_count});
     const size_t offset = kFanhFixedBytes + 4 * size_t{s.internal_count};
     BitReader bits(data + offset, size - offset);
     h.child_start.reserve(size_t{s.internal_count} + 1);
