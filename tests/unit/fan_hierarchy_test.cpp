@@ -6,7 +6,12 @@
 #include <random>
 #include <set>
 
+#include "formats/container/container_reader.h"
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
 #include "formats/sections/fanh.h"
+#include "formats/sections/section_validation.h"
 #include "lib/fanmerge/fan_build.h"
 #include "lib/fanmerge/fan_runtime.h"
 #include "lib/simplify/mesh_topology.h"
@@ -347,6 +352,76 @@ TEST(FanhSection, ValidationNamesBrokenForestsAndLists) {
   EXPECT_FALSE(bad.is_ok());
   Result<FanRuntime> rt = FanRuntime::create(mesh, twice);
   EXPECT_FALSE(rt.is_ok());
+}
+
+TEST(FanRuntime, RefusesOperationsTheStateDoesNotAllow) {
+  const TriangleMesh mesh = test_meshes::torus(24, 16);
+  const FanHierarchy h = build(mesh).hierarchy;
+  FanRuntime rt = runtime(mesh, h);
+  const uint32_t leaf = 0;
+  EXPECT_FALSE(rt.advance(leaf));
+  EXPECT_FALSE(rt.fan_merge(leaf));
+  EXPECT_FALSE(rt.retreat(leaf));
+  EXPECT_FALSE(rt.advance(static_cast<uint32_t>(rt.node_count())));  // out of range
+  // The last node is made from earlier ones: it cannot merge before them
+  // (its children are not fully merged), and nothing can be split at the input.
+  const uint32_t last = static_cast<uint32_t>(rt.node_count() - 1);
+  bool has_internal_child = false;
+  for (uint32_t i = 0; i <= rt.collapsible_children(last); ++i)
+    has_internal_child = has_internal_child || !rt.is_leaf(rt.child(last, i));
+  if (has_internal_child) {
+    EXPECT_FALSE(rt.fan_merge(last));
+  }
+  for (uint32_t node = rt.leaf_count(); node < rt.node_count(); ++node)
+    EXPECT_FALSE(rt.retreat(node));
+  ASSERT_TRUE(rt.merge_all());
+  const TriangleMesh coarsest = rt.mesh();
+  // A merged child is held by its parent: it cannot split while the parent is merged.
+  for (uint32_t node = rt.leaf_count(); node < rt.node_count(); ++node) {
+    if (rt.parent(node) == kNoNode) continue;
+    EXPECT_TRUE(rt.held(node));
+    EXPECT_FALSE(rt.fan_split(node));
+    EXPECT_FALSE(rt.retreat(node));
+    break;
+  }
+  EXPECT_FALSE(rt.advance(last));                      // already fully merged
+  EXPECT_EQ(rt.mesh().triangles, coarsest.triangles);  // the refusals changed nothing
+}
+
+Bytes fan_container(const TriangleMesh& mesh, const FanHierarchy& h, bool with_base) {
+  ContainerWriter writer;
+  if (with_base) {
+    EXPECT_TRUE(writer.add_section(kBaseTag, encode_base(mesh, {}).value(), true).is_ok());
+  }
+  EXPECT_TRUE(writer.add_section(kFanhTag, encode_fanh(h).value(), true).is_ok());
+  return writer.finish().value();
+}
+
+TEST(FanhSection, ContainerValidationReplaysTheListsOverBase) {
+  const TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
+  const FanHierarchy h = build(mesh).hierarchy;
+  Bytes good = fan_container(mesh, h, true);
+  Result<Container> c = read_container(good.data(), good.size());
+  ASSERT_TRUE(c.is_ok()) << c.status().message();
+  EXPECT_TRUE(validate_sections(c.value()).empty());
+
+  FanHierarchy wrong = h;
+  std::swap(wrong.modified[0], wrong.modified[wrong.modified.size() / 2]);
+  Bytes bad = fan_container(mesh, wrong, true);
+  c = read_container(bad.data(), bad.size());
+  ASSERT_TRUE(c.is_ok());
+  std::vector<SectionFinding> findings = validate_sections(c.value());
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_EQ(findings[0].tag, "FANH");
+  EXPECT_NE(findings[0].message.find("modified triangle"), std::string::npos)
+      << findings[0].message;
+
+  Bytes alone = fan_container(mesh, h, false);
+  c = read_container(alone.data(), alone.size());
+  ASSERT_TRUE(c.is_ok());
+  findings = validate_sections(c.value());
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_NE(findings[0].message.find("no BASE"), std::string::npos) << findings[0].message;
 }
 
 }  // namespace
