@@ -108,8 +108,10 @@ std::vector<std::string> validate_fanh_structure(const FanHierarchy& h) {
     if (h.removed_start[j] > h.removed_start[j + 1] ||
         h.modified_start[j] > h.modified_start[j + 1])
       return {"list offsets decrease at child entry " + std::to_string(j)};
+  // The counts V and T come from the file without bytes behind them, so
+  // nothing here is sized by them: repeats are found by sorting copies of
+  // the lists, whose lengths the payload bounds.
   Findings f;
-  std::vector<uint8_t> is_child(h.node_count(), 0);
   for (size_t i = 0; i < k; ++i) {
     const uint32_t b = h.child_start[i], e = h.child_start[i + 1];
     if (e < b || e - b < 2) {
@@ -118,36 +120,31 @@ std::vector<std::string> validate_fanh_structure(const FanHierarchy& h) {
       continue;
     }
     const uint64_t id = uint64_t{h.vertex_count} + i;
-    for (uint32_t j = b; j < e; ++j) {
-      const uint32_t child = h.children[j];
-      if (child >= id) {
+    for (uint32_t j = b; j < e; ++j)
+      if (h.children[j] >= id)
         f.add("children not made before their parent",
-              node_name(h, i) + " has child " + std::to_string(child));
-        continue;
-      }
-      if (is_child[child]) {
-        f.add("nodes that are a child twice", "node " + std::to_string(child));
-        continue;
-      }
-      is_child[child] = 1;
-    }
+              node_name(h, i) + " has child " + std::to_string(h.children[j]));
     if (h.removed_start[b + 1] != h.removed_start[b] ||
         h.modified_start[b + 1] != h.modified_start[b])
       f.add("centre children with lists", node_name(h, i));
     if (!std::isfinite(h.error[i]) || h.error[i] < 0)
       f.add("non-finite or negative errors", node_name(h, i));
   }
-  std::vector<uint8_t> removed(h.triangle_count, 0);
-  for (uint32_t t : h.removed) {
-    if (t >= h.triangle_count) {
+  std::vector<uint32_t> sorted = h.children;
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t j = 1; j < sorted.size(); ++j)
+    if (sorted[j] == sorted[j - 1] && (j < 2 || sorted[j - 2] != sorted[j]))
+      f.add("nodes that are a child twice", "node " + std::to_string(sorted[j]));
+  for (uint32_t t : h.removed)
+    if (t >= h.triangle_count)
       f.add("removed triangle ids out of range",
             std::to_string(t) + " of " + std::to_string(h.triangle_count));
-    } else if (removed[t]) {
-      f.add("triangles removed twice", "triangle " + std::to_string(t));
-    } else {
-      removed[t] = 1;
-    }
-  }
+  sorted = h.removed;
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t j = 1; j < sorted.size(); ++j)
+    if (sorted[j] == sorted[j - 1] && sorted[j] < h.triangle_count &&
+        (j < 2 || sorted[j - 2] != sorted[j]))
+      f.add("triangles removed twice", "triangle " + std::to_string(sorted[j]));
   for (uint32_t t : h.modified)
     if (t >= h.triangle_count)
       f.add("modified triangle ids out of range",
@@ -399,21 +396,22 @@ FanhStats fanh_stats(const FanHierarchy& h) {
   s.leaves = h.vertex_count;
   s.removed_entries = h.removed.size();
   s.modified_entries = h.modified.size();
-  // Children have smaller ids than parents, so one pass in id order gives
-  // each node's height (no recursion).
-  std::vector<uint32_t> height(h.node_count(), 0);
-  std::vector<uint8_t> has_parent(h.node_count(), 0);
+  // Every node but a root is a child exactly once. Heights are kept for the
+  // internal nodes only (a leaf's is 0; V has no bytes behind it), and
+  // children have smaller ids than parents, so one pass in id order gives
+  // them without recursion.
+  s.roots = h.node_count() - h.children.size();
+  std::vector<uint32_t> height(h.internal_count(), 0);
   for (size_t i = 0; i < h.internal_count(); ++i) {
     uint32_t best = 0;
     for (uint32_t j = h.child_start[i]; j < h.child_start[i + 1]; ++j) {
-      best = std::max(best, height[h.children[j]] + 1);
-      has_parent[h.children[j]] = 1;
+      const uint32_t child = h.children[j];
+      const uint32_t below = child < h.vertex_count ? 0 : height[child - h.vertex_count];
+      best = std::max(best, below + 1);
     }
-    height[h.vertex_count + i] = best;
+    height[i] = best;
     s.depth = std::max<uint64_t>(s.depth, best);
   }
-  for (uint8_t p : has_parent)
-    s.roots += p == 0;
   if (s.internal_nodes != 0)
     s.average_children = static_cast<double>(h.children.size() - h.internal_count()) /
                          static_cast<double>(s.internal_nodes);
