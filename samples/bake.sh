@@ -39,6 +39,9 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 step "6. balanced vertex hierarchy for selective refinement (lodbake-hierarchy)"
 "$bin/lodbake-hierarchy" "$mesh" -o "$out/elephant-hierarchy.lbk"
 "$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" | grep -E '^(VHIE|RFIN|validation)'
+step "7. build the fan-merge hierarchy (lodbake-fan) and validate it"
+"$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk"
+"$bin/lodbake-inspect" --validate "$out/elephant-fan.lbk" | grep -E '^(FANH|validation)'
 
 size() { stat -c %s "$1"; }
 step "summary"
@@ -49,4 +52,5 @@ printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.gl
 printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
 printf '%-28s %10s bytes\n' "elephant-hierarchy.lbk" "$(size "$out/elephant-hierarchy.lbk")"
+printf '%-28s %10s bytes\n' "elephant-fan.lbk (FANH)" "$(size "$out/elephant-fan.lbk")"
 echo "all steps passed; outputs in $out"

@@ -15,6 +15,7 @@ const std::vector<SectionKind>& known_section_kinds() {
        "vertex trees: base, left and right node records with vertex fans (To, Lau & Green)"},
       {kVhieTag, "balanced vertex hierarchy: trees, fundamental cut vertices, split positions"},
       {kRfinTag, "refinement data per split: sphere, normal cone, screen-space error terms"},
+      {kFanhTag, "fan-merge hierarchy: nodes, fine-path children, modified and removed triangles"},
   };
   return kinds;
 }

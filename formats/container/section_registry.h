@@ -16,6 +16,7 @@ inline constexpr char kDageTag[] = "DAGE";  ///< DAG of vertex splits (formats/s
 inline constexpr char kVtreTag[] = "VTRE";  ///< vertex trees (formats/sections/vtre.h)
 inline constexpr char kVhieTag[] = "VHIE";  ///< balanced vertex hierarchy (formats/sections/vhie.h)
 inline constexpr char kRfinTag[] = "RFIN";  ///< per-split refinement data (formats/sections/rfin.h)
+inline constexpr char kFanhTag[] = "FANH";  ///< fan-merge hierarchy (formats/sections/fanh.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters

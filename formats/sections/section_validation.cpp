@@ -10,6 +10,7 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
+#include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
@@ -32,6 +33,8 @@ struct Decoded {
   const Section* vtre_section = nullptr;
   const Section* vhie_section = nullptr;
   const Section* rfin_section = nullptr;
+  const Section* fanh_section = nullptr;
+  std::optional<TriangleMesh> fanh_base;  // BASE's mesh, kept for FANH's replay
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -194,6 +197,27 @@ void check_vhie(const Decoded& d, std::vector<SectionFinding>* findings) {
   if (!rfin.is_ok()) findings->push_back({kRfinTag, rfin.status().message()});
 }
 
+// FANH is a hierarchy over BASE's mesh: its lists are replayed over it.
+void check_fanh(const Decoded& d, std::vector<SectionFinding>* findings) {
+  const Section& section = *d.fanh_section;
+  if (d.base_section == nullptr) {
+    findings->push_back({kFanhTag, "no BASE section holds the mesh the hierarchy refers to"});
+    return;
+  }
+  Result<FanHierarchy> h = decode_fanh(section.data, section.size);
+  if (!h.is_ok()) {
+    findings->push_back({kFanhTag, h.status().message()});
+    return;
+  }
+  if (!d.fanh_base) {
+    for (std::string& finding : validate_fanh_structure(h.value()))
+      findings->push_back({kFanhTag, std::move(finding)});
+    return;  // BASE's own finding says why the replay cannot run
+  }
+  for (std::string& finding : validate_fanh(h.value(), *d.fanh_base))
+    findings->push_back({kFanhTag, std::move(finding)});
+}
+
 }  // namespace
 
 std::vector<SectionFinding> validate_sections(const Container& container) {
@@ -231,9 +255,13 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       d.vhie_section = &section;
     } else if (section.tag() == kRfinTag) {
       d.rfin_section = &section;
+    } else if (section.tag() == kFanhTag) {
+      d.fanh_section = &section;
     }
   }
   check_vhie(d, &findings);
+  if (d.fanh_section != nullptr && d.base_mesh) d.fanh_base = *d.base_mesh;
+  if (d.fanh_section != nullptr) check_fanh(d, &findings);
   if (d.vspl_section != nullptr) check_vspl(&d, &findings);
   if (d.dage_section != nullptr) check_dage(d, &findings);
   if (d.vtre_section != nullptr) check_vtre(d, &findings);

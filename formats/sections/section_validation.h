@@ -16,7 +16,8 @@ struct SectionFinding {
   std::string message;  // one line
 };
 
-// Every finding: META's and BASE's own in section order, then VSPL's
+// Every finding: META's and BASE's own in section order, then FANH's
+// (replayed over BASE), then VSPL's
 // (decoded against BASE), then the META count checks; empty when all is well.
 // \pre `container` passed read_container() and its buffer is alive.
 std::vector<SectionFinding> validate_sections(const Container& container);

@@ -11,6 +11,7 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
+#include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/section_validation.h"
@@ -217,6 +218,22 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
       Result<uint32_t> rfin = read_rfin_summary(section.data, section.size);
       contents[kRfinTag] =
           rfin.is_ok() ? nlohmann::json{{"records", rfin.value()}} : keep(rfin.status());
+    } else if (section.tag() == kFanhTag) {
+      // Depth and fan sizes need the whole forest; decoding is linear and cheap.
+      Result<FanHierarchy> fanh = decode_fanh(section.data, section.size);
+      if (!fanh.is_ok()) {
+        contents[kFanhTag] = keep(fanh.status());
+        continue;
+      }
+      const FanhStats f = fanh_stats(fanh.value());
+      contents[kFanhTag] = {{"internal_nodes", f.internal_nodes},
+                            {"leaves", f.leaves},
+                            {"roots", f.roots},
+                            {"depth", f.depth},
+                            {"average_children", f.average_children},
+                            {"removed_entries", f.removed_entries},
+                            {"modified_entries", f.modified_entries},
+                            {"bytes", section.size}};
     }
   }
   return contents;
@@ -318,6 +335,19 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
       out << "refinement data: " << r["records"].get<uint64_t>()
           << " split records (sphere, normal cone, mu^2, delta^2)\n";
     }
+  }
+  if (contents.contains(kFanhTag)) {
+    const nlohmann::json& f = contents[kFanhTag];
+    out << "FANH          ";
+    if (!f.is_object()) {
+      out << f.get<std::string>() << "\n";
+      return;
+    }
+    out << "fan hierarchy: " << f["internal_nodes"].get<uint64_t>() << " internal nodes, "
+        << f["leaves"].get<uint64_t>() << " leaves, " << f["roots"].get<uint64_t>()
+        << " roots, depth " << f["depth"].get<uint64_t>() << ", "
+        << f["average_children"].get<double>() << " children on average, "
+        << f["bytes"].get<uint64_t>() << " bytes\n";
   }
 }
 

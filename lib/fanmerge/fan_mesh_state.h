@@ -1,0 +1,88 @@
+// The mutable triangle mesh that fan-merges and their fine paths edit, shared
+// by the construction (fan_build.cpp) and the runtime (fan_runtime.cpp):
+// input triangles by index with their current corners, alive flags, exact
+// vertex-to-triangle lists, and the local
+// check that an edit left a valid triangulation around the vertices it
+// touched. Internal to lib/fanmerge.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/triangle_mesh.h"
+
+namespace lodbake {
+namespace fan_internal {
+
+class FanMeshState {
+ public:
+  /// Every triangle of `mesh` alive with its input corners; a vertex is
+  /// present when a triangle uses it.
+  /// \pre indices in range (the caller checked the mesh).
+  void init(const TriangleMesh& mesh);
+
+  const Triangle& corners(uint32_t t) const { return corners_[t]; }
+  bool alive(uint32_t t) const { return alive_[t] != 0; }
+  bool present(uint32_t v) const { return present_[v] != 0; }
+  uint32_t degree(uint32_t v) const { return static_cast<uint32_t>(incident_[v].size()); }
+  size_t alive_count() const { return alive_count_; }
+  size_t present_count() const { return present_count_; }
+  size_t triangle_count() const { return corners_.size(); }
+
+  /// The alive triangles with a corner `v`, into *out (replaced), in the
+  /// deterministic order of v's list.
+  void star(uint32_t v, std::vector<uint32_t>* out) const;
+  /// The same without a copy; valid until the next edit.
+  const std::vector<uint32_t>& triangles_of(uint32_t v) const { return incident_[v]; }
+
+  /// The half-edge collapse of c into v: the `removed` triangles die, `c`
+  /// becomes `v` in the `modified` ones, c is no longer present.
+  /// \pre the lists are c's star split by whether a triangle holds v.
+  void collapse(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
+                const uint32_t* modified, size_t modified_count);
+  /// The inverse vertex split: c present again, the `modified` triangles'
+  /// corner `v` becomes `c`, the `removed` ones live again with the corners
+  /// they died with.
+  void split(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
+             const uint32_t* modified, size_t modified_count);
+
+  /// Appends to *out the vertices whose stars a collapse of c into v (call
+  /// before it) or the split of c off v (call after it) changes other than
+  /// by renaming c to v throughout: v, c, the third corners of `removed`,
+  /// and the other corners of `modified` that are neighbours of v outside
+  /// c's triangles. Every other corner of a modified triangle sees only the
+  /// rename, so a star that was valid stays valid: checking these vertices
+  /// is enough when the mesh was valid before.
+  void collect_changed(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
+                       const uint32_t* modified, size_t modified_count, std::vector<uint32_t>* out);
+
+  /// True when around every vertex of `vertices` the mesh is a valid
+  /// triangulation: a present vertex has at least one triangle, and its
+  /// triangles form one fan (a chain or a cycle) in which no neighbour
+  /// follows or precedes it twice (edge-manifold, consistently oriented) and
+  /// no two triangles share all three vertices; an absent vertex has none.
+  bool stars_valid(const std::vector<uint32_t>& vertices);
+
+  /// The alive triangles, in input order, with their current corners.
+  std::vector<Triangle> alive_triangles() const;
+
+ private:
+  std::vector<Triangle> corners_;
+  std::vector<uint8_t> alive_;
+  std::vector<uint8_t> present_;
+  std::vector<std::vector<uint32_t>> incident_;  // exactly the alive triangles of each vertex
+  size_t alive_count_ = 0;
+  size_t present_count_ = 0;
+  void unlink(uint32_t v, uint32_t t);
+  std::vector<uint32_t> mark_;  // collect_changed()'s neighbour marks
+  uint32_t stamp_ = 0;
+};
+
+/// True when triangle `t` has a corner `v`.
+inline bool has_corner(const Triangle& t, uint32_t v) {
+  return t[0] == v || t[1] == v || t[2] == v;
+}
+
+}  // namespace fan_internal
+}  // namespace lodbake

@@ -1,0 +1,181 @@
+// lodbake-fan: builds the fan-merge hierarchy (lib/fanmerge) of one mesh and
+// writes it with the mesh as a container (META + BASE + FANH). Thin: the
+// construction lives in lib/, the encoding in formats/.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/fanh.h"
+#include "formats/sections/meta.h"
+#include "formats/support/file_io.h"
+#include "lib/fanmerge/fan_build.h"
+#include "lib/ingest/load_mesh.h"
+#include "tools/common/cli.h"
+#include "tools/common/mesh_report.h"
+
+namespace lodbake::cli {
+namespace {
+
+constexpr const char* kFanSchema = "lodbake.fan/1";
+
+struct Request {
+  std::string input;
+  std::string output;
+  bool repair = false;
+  FanBuildOptions options;
+};
+
+Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
+                            const FanBuildResult& built, nlohmann::json* sections) {
+  const FanBuildOptions& o = request.options;
+  MetaSection meta = make_meta("lodbake-fan");
+  meta.options = {{"degree_weight", o.degree_weight},
+                  {"boundary_weight", o.boundary_weight},
+                  {"max_normal_change_degrees", o.max_normal_change_degrees},
+                  {"repair", request.repair}};
+  if (o.target_vertices) meta.options["vertices"] = *o.target_vertices;
+  if (o.target_ratio) meta.options["ratio"] = *o.target_ratio;
+  if (o.max_error) meta.options["error"] = *o.max_error;
+  meta.input = meta_input(request.input, loaded);
+  meta.counts = {{"vertices", loaded.mesh.vertex_count()},
+                 {"triangles", loaded.mesh.triangle_count()},
+                 {"fan_internal_nodes", built.hierarchy.internal_count()},
+                 {"coarsest_vertices", built.stats.output_vertices},
+                 {"coarsest_triangles", built.stats.output_triangles}};
+  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(loaded.mesh, BaseEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes fanh_bytes, encode_fanh(built.hierarchy));
+  *sections = {
+      {"META", meta_bytes.size()}, {"BASE", base_bytes.size()}, {"FANH", fanh_bytes.size()}};
+  ContainerWriter writer;
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kMetaTag, std::move(meta_bytes), false));
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kBaseTag, std::move(base_bytes), true));
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kFanhTag, std::move(fanh_bytes), true));
+  return writer.finish();
+}
+
+int run(const Tool& tool, Request& request) {
+  LoadOptions load;
+  load.repair = request.repair;
+  load.drop_unreferenced = true;
+  LoadedMesh loaded;
+  if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
+
+  Progress progress(tool, "building the fan hierarchy");
+  request.options.progress = [&](double fraction) { progress.update(fraction); };
+  const auto start = std::chrono::steady_clock::now();
+  Result<FanBuildResult> built = build_fan_hierarchy(loaded.mesh, request.options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!built.is_ok()) return tool.fail(request.input, built.status());
+  const FanBuildResult& result = built.value();
+  const FanhStats stats = fanh_stats(result.hierarchy);
+
+  nlohmann::json sections;
+  Result<Bytes> container = fan_container(request, loaded, result, &sections);
+  if (!container.is_ok()) return tool.fail(request.output, container.status());
+  Status written = write_file_atomic(request.output, container.value());
+  if (!written.is_ok()) return tool.fail(request.output, written);
+
+  const nlohmann::json report = {
+      {"schema", kFanSchema},
+      {"input", request.input},
+      {"output", request.output},
+      {"import", to_json(loaded.import)},
+      {"input_counts",
+       {{"vertices", loaded.mesh.vertex_count()}, {"triangles", loaded.mesh.triangle_count()}}},
+      {"coarsest_counts",
+       {{"vertices", result.stats.output_vertices}, {"triangles", result.stats.output_triangles}}},
+      {"build_seconds", seconds},
+      {"fan_hierarchy",
+       {{"internal_nodes", stats.internal_nodes},
+        {"leaves", stats.leaves},
+        {"roots", stats.roots},
+        {"depth", stats.depth},
+        {"average_children", stats.average_children},
+        {"removed_entries", stats.removed_entries},
+        {"modified_entries", stats.modified_entries},
+        {"bytes", sections["FANH"]}}},
+      {"refused",
+       {{"topology", result.stats.refused_topology},
+        {"fold_over", result.stats.refused_flip},
+        {"over_error", result.stats.skipped_error}}},
+      {"sections", sections},
+      {"total_bytes", container.value().size()}};
+  if (tool.json()) {
+    tool.print_json(report);
+    return 0;
+  }
+  std::cout << "input         " << request.input << ": " << loaded.mesh.vertex_count()
+            << " vertices, " << loaded.mesh.triangle_count() << " triangles\n";
+  std::cout << "built         in " << seconds << " s: " << stats.internal_nodes
+            << " internal nodes, " << stats.leaves << " leaves, depth " << stats.depth << ", "
+            << stats.average_children << " children on average\n";
+  std::cout << "coarsest      " << result.stats.output_vertices << " vertices, "
+            << result.stats.output_triangles << " triangles (" << stats.roots << " roots)\n";
+  std::cout << "wrote         " << request.output << ": " << container.value().size()
+            << " bytes (FANH " << sections["FANH"].get<uint64_t>() << ", BASE "
+            << sections["BASE"].get<uint64_t>() << ")\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace lodbake::cli
+
+int main(int argc, char** argv) {
+  using namespace lodbake;
+  using namespace lodbake::cli;
+  Tool tool("lodbake-fan", "MESH -o OUT.lbk [options]",
+            "Builds the fan-merge hierarchy of a mesh (Livny, Sokolovsky & El-Sana 2007):\n"
+            "fan-merges in increasing order of their quadric error, each a node whose\n"
+            "children are the fine path of edge collapses giving the same mesh. Writes\n"
+            "META, the mesh (BASE) and the hierarchy (FANH). Stops at the first of\n"
+            "--vertices and --ratio reached, or when no legal fan-merge is left;\n"
+            "--error skips fans over the limit.");
+  Request request;
+  double ratio = 0, error = 0;
+  uint64_t vertices = 0;
+  tool.options().add_options()("output,o",
+                               po::value<std::string>(&request.output)->value_name("OUT.lbk"),
+                               "the container to write")(
+      "vertices", po::value<uint64_t>(&vertices)->value_name("N"), "stop at N vertices or fewer")(
+      "ratio", po::value<double>(&ratio)->value_name("R"),
+      "stop at R times the input's vertices, 0 < R <= 1")(
+      "error", po::value<double>(&error)->value_name("E"),
+      "skip fan-merges whose error sqrt(Delta) exceeds E times the bounding-box diagonal")(
+      "degree-weight", po::value<double>(&request.options.degree_weight)->value_name("W"),
+      "priority = error * (degree / 6)^W: low-degree fans first (default 0: off)")(
+      "boundary-weight", po::value<double>(&request.options.boundary_weight)->value_name("W"),
+      "weight of the boundary-preserving quadrics (default 10)")(
+      "max-normal-change",
+      po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
+      "refuse fan-merges that turn a modified triangle by more than DEG degrees (default 90)")(
+      "repair", po::bool_switch(&request.repair), "repair the input first (see lodbake-pack)");
+  tool.positional("mesh", -1);
+  if (std::optional<int> done = tool.parse(argc, argv)) return *done;
+  if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
+    return *code;
+  if (request.output.empty()) return tool.usage_error("missing -o OUT.lbk");
+  if (tool.has("vertices")) request.options.target_vertices = vertices;
+  if (tool.has("ratio")) {
+    if (!(ratio > 0 && ratio <= 1)) return tool.usage_error("--ratio takes a value in (0, 1]");
+    request.options.target_ratio = ratio;
+  }
+  if (tool.has("error")) {
+    if (!(error >= 0)) return tool.usage_error("--error takes a value >= 0");
+    request.options.max_error = error;
+  }
+  if (!(request.options.max_normal_change_degrees >= 0 &&
+        request.options.max_normal_change_degrees <= 180))
+    return tool.usage_error("--max-normal-change takes degrees in [0, 180]");
+  if (!std::isfinite(request.options.degree_weight) ||
+      !(request.options.boundary_weight >= 0 && std::isfinite(request.options.boundary_weight)))
+    return tool.usage_error("--degree-weight must be finite and --boundary-weight finite and >= 0");
+  if (same_file(request.input, request.output))
+    return tool.usage_error("the output '" + request.output + "' is the input mesh itself");
+  return tool.run([&] { return run(tool, request); });
+}
