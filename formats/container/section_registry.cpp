@@ -10,6 +10,8 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kMetaTag, "provenance: tool, version, options, input, counts (JSON)"},
       {kBaseTag, "base triangle mesh: positions, triangles, normals, texture coordinates"},
       {kVsplTag, "progressive mesh: vertex-split records and the input vertex permutation"},
+      {kStrpTag, "triangle strips over BASE's vertices"},
+      {kSetsTag, "SETS multiresolution strip graph over a progressive mesh's contractions"},
   };
   return kinds;
 }

@@ -12,6 +12,8 @@ namespace lodbake {
 inline constexpr char kMetaTag[] = "META";  ///< JSON provenance (formats/sections/meta.h)
 inline constexpr char kBaseTag[] = "BASE";  ///< base triangle mesh (formats/sections/base.h)
 inline constexpr char kVsplTag[] = "VSPL";  ///< vertex-split records (formats/sections/vspl.h)
+inline constexpr char kStrpTag[] = "STRP";  ///< triangle strips (formats/sections/strp.h)
+inline constexpr char kSetsTag[] = "SETS";  ///< SETS strip graph (formats/sections/sets.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters
