@@ -10,6 +10,8 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/sets.h"
+#include "formats/sections/strp.h"
 #include "formats/sections/vspl.h"
 
 namespace lodbake {
@@ -24,6 +26,8 @@ struct Decoded {
   const Section* vspl_section = nullptr;
   std::optional<VsplSummary> vspl;         // its fixed fields read
   std::optional<uint64_t> full_triangles;  // when VSPL decoded in full
+  const Section* strp_section = nullptr;
+  const Section* sets_section = nullptr;
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -127,9 +131,26 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       }
     } else if (section.tag() == kVsplTag) {
       d.vspl_section = &section;
+    } else if (section.tag() == kStrpTag) {
+      d.strp_section = &section;
+    } else if (section.tag() == kSetsTag) {
+      d.sets_section = &section;
     }
   }
+  // STRP indexes BASE's vertices; checked before VSPL takes the base mesh.
+  if (d.strp_section != nullptr) {
+    for (std::string& finding :
+         validate_strp_payload(d.strp_section->data, d.strp_section->size,
+                               d.base_section != nullptr, d.base_mesh ? &*d.base_mesh : nullptr))
+      findings.push_back({kStrpTag, std::move(finding)});
+  }
   if (d.vspl_section != nullptr) check_vspl(&d, &findings);
+  if (d.sets_section != nullptr) {
+    for (std::string& finding :
+         validate_sets_payload(d.sets_section->data, d.sets_section->size,
+                               d.vspl_section != nullptr, d.vspl ? &*d.vspl : nullptr))
+      findings.push_back({kSetsTag, std::move(finding)});
+  }
   if (d.meta) check_meta_counts(d, &findings);
   return findings;
 }

@@ -421,3 +421,27 @@ std::vector<std::string> validate_sets(const SetsGraph& g) {
 }
 
 }  // namespace lodbake
+
+namespace lodbake {
+
+std::vector<std::string> validate_sets_payload(const uint8_t* data, size_t size, bool has_vspl,
+                                               const VsplSummary* vspl) {
+  Result<SetsGraph> graph = decode_sets(data, size);
+  if (!graph.is_ok()) return {graph.status().message()};
+  std::vector<std::string> findings;
+  if (!has_vspl) findings.push_back("no VSPL section holds the progressive mesh the graph follows");
+  if (vspl != nullptr) {
+    if (graph.value().vertex_count != vspl->full_vertex_count())
+      findings.push_back(string_printf("graph over %u vertices, BASE and VSPL make %" PRIu64,
+                                       graph.value().vertex_count, vspl->full_vertex_count()));
+    if (uint64_t{graph.value().lod_count} != uint64_t{vspl->split_count} + 1)
+      findings.push_back(string_printf("%u LoDs, VSPL's %u splits make %" PRIu64,
+                                       graph.value().lod_count, vspl->split_count,
+                                       uint64_t{vspl->split_count} + 1));
+  }
+  for (std::string& finding : validate_sets(graph.value()))
+    findings.push_back(std::move(finding));
+  return findings;
+}
+
+}  // namespace lodbake

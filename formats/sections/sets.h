@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 
@@ -119,5 +120,13 @@ Result<std::vector<uint32_t>> walk_strip(const SetsGraph& graph, size_t strip, u
 /// at LoD 0 (recovery sizes its buffers from LoD 0). One line per kind of
 /// problem with its count and first instance; empty when all is well.
 std::vector<std::string> validate_sets(const SetsGraph& graph);
+
+/// decode_sets() then validate_sets(), and the graph against the progressive
+/// mesh (VSPL) it was built over: vertex_count == its full vertex count and
+/// lod_count == splits + 1. A decode error is the single finding; without a
+/// VSPL section, that is a finding; with an unreadable one (`vspl` null)
+/// the graph is checked alone.
+std::vector<std::string> validate_sets_payload(const uint8_t* data, size_t size, bool has_vspl,
+                                               const VsplSummary* vspl);
 
 }  // namespace lodbake

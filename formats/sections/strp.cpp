@@ -207,6 +207,15 @@ std::vector<std::string> validate_strp(const TriangleStrips& strips, const Trian
   return findings;
 }
 
+std::vector<std::string> validate_strp_payload(const uint8_t* data, size_t size, bool has_base,
+                                               const TriangleMesh* base_mesh) {
+  Result<TriangleStrips> strips = decode_strp(data, size);
+  if (!strips.is_ok()) return {strips.status().message()};
+  if (!has_base) return {"no BASE section holds the vertices the strips index"};
+  if (base_mesh == nullptr) return {};
+  return validate_strp(strips.value(), *base_mesh);
+}
+
 Result<TriangleMesh> mesh_from_strips(const TriangleStrips& strips, const TriangleMesh& mesh) {
   if (strips.vertex_count != mesh.vertex_count())
     return invalid_input(string_printf("the strips index %u vertices, the mesh has %zu",

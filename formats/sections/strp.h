@@ -81,6 +81,12 @@ Result<StrpSummary> read_strp_summary(const uint8_t* data, size_t size);
 /// per kind of problem; empty when all is well.
 std::vector<std::string> validate_strp(const TriangleStrips& strips, const TriangleMesh& mesh);
 
+/// decode_strp() then validate_strp() against BASE's mesh: a decode error
+/// is the single finding; without a BASE section, that is the finding;
+/// with an undecodable BASE (`base_mesh` null) only the decode is checked.
+std::vector<std::string> validate_strp_payload(const uint8_t* data, size_t size, bool has_base,
+                                               const TriangleMesh* base_mesh);
+
 /// `mesh` with its triangles replaced by the strips' non-degenerate ones
 /// (positions and per-vertex attributes kept; per-corner attributes, which
 /// belong to the old triangles, dropped): what `lodbake-inspect --extract`
