@@ -36,6 +36,13 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 "$bin/lodbake-inspect" -q "$out/elephant-pm.lbk" --extract "$out/elephant-pm-full.obj" --lod 1.0 > /dev/null
 "$bin/lodbake-inspect" --strict -q "$out/elephant-pm-full.obj" | grep -E '^(triangles|genus|problems)'
 
+step "strips: triangle strips and the SETS strip graph (lodbake-strips)"
+"$bin/lodbake-strips" "$mesh" -o "$out/elephant-sets.lbk"
+"$bin/lodbake-inspect" --validate "$out/elephant-sets.lbk" | grep -E '^(SETS|validation)'
+"$bin/lodbake-strips" -q --strips-only "$mesh" -o "$out/elephant-strips.lbk" > /dev/null
+"$bin/lodbake-inspect" -q --validate "$out/elephant-strips.lbk" --extract "$out/elephant-strips.obj" > /dev/null
+"$bin/lodbake-inspect" --strict -q "$out/elephant-strips.obj" | grep -E '^(triangles|problems)'
+
 size() { stat -c %s "$1"; }
 step "summary"
 printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
@@ -44,4 +51,5 @@ printf '%-28s %10s bytes\n' "elephant-q16.lbk (16 bits)" "$(size "$out/elephant-
 printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.glb")"
 printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
+printf '%-28s %10s bytes\n' "elephant-sets.lbk (SETS)" "$(size "$out/elephant-sets.lbk")"
 echo "all steps passed; outputs in $out"
