@@ -76,10 +76,14 @@ BENCH_MESHES := $(BUILD)/data/dragon_vrip.ply $(SHARED_DATA)/meshes/stanford_bun
 BENCH_RUNS ?= 3
 SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
+# Strips and the SETS graph: stripifier against meshopt_stripify, SETS sizes,
+# the paper's recovery tests (docs/benchmarks.md).
+STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
 bench: build
-	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify
+	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_strips
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_strips --runs $(BENCH_RUNS) $(STRIPS_BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

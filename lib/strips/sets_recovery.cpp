@@ -4,13 +4,19 @@
 // Choices where the paper is vague:
 // - The paper's per-node `shift` is kept with an epoch instead of being
 //   reset after each walk: a node whose epoch is not the current one has
-//   not been visited in this recovery, so its arc is found by binary search
-//   (first label >= LoD) and its cursor set to the run's start; later
-//   visits take the next successor directly.
+//   not been visited in this recovery, so its arc is searched (first label
+//   >= LoD: linear over short lists, binary search over long ones) and its
+//   cursor set to the run's start; later visits take the next successor
+//   directly. A node's vertex, arc range and cursor share one record, so a
+//   visit touches one cache line plus the arc and the successor.
 // - Coherence: each strip's change LoDs (0 and every label + 1 of its
 //   beginnings and arcs) are computed at load time; the current sequence is
 //   valid on [change[k], change[k+1]) and a coherent recovery walks a strip
-//   only when the LoD leaves that interval (binary search for the new one).
+//   only when the LoD leaves that interval. Rather than testing every
+//   strip's interval (the paper), the candidates are the strips with a
+//   change event between the previous LoD and the new one, found by binary
+//   search in the sorted (LoD, strip) event list; when there are more events
+//   than strips, every interval is tested instead.
 // - Hostile graphs: the walk checks each cursor against its run's end and
 //   the output against the strip's slot (its LoD-0 length), so a malformed
 //   graph gives a Status, never an out-of-bounds access or an endless walk.
@@ -19,6 +25,7 @@
 #include <algorithm>
 #include <new>
 #include <string>
+#include <utility>
 
 namespace lodbake {
 
@@ -27,14 +34,22 @@ Result<StripRecovery> StripRecovery::create(const SetsGraph& graph) {
   try {
     StripRecovery r(graph);
     const size_t strips = graph.strip_count();
-    r.nodes_.assign(graph.node_count(), NodeState{0, 0, 0});
+    r.nodes_.resize(graph.node_count());
+    for (size_t n = 0; n < graph.node_count(); ++n)
+      r.nodes_[n] = Node{graph.node_vertex[n], graph.arc_first[n], graph.arc_first[n + 1], 0, 0, 0};
+    r.arcs_.resize(graph.arc_count() + 1);
+    for (size_t a = 0; a < graph.arc_count(); ++a)
+      r.arcs_[a] = Arc{graph.arc_lod[a], graph.successor_first[a]};
+    r.arcs_.back() = Arc{graph.lod_count, graph.successor_first.back()};
     r.first_.assign(strips, 0);
     r.count_.assign(strips, 0);
     r.capacity_.assign(strips, 0);
     r.valid_lo_.assign(strips, 1);  // empty intervals: nothing recovered yet
     r.valid_hi_.assign(strips, 0);
+    r.strip_epoch_.assign(strips, 0);
     r.change_first_.push_back(0);
     uint64_t slots = 0;
+    std::vector<std::pair<uint32_t, uint32_t>> events;
     for (size_t s = 0; s < strips; ++s) {
       // The walk at LoD 0 bounds every later one (validate_sets() checks it;
       // the fast walk refuses a longer sequence).
@@ -46,6 +61,15 @@ Result<StripRecovery> StripRecovery::create(const SetsGraph& graph) {
       std::vector<uint32_t> changes = strip_change_lods(graph, s);
       r.change_lods_.insert(r.change_lods_.end(), changes.begin(), changes.end());
       r.change_first_.push_back(static_cast<uint32_t>(r.change_lods_.size()));
+      for (size_t k = 1; k < changes.size(); ++k)
+        events.push_back({changes[k], static_cast<uint32_t>(s)});
+    }
+    std::sort(events.begin(), events.end());
+    r.event_lod_.reserve(events.size());
+    r.event_strip_.reserve(events.size());
+    for (const auto& [lod, strip] : events) {
+      r.event_lod_.push_back(lod);
+      r.event_strip_.push_back(strip);
     }
     r.indices_.assign(slots, 0);
     return r;
@@ -59,6 +83,15 @@ Status StripRecovery::bad_walk(size_t strip, uint32_t lod, const char* what) con
                        what);
 }
 
+void StripRecovery::next_epoch() {
+  if (++epoch_ == 0) {  // wrapped: forget every visit
+    for (Node& node : nodes_)
+      node.epoch = 0;
+    std::fill(strip_epoch_.begin(), strip_epoch_.end(), 0);
+    epoch_ = 1;
+  }
+}
+
 Status StripRecovery::walk(size_t strip, uint32_t lod) {
   const SetsGraph& g = *graph_;
   const uint32_t* labels = g.beginning_lod.data();
@@ -66,31 +99,36 @@ Status StripRecovery::walk(size_t strip, uint32_t lod) {
       static_cast<uint32_t>(std::lower_bound(labels + g.beginning_first[strip],
                                              labels + g.beginning_first[strip + 1], lod) -
                             labels);
-  uint32_t node = g.beginning_node[b];
+  uint32_t id = g.beginning_node[b];
   uint32_t* out = indices_.data() + first_[strip];
   uint32_t* const out_begin = out;
   uint32_t* const out_end = out + capacity_[strip];
   const uint32_t epoch = epoch_;
-  NodeState* states = nodes_.data();
-  const uint32_t* vertex = g.node_vertex.data();
+  Node* nodes = nodes_.data();
+  const Arc* arcs = arcs_.data();
   const uint32_t* successors = g.successors.data();
-  while (node != kSetsEnd) {
+  while (id != kSetsEnd) {
     if (out == out_end) return bad_walk(strip, lod, "longer than at LoD 0");
-    *out++ = vertex[node];
-    NodeState& state = states[node];
-    if (state.epoch != epoch) {
-      const uint32_t* arc_labels = g.arc_lod.data();
-      const uint32_t arc =
-          static_cast<uint32_t>(std::lower_bound(arc_labels + g.arc_first[node],
-                                                 arc_labels + g.arc_first[node + 1], lod) -
-                                arc_labels);
-      state.epoch = epoch;
-      state.cursor = g.successor_first[arc];
-      state.end = g.successor_first[arc + 1];
+    Node& node = nodes[id];
+    *out++ = node.vertex;
+    if (node.epoch != epoch) {
+      uint32_t a = node.arc_begin;
+      if (node.arc_end - a <= 8) {
+        while (arcs[a].lod < lod)
+          ++a;  // the last label is the last LoD
+      } else {
+        a = static_cast<uint32_t>(
+            std::lower_bound(arcs + a, arcs + node.arc_end, lod,
+                             [](const Arc& arc, uint32_t l) { return arc.lod < l; }) -
+            arcs);
+      }
+      node.epoch = epoch;
+      node.cursor = arcs[a].succ_first;
+      node.end = arcs[a + 1].succ_first;
     }
-    if (state.cursor == state.end)
+    if (node.cursor == node.end)
       return bad_walk(strip, lod, "a node is visited more often than its successor run allows");
-    node = successors[state.cursor++];
+    id = successors[node.cursor++];
   }
   const uint32_t written = static_cast<uint32_t>(out - out_begin);
   total_ = total_ - count_[strip] + written;
@@ -108,48 +146,61 @@ void StripRecovery::set_interval(size_t strip, uint32_t lod) {
   valid_hi_[strip] = next == end ? graph_->lod_count : *next;
 }
 
+Status StripRecovery::walk_and_update(size_t strip, uint32_t lod) {
+  Status status = walk(strip, lod);
+  if (!status.is_ok()) {
+    has_state_ = false;
+    valid_lo_[strip] = 1;
+    valid_hi_[strip] = 0;
+    return status;
+  }
+  set_interval(strip, lod);
+  return Status::ok();
+}
+
 Status StripRecovery::recover(uint32_t lod) {
   if (lod >= graph_->lod_count)
     return invalid_input("LoD " + std::to_string(lod) + " out of range (" +
                          std::to_string(graph_->lod_count) + " LoDs)");
-  if (++epoch_ == 0) {  // wrapped: forget every visit
-    for (NodeState& state : nodes_)
-      state.epoch = 0;
-    epoch_ = 1;
-  }
+  next_epoch();
   walked_strips_ = walked_indices_ = 0;
-  for (size_t s = 0; s < count_.size(); ++s) {
-    Status status = walk(s, lod);
-    if (!status.is_ok()) {
-      valid_lo_[s] = 1;
-      valid_hi_[s] = 0;
-      return status;
-    }
-    set_interval(s, lod);
-  }
+  for (size_t s = 0; s < count_.size(); ++s)
+    LODBAKE_RETURN_IF_ERROR(walk_and_update(s, lod));
+  has_state_ = true;
+  current_lod_ = lod;
   return Status::ok();
 }
 
 Status StripRecovery::recover_coherent(uint32_t lod) {
+  if (!has_state_) return recover(lod);
   if (lod >= graph_->lod_count)
     return invalid_input("LoD " + std::to_string(lod) + " out of range (" +
                          std::to_string(graph_->lod_count) + " LoDs)");
-  if (++epoch_ == 0) {
-    for (NodeState& state : nodes_)
-      state.epoch = 0;
-    epoch_ = 1;
-  }
+  next_epoch();
   walked_strips_ = walked_indices_ = 0;
-  for (size_t s = 0; s < count_.size(); ++s) {
-    if (lod >= valid_lo_[s] && lod < valid_hi_[s]) continue;
-    Status status = walk(s, lod);
-    if (!status.is_ok()) {
-      valid_lo_[s] = 1;
-      valid_hi_[s] = 0;
-      return status;
+  // A strip whose sequence differs between the two LoDs has a change LoD in
+  // (low, high].
+  const uint32_t low = std::min(lod, current_lod_), high = std::max(lod, current_lod_);
+  const size_t from =
+      std::upper_bound(event_lod_.begin(), event_lod_.end(), low) - event_lod_.begin();
+  const size_t to =
+      std::upper_bound(event_lod_.begin(), event_lod_.end(), high) - event_lod_.begin();
+  auto visit = [&](size_t s) {
+    if (lod >= valid_lo_[s] && lod < valid_hi_[s]) return Status::ok();
+    return walk_and_update(s, lod);
+  };
+  if (to - from > count_.size()) {
+    for (size_t s = 0; s < count_.size(); ++s)
+      LODBAKE_RETURN_IF_ERROR(visit(s));
+  } else {
+    for (size_t e = from; e < to; ++e) {
+      const uint32_t s = event_strip_[e];
+      if (strip_epoch_[s] == epoch_) continue;
+      strip_epoch_[s] = epoch_;
+      LODBAKE_RETURN_IF_ERROR(visit(s));
     }
-    set_interval(s, lod);
   }
+  current_lod_ = lod;
   return Status::ok();
 }
 

@@ -29,7 +29,10 @@ class StripRecovery {
   ///         then unspecified until the next successful call.
   Status recover(uint32_t lod);
   /// Same result as recover(lod), walking only the strips whose validity
-  /// interval (from the last recovery) does not contain `lod`.
+  /// interval (from the last recovery) does not contain `lod`. Candidates
+  /// come from the load-time list of (change LoD, strip) events between the
+  /// previous LoD and this one, so the cost follows what changed, not the
+  /// strip count. Without a previous successful recovery it is recover().
   Status recover_coherent(uint32_t lod);
 
   uint32_t lod_count() const { return graph_->lod_count; }
@@ -51,17 +54,31 @@ class StripRecovery {
  private:
   explicit StripRecovery(const SetsGraph& graph) : graph_(&graph) {}
   Status walk(size_t strip, uint32_t lod);
+  Status walk_and_update(size_t strip, uint32_t lod);
   void set_interval(size_t strip, uint32_t lod);
   Status bad_walk(size_t strip, uint32_t lod, const char* what) const;
+  void next_epoch();
 
-  struct NodeState {
-    uint32_t epoch;   // == epoch_ when cursor/end are set for this recovery
-    uint32_t cursor;  // next successor to take
-    uint32_t end;     // end of the successor run valid at the LoD
+  // Everything a walk touches per node in one 24-byte record.
+  struct Node {
+    uint32_t vertex;
+    uint32_t arc_begin, arc_end;  // into arcs_
+    uint32_t epoch;               // == epoch_ when cursor/end are set for this recovery
+    uint32_t cursor;              // next successor to take
+    uint32_t end;                 // end of the successor run valid at the LoD
+  };
+  struct Arc {
+    uint32_t lod;         // label: the last LoD this run is valid at
+    uint32_t succ_first;  // run is successors[succ_first, next arc's succ_first)
   };
   const SetsGraph* graph_;
-  std::vector<NodeState> nodes_;
+  std::vector<Node> nodes_;
+  std::vector<Arc> arcs_;  // graph arcs plus one sentinel
   uint32_t epoch_ = 0;
+  std::vector<uint32_t> strip_epoch_;
+  std::vector<uint32_t> event_lod_, event_strip_;  // sorted by (LoD, strip)
+  bool has_state_ = false;                         // every strip holds current_lod_
+  uint32_t current_lod_ = 0;
   std::vector<uint32_t> indices_;
   std::vector<uint32_t> first_, count_, capacity_;
   std::vector<uint32_t> change_first_, change_lods_;  // per strip, into change_lods_
