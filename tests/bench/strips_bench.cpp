@@ -95,7 +95,7 @@ std::vector<StripRow> compare_stripifiers(const TriangleMesh& mesh, int runs) {
     StripRow row{"lodbake stripify"};
     std::vector<double> times;
     StripifyStats stats;
-    Result<TriangleStrips> strips = Status::ok();
+    Result<TriangleStrips> strips = runtime_error("not run");
     for (int r = 0; r < runs; ++r) {
       const auto start = Clock::now();
       strips = stripify(mesh, &stats);

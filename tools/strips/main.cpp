@@ -170,7 +170,7 @@ int run(const Tool& tool, const Request& request) {
   report["strips"] = strip_stats_json(strip_stats);
   report["strips"]["seconds"] = seconds_since(start);
 
-  Result<Bytes> container = Status::ok();
+  Result<Bytes> container = runtime_error("no container built");
   if (request.strips_only) {
     Result<Bytes> base = encode_base(in.mesh, BaseEncodeOptions());
     if (!base.is_ok()) return tool.fail(request.input, base.status());
