@@ -9,14 +9,17 @@
 //   cursor set to the run's start; later visits take the next successor
 //   directly. A node's vertex, arc range and cursor share one record, so a
 //   visit touches one cache line plus the arc and the successor.
-// - Coherence: each strip's change LoDs (0 and every label + 1 of its
-//   beginnings and arcs) are computed at load time; the current sequence is
-//   valid on [change[k], change[k+1]) and a coherent recovery walks a strip
-//   only when the LoD leaves that interval. Rather than testing every
-//   strip's interval (the paper), the candidates are the strips with a
-//   change event between the previous LoD and the new one, found by binary
-//   search in the sorted (LoD, strip) event list; when there are more events
-//   than strips, every interval is tested instead.
+// - Coherence: each strip's change LoDs (every label + 1 of its beginnings
+//   and arcs) are computed at load time; the current sequence is valid
+//   between two consecutive ones (the paper's validity interval), so a
+//   strip must be walked again exactly when one of its change LoDs lies in
+//   (low, high] of the previous and the new LoD. Rather than testing every
+//   strip's interval (the paper), the candidates come from the sorted
+//   (change LoD, strip) event list by binary search; when there are more
+//   events in the range than strips, every strip is walked instead.
+// - A strip whose last beginning is END is empty from that beginning's LoD
+//   on; a fresh recovery skips its walk there (at coarse LoDs most strips
+//   are empty, and the per-strip search would dominate).
 // - Hostile graphs: the walk checks each cursor against its run's end and
 //   the output against the strip's slot (its LoD-0 length), so a malformed
 //   graph gives a Status, never an out-of-bounds access or an endless walk.
@@ -44,10 +47,8 @@ Result<StripRecovery> StripRecovery::create(const SetsGraph& graph) {
     r.first_.assign(strips, 0);
     r.count_.assign(strips, 0);
     r.capacity_.assign(strips, 0);
-    r.valid_lo_.assign(strips, 1);  // empty intervals: nothing recovered yet
-    r.valid_hi_.assign(strips, 0);
+    r.empty_from_.assign(strips, graph.lod_count);
     r.strip_epoch_.assign(strips, 0);
-    r.change_first_.push_back(0);
     uint64_t slots = 0;
     std::vector<std::pair<uint32_t, uint32_t>> events;
     for (size_t s = 0; s < strips; ++s) {
@@ -58,9 +59,10 @@ Result<StripRecovery> StripRecovery::create(const SetsGraph& graph) {
       r.first_[s] = static_cast<uint32_t>(slots);
       r.capacity_[s] = static_cast<uint32_t>(full.size());
       slots += full.size();
+      const uint32_t last = graph.beginning_first[s + 1] - 1;
+      if (graph.beginning_node[last] == kSetsEnd)
+        r.empty_from_[s] = last == graph.beginning_first[s] ? 0 : graph.beginning_lod[last - 1] + 1;
       std::vector<uint32_t> changes = strip_change_lods(graph, s);
-      r.change_lods_.insert(r.change_lods_.end(), changes.begin(), changes.end());
-      r.change_first_.push_back(static_cast<uint32_t>(r.change_lods_.size()));
       for (size_t k = 1; k < changes.size(); ++k)
         events.push_back({changes[k], static_cast<uint32_t>(s)});
     }
@@ -138,34 +140,21 @@ Status StripRecovery::walk(size_t strip, uint32_t lod) {
   return Status::ok();
 }
 
-void StripRecovery::set_interval(size_t strip, uint32_t lod) {
-  const uint32_t* begin = change_lods_.data() + change_first_[strip];
-  const uint32_t* end = change_lods_.data() + change_first_[strip + 1];
-  const uint32_t* next = std::upper_bound(begin, end, lod);  // begin holds 0 <= lod
-  valid_lo_[strip] = next[-1];
-  valid_hi_[strip] = next == end ? graph_->lod_count : *next;
-}
-
-Status StripRecovery::walk_and_update(size_t strip, uint32_t lod) {
-  Status status = walk(strip, lod);
-  if (!status.is_ok()) {
-    has_state_ = false;
-    valid_lo_[strip] = 1;
-    valid_hi_[strip] = 0;
-    return status;
-  }
-  set_interval(strip, lod);
-  return Status::ok();
-}
-
 Status StripRecovery::recover(uint32_t lod) {
   if (lod >= graph_->lod_count)
     return invalid_input("LoD " + std::to_string(lod) + " out of range (" +
                          std::to_string(graph_->lod_count) + " LoDs)");
+  has_state_ = false;
   next_epoch();
   walked_strips_ = walked_indices_ = 0;
-  for (size_t s = 0; s < count_.size(); ++s)
-    LODBAKE_RETURN_IF_ERROR(walk_and_update(s, lod));
+  for (size_t s = 0; s < count_.size(); ++s) {
+    if (lod >= empty_from_[s]) {
+      total_ -= count_[s];
+      count_[s] = 0;
+      continue;
+    }
+    LODBAKE_RETURN_IF_ERROR(walk(s, lod));
+  }
   has_state_ = true;
   current_lod_ = lod;
   return Status::ok();
@@ -176,30 +165,22 @@ Status StripRecovery::recover_coherent(uint32_t lod) {
   if (lod >= graph_->lod_count)
     return invalid_input("LoD " + std::to_string(lod) + " out of range (" +
                          std::to_string(graph_->lod_count) + " LoDs)");
-  next_epoch();
-  walked_strips_ = walked_indices_ = 0;
-  // A strip whose sequence differs between the two LoDs has a change LoD in
-  // (low, high].
   const uint32_t low = std::min(lod, current_lod_), high = std::max(lod, current_lod_);
   const size_t from =
       std::upper_bound(event_lod_.begin(), event_lod_.end(), low) - event_lod_.begin();
   const size_t to =
       std::upper_bound(event_lod_.begin(), event_lod_.end(), high) - event_lod_.begin();
-  auto visit = [&](size_t s) {
-    if (lod >= valid_lo_[s] && lod < valid_hi_[s]) return Status::ok();
-    return walk_and_update(s, lod);
-  };
-  if (to - from > count_.size()) {
-    for (size_t s = 0; s < count_.size(); ++s)
-      LODBAKE_RETURN_IF_ERROR(visit(s));
-  } else {
-    for (size_t e = from; e < to; ++e) {
-      const uint32_t s = event_strip_[e];
-      if (strip_epoch_[s] == epoch_) continue;
-      strip_epoch_[s] = epoch_;
-      LODBAKE_RETURN_IF_ERROR(visit(s));
-    }
+  if (to - from > count_.size()) return recover(lod);
+  has_state_ = false;  // until every changed strip is walked
+  next_epoch();
+  walked_strips_ = walked_indices_ = 0;
+  for (size_t e = from; e < to; ++e) {
+    const uint32_t s = event_strip_[e];
+    if (strip_epoch_[s] == epoch_) continue;
+    strip_epoch_[s] = epoch_;
+    LODBAKE_RETURN_IF_ERROR(walk(s, lod));
   }
+  has_state_ = true;
   current_lod_ = lod;
   return Status::ok();
 }

@@ -17,8 +17,8 @@ class StripRecovery {
  public:
   /// Prepares recovery from `graph` (which must outlive this object): checks
   /// check_sets_structure(), walks every strip at LoD 0 to size its slot in
-  /// the index buffer, and fills each strip's array of change LoDs
-  /// (strip_change_lods()). No strips are recovered yet.
+  /// the index buffer, and sorts every strip's change LoDs
+  /// (strip_change_lods()) into one event list. No strips are recovered yet.
   /// \return kInvalidInput when the structure check or a LoD-0 walk fails;
   ///         kRuntime when memory runs out.
   static Result<StripRecovery> create(const SetsGraph& graph);
@@ -29,10 +29,11 @@ class StripRecovery {
   ///         then unspecified until the next successful call.
   Status recover(uint32_t lod);
   /// Same result as recover(lod), walking only the strips whose validity
-  /// interval (from the last recovery) does not contain `lod`. Candidates
-  /// come from the load-time list of (change LoD, strip) events between the
-  /// previous LoD and this one, so the cost follows what changed, not the
-  /// strip count. Without a previous successful recovery it is recover().
+  /// interval (between two consecutive change LoDs of the strip) does not
+  /// hold both the previous LoD and `lod`: the strips with a change event
+  /// between the two, found in the load-time sorted list of (change LoD,
+  /// strip) events, so the cost follows what changed, not the strip count.
+  /// Without a previous successful recovery it is recover().
   Status recover_coherent(uint32_t lod);
 
   uint32_t lod_count() const { return graph_->lod_count; }
@@ -54,8 +55,6 @@ class StripRecovery {
  private:
   explicit StripRecovery(const SetsGraph& graph) : graph_(&graph) {}
   Status walk(size_t strip, uint32_t lod);
-  Status walk_and_update(size_t strip, uint32_t lod);
-  void set_interval(size_t strip, uint32_t lod);
   Status bad_walk(size_t strip, uint32_t lod, const char* what) const;
   void next_epoch();
 
@@ -81,8 +80,7 @@ class StripRecovery {
   uint32_t current_lod_ = 0;
   std::vector<uint32_t> indices_;
   std::vector<uint32_t> first_, count_, capacity_;
-  std::vector<uint32_t> change_first_, change_lods_;  // per strip, into change_lods_
-  std::vector<uint32_t> valid_lo_, valid_hi_;         // [lo, hi) of the current sequence
+  std::vector<uint32_t> empty_from_;  // strip s has no index at LoDs >= empty_from_[s]
   uint64_t total_ = 0;
   uint64_t walked_strips_ = 0;
   uint64_t walked_indices_ = 0;

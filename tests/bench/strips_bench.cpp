@@ -11,7 +11,7 @@
 //      exponentially (dense near the full mesh), from the finest LoD to the
 //      coarsest and back; average time per recovered LoD in microseconds,
 //      recovery only (no rendering), for coherent recovery (the paper's) and
-//      for fresh recovery of every strip (on at most 200 of the test's LoDs,
+//      for fresh recovery of every strip (on at most 100 of the test's LoDs,
 //      evenly picked); and the walk throughput in strip indices per second
 //      (indices written by the fresh walks / their time; the target is at
 //      least 50 M/s).
@@ -166,7 +166,7 @@ RecoveryRow run_test(const SetsGraph& graph, const std::vector<uint32_t>& lods, 
   RecoveryRow row;
   row.lods = lods.size();
   std::vector<uint32_t> sample;
-  const size_t stride = lods.size() / 200 + 1;
+  const size_t stride = lods.size() / 100 + 1;
   for (size_t i = 0; i < lods.size(); i += stride)
     sample.push_back(lods[i]);
   std::vector<double> coherent_times, fresh_times;
