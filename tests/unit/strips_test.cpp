@@ -290,5 +290,23 @@ TEST(StripsSection, CodecRoundTripsAndRefusesDamage) {
   EXPECT_TRUE(same_oriented_triangles(extracted.value(), mesh));
 }
 
+// The worked examples of docs/format.md decode to what the text says.
+TEST(FormatExamples, StrpAndSetsBytesOfTheSpecification) {
+  const Bytes strp = {0x06, 0, 0, 0, 0x01, 0, 0, 0, 0x06, 0, 0, 0, 0x02, 0x0f, 0x4a, 0x09};
+  Result<TriangleStrips> strips = decode_strp(strp.data(), strp.size());
+  ASSERT_TRUE(strips.is_ok()) << strips.status().message();
+  EXPECT_EQ(strips.value().indices, (std::vector<uint32_t>{3, 0, 2, 1, 5, 4}));
+  EXPECT_EQ(encode_strp(strips.value()).value(), strp);
+
+  const Bytes sets = {4, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0,    0,    0,    4,    0,   0,
+                      0, 4, 0, 0, 0, 6, 0, 0, 0, 0, 2, 0, 1, 0x83, 0x7c, 0x12, 0x71, 0x00};
+  Result<SetsGraph> graph = decode_sets(sets.data(), sets.size());
+  ASSERT_TRUE(graph.is_ok()) << graph.status().message();
+  Result<std::vector<uint32_t>> walked = walk_strip(graph.value(), 0, 0);
+  ASSERT_TRUE(walked.is_ok());
+  EXPECT_EQ(walked.value(), (std::vector<uint32_t>{0, 1, 2, 3, 0, 1}));
+  EXPECT_EQ(encode_sets(graph.value()).value(), sets);
+}
+
 }  // namespace
 }  // namespace lodbake
