@@ -82,14 +82,18 @@ DAG_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/
 # depth, <tree-id, node-id> bits, output bytes; docs/benchmarks.md).
 HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
+# Strips and the SETS graph: stripifier against meshopt_stripify, SETS sizes,
+# the paper's recovery tests (docs/benchmarks.md).
+STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
 bench: build
 	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy \
-	  bench_dag bench_fan
+	  bench_dag bench_fan bench_strips
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_fan --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_strips --runs $(BENCH_RUNS) $(STRIPS_BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

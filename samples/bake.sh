@@ -39,9 +39,17 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 step "6. balanced vertex hierarchy for selective refinement (lodbake-hierarchy)"
 "$bin/lodbake-hierarchy" "$mesh" -o "$out/elephant-hierarchy.lbk"
 "$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" | grep -E '^(VHIE|RFIN|validation)'
+
 step "7. build the fan-merge hierarchy (lodbake-fan) and validate it"
 "$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk"
 "$bin/lodbake-inspect" --validate "$out/elephant-fan.lbk" | grep -E '^(FANH|validation)'
+
+step "8. triangle strips and the SETS strip graph (lodbake-strips)"
+"$bin/lodbake-strips" "$mesh" -o "$out/elephant-sets.lbk"
+"$bin/lodbake-inspect" --validate "$out/elephant-sets.lbk" | grep -E '^(SETS|validation)'
+"$bin/lodbake-strips" -q --strips-only "$mesh" -o "$out/elephant-strips.lbk" > /dev/null
+"$bin/lodbake-inspect" -q --validate "$out/elephant-strips.lbk" --extract "$out/elephant-strips.obj" > /dev/null
+"$bin/lodbake-inspect" --strict -q "$out/elephant-strips.obj" | grep -E '^(triangles|problems)'
 
 size() { stat -c %s "$1"; }
 step "summary"
@@ -53,4 +61,5 @@ printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-p
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
 printf '%-28s %10s bytes\n' "elephant-hierarchy.lbk" "$(size "$out/elephant-hierarchy.lbk")"
 printf '%-28s %10s bytes\n' "elephant-fan.lbk (FANH)" "$(size "$out/elephant-fan.lbk")"
+printf '%-28s %10s bytes\n' "elephant-sets.lbk (SETS)" "$(size "$out/elephant-sets.lbk")"
 echo "all steps passed; outputs in $out"

@@ -16,6 +16,8 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kVhieTag, "balanced vertex hierarchy: trees, fundamental cut vertices, split positions"},
       {kRfinTag, "refinement data per split: sphere, normal cone, screen-space error terms"},
       {kFanhTag, "fan-merge hierarchy: nodes, fine-path children, modified and removed triangles"},
+      {kStrpTag, "triangle strips over BASE's vertices"},
+      {kSetsTag, "SETS multiresolution strip graph over a progressive mesh's contractions"},
   };
   return kinds;
 }

@@ -17,6 +17,8 @@ inline constexpr char kVtreTag[] = "VTRE";  ///< vertex trees (formats/sections/
 inline constexpr char kVhieTag[] = "VHIE";  ///< balanced vertex hierarchy (formats/sections/vhie.h)
 inline constexpr char kRfinTag[] = "RFIN";  ///< per-split refinement data (formats/sections/rfin.h)
 inline constexpr char kFanhTag[] = "FANH";  ///< fan-merge hierarchy (formats/sections/fanh.h)
+inline constexpr char kStrpTag[] = "STRP";  ///< triangle strips (formats/sections/strp.h)
+inline constexpr char kSetsTag[] = "SETS";  ///< SETS strip graph (formats/sections/sets.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters

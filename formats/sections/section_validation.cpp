@@ -13,6 +13,8 @@
 #include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
+#include "formats/sections/sets.h"
+#include "formats/sections/strp.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
@@ -35,6 +37,8 @@ struct Decoded {
   const Section* rfin_section = nullptr;
   const Section* fanh_section = nullptr;
   std::optional<TriangleMesh> fanh_base;  // BASE's mesh, kept for FANH's replay
+  const Section* strp_section = nullptr;
+  const Section* sets_section = nullptr;
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -257,14 +261,31 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       d.rfin_section = &section;
     } else if (section.tag() == kFanhTag) {
       d.fanh_section = &section;
+    } else if (section.tag() == kStrpTag) {
+      d.strp_section = &section;
+    } else if (section.tag() == kSetsTag) {
+      d.sets_section = &section;
     }
   }
   check_vhie(d, &findings);
   if (d.fanh_section != nullptr && d.base_mesh) d.fanh_base = *d.base_mesh;
   if (d.fanh_section != nullptr) check_fanh(d, &findings);
+  // STRP indexes BASE's vertices; checked before VSPL takes the base mesh.
+  if (d.strp_section != nullptr) {
+    for (std::string& finding :
+         validate_strp_payload(d.strp_section->data, d.strp_section->size,
+                               d.base_section != nullptr, d.base_mesh ? &*d.base_mesh : nullptr))
+      findings.push_back({kStrpTag, std::move(finding)});
+  }
   if (d.vspl_section != nullptr) check_vspl(&d, &findings);
   if (d.dage_section != nullptr) check_dage(d, &findings);
   if (d.vtre_section != nullptr) check_vtre(d, &findings);
+  if (d.sets_section != nullptr) {
+    for (std::string& finding :
+         validate_sets_payload(d.sets_section->data, d.sets_section->size,
+                               d.vspl_section != nullptr, d.vspl ? &*d.vspl : nullptr))
+      findings.push_back({kSetsTag, std::move(finding)});
+  }
   if (d.meta) check_meta_counts(d, &findings);
   return findings;
 }

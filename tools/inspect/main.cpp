@@ -15,6 +15,8 @@
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/section_validation.h"
+#include "formats/sections/sets.h"
+#include "formats/sections/strp.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
@@ -116,6 +118,24 @@ void print_listing(std::ostream& out, const std::string& path, const ContainerLi
                   s.known ? "" : (s.entry.required() ? " (unknown, required)" : " (unknown)"));
     out << row;
   }
+}
+
+// STRP's and SETS's fixed fields (O(1)), or the error through `keep`.
+template <typename Keep>
+nlohmann::json strips_contents(const Section& section, Keep keep) {
+  if (section.tag() == kStrpTag) {
+    Result<StrpSummary> strp = read_strp_summary(section.data, section.size);
+    if (!strp.is_ok()) return keep(strp.status());
+    return {{"strips", strp.value().strip_count},
+            {"indices", strp.value().index_count},
+            {"vertices", strp.value().vertex_count}};
+  }
+  Result<SetsSummary> sets = read_sets_summary(section.data, section.size);
+  if (!sets.is_ok()) return keep(sets.status());
+  const SetsSummary& g = sets.value();
+  return {{"strips", g.strip_count},         {"lods", g.lod_count},   {"vertices", g.vertex_count},
+          {"beginnings", g.beginning_count}, {"nodes", g.node_count}, {"arcs", g.arc_count},
+          {"successors", g.successor_count}};
 }
 
 // What each known section holds, without decoding whole arrays. A section
@@ -234,6 +254,8 @@ nlohmann::json section_contents(const Container& container, Status* first_error)
                             {"removed_entries", f.removed_entries},
                             {"modified_entries", f.modified_entries},
                             {"bytes", section.size}};
+    } else if (section.tag() == kStrpTag || section.tag() == kSetsTag) {
+      contents[section.tag()] = strips_contents(section, keep);
     }
   }
   return contents;
@@ -341,13 +363,35 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
     out << "FANH          ";
     if (!f.is_object()) {
       out << f.get<std::string>() << "\n";
-      return;
+    } else {
+      out << "fan hierarchy: " << f["internal_nodes"].get<uint64_t>() << " internal nodes, "
+          << f["leaves"].get<uint64_t>() << " leaves, " << f["roots"].get<uint64_t>()
+          << " roots, depth " << f["depth"].get<uint64_t>() << ", "
+          << f["average_children"].get<double>() << " children on average, "
+          << f["bytes"].get<uint64_t>() << " bytes\n";
     }
-    out << "fan hierarchy: " << f["internal_nodes"].get<uint64_t>() << " internal nodes, "
-        << f["leaves"].get<uint64_t>() << " leaves, " << f["roots"].get<uint64_t>()
-        << " roots, depth " << f["depth"].get<uint64_t>() << ", "
-        << f["average_children"].get<double>() << " children on average, "
-        << f["bytes"].get<uint64_t>() << " bytes\n";
+  }
+  if (contents.contains(kStrpTag)) {
+    const nlohmann::json& t = contents[kStrpTag];
+    out << "STRP          ";
+    if (!t.is_object()) {
+      out << t.get<std::string>() << "\n";
+    } else {
+      out << t["strips"].get<uint64_t>() << " triangle strips, " << t["indices"].get<uint64_t>()
+          << " indices over " << t["vertices"].get<uint64_t>() << " vertices\n";
+    }
+  }
+  if (contents.contains(kSetsTag)) {
+    const nlohmann::json& g = contents[kSetsTag];
+    out << "SETS          ";
+    if (!g.is_object()) {
+      out << g.get<std::string>() << "\n";
+    } else {
+      out << "strip graph: " << g["strips"].get<uint64_t>() << " strips over "
+          << g["lods"].get<uint64_t>() << " LoDs, " << g["nodes"].get<uint64_t>() << " nodes, "
+          << g["arcs"].get<uint64_t>() << " arcs, " << g["successors"].get<uint64_t>()
+          << " successors, " << g["beginnings"].get<uint64_t>() << " beginnings\n";
+    }
   }
 }
 
@@ -361,6 +405,14 @@ struct FileStatus {
 Result<TriangleMesh> mesh_to_extract(const Container& container,
                                      const std::optional<LodRequest>& lod, nlohmann::json* report) {
   LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
+  if (!lod && container.find(kStrpTag) != nullptr) {
+    // Strips alone: their triangles, indexed over BASE's vertices.
+    const Section* strp = container.find(kStrpTag);
+    LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(base->data, base->size));
+    LODBAKE_ASSIGN_OR_RETURN(TriangleStrips strips, decode_strp(strp->data, strp->size));
+    (*report)["from_strips"] = strips.strip_count();
+    return mesh_from_strips(strips, mesh);
+  }
   if (!lod) return decode_base(base->data, base->size);
   LODBAKE_ASSIGN_OR_RETURN(const Section* vspl, container.require(kVsplTag));
   LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh pm,
@@ -514,7 +566,8 @@ int main(int argc, char** argv) {
       "strict", po::bool_switch(&options.strict),
       "mesh: exit 7 when the check finds any problem (a linter for CI); container: as --validate")(
       "extract", po::value<std::string>(&options.extract)->value_name("OUT"),
-      "container: write the base mesh to OUT (.obj .ply .off .glb)")(
+      "container: write the base mesh to OUT (.obj .ply .off .glb); with STRP, the strips' "
+      "triangles as an indexed mesh over BASE's vertices")(
       "lod", po::value<std::string>()->value_name("N|Nt|R"),
       "with --extract on a progressive mesh: the level to write, as a vertex count (5000), "
       "a triangle count (5000t) or a ratio of the full mesh's triangles (0.25)");

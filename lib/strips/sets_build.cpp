@@ -1,0 +1,251 @@
+// SETS graph construction (Belmonte, Aguado, Sancho, "Triangle Strip
+// Multiresolution Modelling Using Sorted Edges", ICCS 2006, section 3.2).
+//
+// Choices where the paper is vague:
+// - The contraction sequence is the progressive mesh's half-edge collapses
+//   in coarsening order, so LoD l has exactly the PM's triangles at
+//   full_vertex_count() - l vertices (the collapse's two wing triangles are
+//   the windows that become degenerate).
+// - A vertex's node is created the first time it appears in the strip (a
+//   contraction can bring a vertex into a strip it was not in). Its arcs
+//   are recorded with the LoD where they start; a run that is the same as
+//   the node's last one is not repeated, even after LoDs where the vertex
+//   was absent (the walk never asks then). Labels (the paper's maximum LoD)
+//   are the next arc's start - 1, and the last arc's is the last LoD.
+// - Node ids are given in order of creation within a strip; arcs in order
+//   of LoD. Vertex-to-node lookups scan the few strips each vertex is in.
+#include "lib/strips/sets_build.h"
+
+#include <algorithm>
+#include <new>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lib/strips/strip_compaction.h"
+
+namespace lodbake {
+namespace {
+
+constexpr uint32_t kNone = 0xFFFFFFFFu;
+
+class Builder {
+ public:
+  Builder(const TriangleStrips& strips, const ProgressiveMesh& pm, SetsBuildStats* stats)
+      : strips_(strips), pm_(pm), stats_(stats) {}
+
+  SetsGraph run() {
+    const size_t strip_count = strips_.strip_count();
+    sequences_.resize(strip_count);
+    last_beginning_.assign(strip_count, kNone);
+    vertex_nodes_.resize(pm_.full_vertex_count());
+    for (uint32_t s = 0; s < strip_count; ++s) {
+      sequences_[s].assign(strips_.indices.begin() + strips_.first[s],
+                           strips_.indices.begin() + strips_.first[s + 1]);
+      record(s, 0);
+    }
+    const uint32_t base = static_cast<uint32_t>(pm_.base.vertex_count());
+    const uint32_t splits = static_cast<uint32_t>(pm_.splits.size());
+    for (uint32_t lod = 1; lod <= splits; ++lod) {
+      const uint32_t k = splits - lod;
+      contract(lod, base + k, pm_.splits[k].vs);
+    }
+    stats_->contractions = splits;
+    for (const std::vector<uint32_t>& q : sequences_)
+      stats_->emptied_strips += q.empty();
+    return assemble(splits + 1);
+  }
+
+ private:
+  struct Arc {
+    uint32_t node, start, succ_begin, succ_count;
+  };
+
+  uint32_t node_of(uint32_t strip, uint32_t vertex) {
+    for (const auto& [s, node] : vertex_nodes_[vertex])
+      if (s == strip) return node;
+    const uint32_t node = static_cast<uint32_t>(node_strip_.size());
+    node_strip_.push_back(strip);
+    node_vertex_.push_back(vertex);
+    node_last_arc_.push_back(kNone);
+    count_.push_back(0);
+    offset_.push_back(0);
+    vertex_nodes_[vertex].push_back({strip, node});
+    return node;
+  }
+
+  void contract(uint32_t lod, uint32_t a, uint32_t b) {
+    // The list is moved out: a never appears again, and b's list grows.
+    std::vector<std::pair<uint32_t, uint32_t>> entries = std::move(vertex_nodes_[a]);
+    vertex_nodes_[a] = {};
+    for (const auto& entry : entries) {
+      const uint32_t s = entry.first;
+      std::vector<uint32_t>& q = sequences_[s];
+      bool found = false;
+      for (uint32_t& v : q) {
+        if (v == a) {
+          v = b;
+          found = true;
+        }
+      }
+      if (!found) continue;  // a left this strip in an earlier compaction
+      const size_t before = q.size();
+      compact_strip(&q);
+      stats_->removed_indices += before - q.size();
+      ++stats_->strip_updates;
+      record(s, lod);
+    }
+  }
+
+  // Records strip s's sequence at `lod`: a new beginning and new arcs where
+  // they differ from the last recorded ones.
+  void record(uint32_t s, uint32_t lod) {
+    const std::vector<uint32_t>& q = sequences_[s];
+    const uint32_t first = q.empty() ? kNone : node_of(s, q[0]);
+    if (first != last_beginning_[s]) {
+      beginnings_.push_back({s, lod, first});
+      last_beginning_[s] = first;
+    }
+    if (q.empty()) return;
+    nodes_.resize(q.size());
+    touched_.clear();
+    for (size_t i = 0; i < q.size(); ++i) {
+      const uint32_t node = node_of(s, q[i]);
+      nodes_[i] = node;
+      if (count_[node]++ == 0) touched_.push_back(node);
+    }
+    uint32_t running = 0;
+    for (uint32_t node : touched_) {
+      offset_[node] = running;
+      running += count_[node];
+    }
+    runs_.resize(q.size());
+    for (size_t i = 0; i < q.size(); ++i)
+      runs_[offset_[nodes_[i]]++] = i + 1 < q.size() ? nodes_[i + 1] : kNone;
+    for (uint32_t node : touched_) {
+      const uint32_t count = count_[node];
+      const uint32_t begin = offset_[node] - count;
+      count_[node] = 0;
+      const uint32_t last = node_last_arc_[node];
+      if (last != kNone && arcs_[last].succ_count == count &&
+          std::equal(runs_.begin() + begin, runs_.begin() + begin + count,
+                     successors_.begin() + arcs_[last].succ_begin))
+        continue;
+      node_last_arc_[node] = static_cast<uint32_t>(arcs_.size());
+      arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size()), count});
+      successors_.insert(successors_.end(), runs_.begin() + begin, runs_.begin() + begin + count);
+    }
+  }
+
+  SetsGraph assemble(uint32_t lod_count) {
+    SetsGraph g;
+    const size_t strip_count = strips_.strip_count();
+    g.vertex_count = static_cast<uint32_t>(pm_.full_vertex_count());
+    g.lod_count = lod_count;
+    // Nodes grouped by strip, in creation order.
+    g.node_first.assign(strip_count + 1, 0);
+    for (uint32_t s : node_strip_)
+      ++g.node_first[s + 1];
+    for (size_t s = 0; s < strip_count; ++s)
+      g.node_first[s + 1] += g.node_first[s];
+    std::vector<uint32_t> fill(g.node_first.begin(), g.node_first.end() - 1);
+    std::vector<uint32_t> new_id(node_strip_.size());
+    for (size_t n = 0; n < node_strip_.size(); ++n)
+      new_id[n] = fill[node_strip_[n]]++;
+    auto remap = [&](uint32_t node) { return node == kNone ? kSetsEnd : new_id[node]; };
+    g.node_vertex.resize(node_strip_.size());
+    for (size_t n = 0; n < node_strip_.size(); ++n)
+      g.node_vertex[new_id[n]] = node_vertex_[n];
+    // Arcs grouped by node, in LoD order (they were appended in LoD order).
+    const size_t nodes = node_strip_.size();
+    g.arc_first.assign(nodes + 1, 0);
+    for (const Arc& arc : arcs_)
+      ++g.arc_first[new_id[arc.node] + 1];
+    for (size_t n = 0; n < nodes; ++n)
+      g.arc_first[n + 1] += g.arc_first[n];
+    std::vector<uint32_t> order(arcs_.size());
+    fill.assign(g.arc_first.begin(), g.arc_first.end() - 1);
+    for (size_t a = 0; a < arcs_.size(); ++a)
+      order[fill[new_id[arcs_[a].node]]++] = a;
+    g.arc_lod.resize(arcs_.size());
+    g.successor_first.reserve(arcs_.size() + 1);
+    g.successors.reserve(successors_.size());
+    for (size_t n = 0; n < nodes; ++n) {
+      for (uint32_t k = g.arc_first[n]; k < g.arc_first[n + 1]; ++k) {
+        const Arc& arc = arcs_[order[k]];
+        g.arc_lod[k] = k + 1 < g.arc_first[n + 1] ? arcs_[order[k + 1]].start - 1 : lod_count - 1;
+        for (uint32_t i = 0; i < arc.succ_count; ++i)
+          g.successors.push_back(remap(successors_[arc.succ_begin + i]));
+        g.successor_first.push_back(static_cast<uint32_t>(g.successors.size()));
+      }
+    }
+    // Beginnings grouped by strip, in LoD order.
+    g.beginning_first.assign(strip_count + 1, 0);
+    for (const Beginning& b : beginnings_)
+      ++g.beginning_first[b.strip + 1];
+    for (size_t s = 0; s < strip_count; ++s)
+      g.beginning_first[s + 1] += g.beginning_first[s];
+    std::vector<uint32_t> border(beginnings_.size());
+    fill.assign(g.beginning_first.begin(), g.beginning_first.end() - 1);
+    for (size_t i = 0; i < beginnings_.size(); ++i)
+      border[fill[beginnings_[i].strip]++] = i;
+    g.beginning_lod.resize(beginnings_.size());
+    g.beginning_node.resize(beginnings_.size());
+    for (size_t s = 0; s < strip_count; ++s) {
+      for (uint32_t k = g.beginning_first[s]; k < g.beginning_first[s + 1]; ++k) {
+        const Beginning& b = beginnings_[border[k]];
+        g.beginning_node[k] = remap(b.node);
+        g.beginning_lod[k] =
+            k + 1 < g.beginning_first[s + 1] ? beginnings_[border[k + 1]].start - 1 : lod_count - 1;
+      }
+    }
+    return g;
+  }
+
+  struct Beginning {
+    uint32_t strip, start, node;
+  };
+  const TriangleStrips& strips_;
+  const ProgressiveMesh& pm_;
+  SetsBuildStats* stats_;
+  std::vector<std::vector<uint32_t>> sequences_;
+  std::vector<uint32_t> last_beginning_;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
+  std::vector<uint32_t> node_strip_, node_vertex_, node_last_arc_;
+  std::vector<uint32_t> count_, offset_;  // scratch per node, zero between records
+  std::vector<uint32_t> nodes_, runs_, touched_;
+  std::vector<Arc> arcs_;
+  std::vector<uint32_t> successors_;
+  std::vector<Beginning> beginnings_;
+};
+
+}  // namespace
+
+Result<SetsGraph> build_sets(const TriangleStrips& strips, const ProgressiveMesh& pm,
+                             SetsBuildStats* stats) {
+  const size_t full = pm.full_vertex_count();
+  if (strips.vertex_count != full)
+    return invalid_input("the strips index " + std::to_string(strips.vertex_count) +
+                         " vertices, the progressive mesh has " + std::to_string(full));
+  if (full >= kSetsEnd) return invalid_input("more than 2^32 - 2 vertices");
+  for (size_t k = 0; k < pm.splits.size(); ++k) {
+    if (pm.splits[k].vs >= pm.base.vertex_count() + k)
+      return invalid_input("split " + std::to_string(k) + " splits vertex " +
+                           std::to_string(pm.splits[k].vs) + ", which does not exist yet");
+  }
+  for (size_t s = 0; s < strips.strip_count(); ++s)
+    if (strips.first[s + 1] <= strips.first[s])
+      return invalid_input("strip " + std::to_string(s) + " is empty");
+  for (uint32_t v : strips.indices)
+    if (v >= full) return invalid_input("strip index " + std::to_string(v) + " out of range");
+  try {
+    SetsBuildStats local;
+    SetsGraph graph = Builder(strips, pm, &local).run();
+    if (stats != nullptr) *stats = local;
+    return graph;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory building the SETS graph");
+  }
+}
+
+}  // namespace lodbake

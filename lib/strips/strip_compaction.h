@@ -1,0 +1,19 @@
+// Shortening a strip's sequence after a contraction without changing what
+// it describes: the SETS paper's removal of sub-sequences (Belmonte et al.
+// 2006, section 3.2).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace lodbake {
+
+/// Removes vertices from `sequence` (a strip in the TriangleStrips window
+/// rule) while its non-degenerate triangles stay exactly the same, each with
+/// its orientation: runs of two vertices whose removal only drops and
+/// creates degenerate windows (even-length removals keep every later
+/// window's parity), and everything after the last non-degenerate window.
+/// A sequence without any non-degenerate window becomes empty. Linear time.
+void compact_strip(std::vector<uint32_t>* sequence);
+
+}  // namespace lodbake

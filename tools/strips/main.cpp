@@ -1,0 +1,280 @@
+// lodbake-strips: triangle strips over a mesh (lib/strips/stripify.h) and
+// the SETS multiresolution strip graph over its progressive mesh
+// (lib/strips/sets_build.h), written as a container. Thin: the algorithms
+// live in lib/strips and lib/simplify, the codecs in formats/sections.
+#include <chrono>
+#include <cstring>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "formats/container/container_layout.h"
+#include "formats/container/container_reader.h"
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/meta.h"
+#include "formats/sections/sets.h"
+#include "formats/sections/strp.h"
+#include "formats/sections/vspl.h"
+#include "formats/support/file_io.h"
+#include "lib/core/sha256.h"
+#include "lib/ingest/load_mesh.h"
+#include "lib/meshio/file_name.h"
+#include "lib/simplify/pm_replay.h"
+#include "lib/simplify/simplify.h"
+#include "lib/strips/sets_build.h"
+#include "lib/strips/stripify.h"
+#include "tools/common/cli.h"
+#include "tools/common/mesh_report.h"
+
+namespace lodbake::cli {
+namespace {
+
+constexpr const char* kStripsSchema = "lodbake.strips/1";
+
+struct Request {
+  std::string input;
+  std::string output;
+  bool strips_only = false;
+  bool repair = false;
+};
+
+// The paper's in-memory SETS sizes (Table 2), for the report.
+struct PaperFigure {
+  const char* model;
+  uint64_t triangles;
+  double megabytes;
+};
+constexpr PaperFigure kPaperFigures[] = {
+    {"Cow", 5804, 0.338}, {"Bunny", 69451, 4.150}, {"Phone", 165963, 9.832}};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool is_container_file(const std::string& path) {
+  Result<Bytes> bytes = read_file(path);
+  return lower_extension(path) == "lbk" ||
+         (bytes.is_ok() && bytes.value().size() >= sizeof(kContainerMagic) &&
+          std::memcmp(bytes.value().data(), kContainerMagic, sizeof(kContainerMagic)) == 0);
+}
+
+// What the input gives: a mesh (strips-only), or a progressive mesh.
+struct Input {
+  MetaInput meta;
+  TriangleMesh mesh;                  // strips-only: the mesh the strips index
+  std::optional<ProgressiveMesh> pm;  // full mode
+  nlohmann::json report;
+};
+
+int load_container_input(const Tool& tool, const Request& request, Input* in) {
+  Result<Bytes> bytes = read_file(request.input);
+  if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
+  size_t slash = request.input.find_last_of('/');
+  in->meta = MetaInput{
+      to_valid_utf8(slash == std::string::npos ? request.input : request.input.substr(slash + 1)),
+      sha256_hex(bytes.value().data(), bytes.value().size()), bytes.value().size()};
+  Result<Container> container = read_container(bytes.value().data(), bytes.value().size());
+  if (!container.is_ok()) return tool.fail(request.input, container.status());
+  Result<const Section*> base = container.value().require(kBaseTag);
+  if (!base.is_ok()) return tool.fail(request.input, base.status());
+  Result<const Section*> vspl = container.value().require(kVsplTag);
+  if (!vspl.is_ok()) return tool.fail(request.input, vspl.status());
+  Result<ProgressiveMesh> pm = decode_progressive_mesh(base.value()->data, base.value()->size,
+                                                       vspl.value()->data, vspl.value()->size);
+  if (!pm.is_ok()) return tool.fail(request.input, pm.status());
+  in->report = {{"kind", "progressive mesh"}, {"splits", pm.value().splits.size()}};
+  if (request.strips_only) {
+    Result<TriangleMesh> full = mesh_at_lod(pm.value(), pm.value().full_vertex_count());
+    if (!full.is_ok()) return tool.fail(request.input, full.status());
+    in->mesh = std::move(full).value();
+  } else {
+    in->pm = std::move(pm).value();
+  }
+  return 0;
+}
+
+int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
+  LoadOptions load;
+  load.repair = request.repair;
+  load.drop_unreferenced = true;
+  LoadedMesh loaded;
+  if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
+  in->meta = meta_input(request.input, loaded);
+  in->report = {{"kind", "mesh"}, {"import", to_json(loaded.import)}};
+  if (loaded.repair) in->report["repair"] = to_json(*loaded.repair);
+  if (request.strips_only) {
+    in->mesh = std::move(loaded.mesh);
+    return 0;
+  }
+  Progress progress(tool, "simplifying");
+  SimplifyOptions options;
+  options.record_pm = true;
+  options.placement = Placement::kHalf;
+  options.progress = [&](double fraction) { progress.update(fraction); };
+  const auto start = std::chrono::steady_clock::now();
+  Result<SimplifyResult> simplified = simplify(loaded.mesh, options);
+  if (!simplified.is_ok()) return tool.fail(request.input, simplified.status());
+  in->report["simplify_seconds"] = seconds_since(start);
+  in->pm = std::move(*simplified.value().pm);
+  return 0;
+}
+
+nlohmann::json strip_stats_json(const StripifyStats& s) {
+  return {{"triangles", s.triangles},
+          {"strips", s.strips},
+          {"indices", s.indices},
+          {"swaps", s.swaps},
+          {"skipped_degenerate", s.skipped_degenerate},
+          {"indices_per_triangle", s.indices_per_triangle()}};
+}
+
+Result<Bytes> finish_container(const Request& request, const Input& in, const Bytes* base,
+                               const Bytes* vspl, const Bytes* strp, const Bytes* sets,
+                               const nlohmann::json& counts) {
+  MetaSection meta = make_meta("lodbake-strips");
+  meta.options = {{"strips_only", request.strips_only}, {"repair", request.repair}};
+  meta.input = in.meta;
+  meta.counts = counts;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+  ContainerWriter writer;
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kMetaTag, std::move(meta_bytes), false));
+  LODBAKE_RETURN_IF_ERROR(writer.add_section(kBaseTag, *base, true));
+  if (vspl != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_section(kVsplTag, *vspl, true));
+  if (strp != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_section(kStrpTag, *strp, true));
+  if (sets != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_section(kSetsTag, *sets, true));
+  return writer.finish();
+}
+
+int run(const Tool& tool, const Request& request) {
+  Input in;
+  const int loaded = is_container_file(request.input) ? load_container_input(tool, request, &in)
+                                                      : load_mesh_input(tool, request, &in);
+  if (loaded != 0) return loaded;
+  nlohmann::json report = {{"schema", kStripsSchema},
+                           {"input", request.input},
+                           {"output", request.output},
+                           {"source", in.report}};
+  const TriangleMesh* stripped = &in.mesh;
+  TriangleMesh full;
+  if (in.pm) {
+    Result<TriangleMesh> refined = mesh_at_lod(*in.pm, in.pm->full_vertex_count());
+    if (!refined.is_ok()) return tool.fail(request.input, refined.status());
+    full = std::move(refined).value();
+    stripped = &full;
+  }
+  StripifyStats strip_stats;
+  auto start = std::chrono::steady_clock::now();
+  Result<TriangleStrips> strips = stripify(*stripped, &strip_stats);
+  if (!strips.is_ok()) return tool.fail(request.input, strips.status());
+  report["strips"] = strip_stats_json(strip_stats);
+  report["strips"]["seconds"] = seconds_since(start);
+
+  Result<Bytes> container = runtime_error("no container built");
+  if (request.strips_only) {
+    Result<Bytes> base = encode_base(in.mesh, BaseEncodeOptions());
+    if (!base.is_ok()) return tool.fail(request.input, base.status());
+    Result<Bytes> strp = encode_strp(strips.value());
+    if (!strp.is_ok()) return tool.fail(request.input, strp.status());
+    report["sections"] = {{"BASE", base.value().size()}, {"STRP", strp.value().size()}};
+    container = finish_container(request, in, &base.value(), nullptr, &strp.value(), nullptr,
+                                 {{"vertices", in.mesh.vertex_count()},
+                                  {"triangles", in.mesh.triangle_count()},
+                                  {"strips", strip_stats.strips},
+                                  {"strip_indices", strip_stats.indices}});
+  } else {
+    const ProgressiveMesh& pm = *in.pm;
+    SetsBuildStats sets_stats;
+    start = std::chrono::steady_clock::now();
+    Result<SetsGraph> graph = build_sets(strips.value(), pm, &sets_stats);
+    if (!graph.is_ok()) return tool.fail(request.input, graph.status());
+    const double build_seconds = seconds_since(start);
+    Result<Bytes> base = encode_base(pm.base, BaseEncodeOptions());
+    if (!base.is_ok()) return tool.fail(request.input, base.status());
+    Result<Bytes> vspl = encode_vspl(pm, VsplEncodeOptions());
+    if (!vspl.is_ok()) return tool.fail(request.input, vspl.status());
+    Result<Bytes> sets = encode_sets(graph.value());
+    if (!sets.is_ok()) return tool.fail(request.input, sets.status());
+    const SetsGraph& g = graph.value();
+    report["sets"] = {{"lods", g.lod_count},
+                      {"nodes", g.node_count()},
+                      {"arcs", g.arc_count()},
+                      {"successors", g.successors.size()},
+                      {"beginnings", g.beginning_lod.size()},
+                      {"strip_updates", sets_stats.strip_updates},
+                      {"removed_indices", sets_stats.removed_indices},
+                      {"emptied_strips", sets_stats.emptied_strips},
+                      {"seconds", build_seconds},
+                      {"bytes", sets.value().size()}};
+    nlohmann::json paper = nlohmann::json::array();
+    for (const PaperFigure& f : kPaperFigures)
+      paper.push_back({{"model", f.model}, {"triangles", f.triangles}, {"megabytes", f.megabytes}});
+    report["sets"]["paper_in_memory"] = paper;
+    report["sections"] = {{"BASE", base.value().size()},
+                          {"VSPL", vspl.value().size()},
+                          {"SETS", sets.value().size()}};
+    container = finish_container(
+        request, in, &base.value(), &vspl.value(), nullptr, &sets.value(),
+        {{"vertices", pm.base.vertex_count()},
+         {"triangles", pm.base.triangle_count()},
+         {"splits", pm.splits.size()},
+         {"full_vertices", pm.full_vertex_count()},
+         {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)},
+         {"strips", strip_stats.strips},
+         {"lods", g.lod_count}});
+  }
+  if (!container.is_ok()) return tool.fail(request.output, container.status());
+  Status written = write_file_atomic(request.output, container.value());
+  if (!written.is_ok()) return tool.fail(request.output, written);
+  report["bytes"] = container.value().size();
+
+  if (tool.json()) {
+    tool.print_json(report);
+    return 0;
+  }
+  std::cout << "input         " << request.input << ": " << stripped->vertex_count()
+            << " vertices, " << stripped->triangle_count() << " triangles\n";
+  std::cout << "strips        " << strip_stats.strips << " strips, " << strip_stats.indices
+            << " indices, " << strip_stats.swaps << " swaps, " << strip_stats.indices_per_triangle()
+            << " indices per triangle\n";
+  if (report.contains("sets")) {
+    const nlohmann::json& s = report["sets"];
+    std::cout << "SETS          " << s["lods"].get<uint64_t>() << " LoDs, "
+              << s["nodes"].get<uint64_t>() << " nodes, " << s["arcs"].get<uint64_t>() << " arcs, "
+              << s["successors"].get<uint64_t>() << " successors, " << s["bytes"].get<uint64_t>()
+              << " bytes (" << s["bytes"].get<uint64_t>() / 1e6
+              << " MB; the paper's in-memory graphs: Cow 0.338 MB, Bunny 4.150 MB, Phone 9.832 "
+                 "MB)\n";
+  }
+  std::cout << "wrote         " << request.output << ": "
+            << (request.strips_only ? "BASE + STRP, " : "BASE + VSPL + SETS, ")
+            << report["bytes"].get<uint64_t>() << " bytes\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace lodbake::cli
+
+int main(int argc, char** argv) {
+  using namespace lodbake;
+  using namespace lodbake::cli;
+  Tool tool("lodbake-strips", "IN -o OUT.lbk [--strips-only] [options]",
+            "Builds triangle strips that keep every triangle's orientation and the SETS\n"
+            "multiresolution strip graph (Belmonte et al. 2006) over a progressive mesh's\n"
+            "contractions. IN is a mesh (simplified here by QEM half-edge collapses as far as\n"
+            "legal) or a .lbk holding BASE + VSPL. Writes META + BASE + VSPL + SETS, or with\n"
+            "--strips-only META + BASE + STRP (the strips over the full mesh).");
+  Request request;
+  tool.options().add_options()(
+      "output,o", po::value<std::string>(&request.output)->value_name("OUT.lbk"),
+      "the container to write")("strips-only", po::bool_switch(&request.strips_only),
+                                "write only the strips of the full mesh (STRP), no graph")(
+      "repair", po::bool_switch(&request.repair), "repair a mesh input first (see lodbake-pack)");
+  tool.positional("input", -1);
+  if (std::optional<int> done = tool.parse(argc, argv)) return *done;
+  if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;
+  if (request.output.empty()) return tool.usage_error("nothing to write: give -o OUT.lbk");
+  if (same_file(request.input, request.output))
+    return tool.usage_error("the output '" + request.output + "' is the input itself");
+  return tool.run([&] { return run(tool, request); });
+}
