@@ -88,6 +88,7 @@ bench: build
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	cmake --build $(BUILD) --target bench_dag
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) --balanced $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
 
 format:
