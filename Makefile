@@ -91,6 +91,7 @@ bench: build
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) --balanced $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_fan --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_strips --runs $(BENCH_RUNS) $(STRIPS_BENCH_MESHES)

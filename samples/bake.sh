@@ -2,8 +2,9 @@
 # The end-to-end bake `make run` runs on the embedded sample: check the mesh,
 # pack it (float32 and quantized), validate both containers, extract the base
 # mesh as GLB and check that again, simplify it to a mesh, an LOD chain and a
-# progressive mesh whose full refinement is checked again, then print a
-# summary.
+# progressive mesh whose full refinement is checked again, build the balanced
+# hierarchy with its split DAG and vertex trees and validate them, then print
+# a summary.
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -36,9 +37,10 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 "$bin/lodbake-inspect" -q "$out/elephant-pm.lbk" --extract "$out/elephant-pm-full.obj" --lod 1.0 > /dev/null
 "$bin/lodbake-inspect" --strict -q "$out/elephant-pm-full.obj" | grep -E '^(triangles|genus|problems)'
 
-step "6. balanced vertex hierarchy for selective refinement (lodbake-hierarchy)"
+step "6. balanced vertex hierarchy, split DAG and vertex trees (lodbake-hierarchy)"
 "$bin/lodbake-hierarchy" "$mesh" -o "$out/elephant-hierarchy.lbk"
-"$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" | grep -E '^(VHIE|RFIN|validation)'
+"$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" |
+  grep -E '^(VHIE|RFIN|VSPL|DAGE|VTRE|validation)'
 
 step "7. build the fan-merge hierarchy (lodbake-fan) and validate it"
 "$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk"

@@ -1,10 +1,13 @@
 // Size and build time of the split DAG (DAGE) and the vertex trees (VTRE)
 // built from the progressive mesh lodbake-simplify records (half-edge
-// placement, simplified as far as legal). Per mesh: nodes, edges, roots and
+// placement, simplified as far as legal), or with --balanced from the
+// balanced vertex hierarchy's PM (hierarchy_to_progressive_mesh, what
+// lodbake-hierarchy stores DAGE and VTRE for). Per mesh: nodes, edges, roots and
 // leaves of the DAG, bytes per node of each section, the average stored size
 // of each kind of vertex-tree record, and build times (median of --runs,
 // wall clock; other processes share the cores, so compare ratios within one
-// run). The PM recording itself is timed once for scale.
+// run). The PM recording (or the hierarchy build and conversion) is timed
+// once for scale.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +19,8 @@
 #include "formats/sections/vtre.h"
 #include "lib/core/unreferenced_vertices.h"
 #include "lib/dag/vsplit_dag_builder.h"
+#include "lib/hierarchy/balanced_build.h"
+#include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/simplify/simplify.h"
 #include "lib/vtrees/vertex_tree_builder.h"
@@ -41,13 +46,16 @@ double per(uint64_t bits, uint64_t count) {
 
 int main(int argc, char** argv) {
   int runs = 3;
+  bool balanced = false;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--runs" && i + 1 < argc) {
       runs = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--balanced") {
+      balanced = true;
     } else if (arg == "--help") {
-      std::printf("usage: bench_dag [--runs N] MESH...\n");
+      std::printf("usage: bench_dag [--runs N] [--balanced] MESH...\n");
       return 0;
     } else {
       files.push_back(arg);
@@ -60,8 +68,9 @@ int main(int argc, char** argv) {
   int status = 0;
   std::printf(
       "| mesh | splits | DAG edges | edges/node | roots | leaves | DAGE B/node | VTRE B/node | "
-      "base rec B | left rec B | right rec B | PM s | DAG build s | VTRE build s | DAG validate s "
-      "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "base rec B | left rec B | right rec B | %s | DAG build s | VTRE build s | DAG validate s "
+      "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+      balanced ? "hierarchy + PM s" : "PM s");
   for (const std::string& file : files) {
     lodbake::ImportReport report;
     auto loaded = lodbake::import_mesh_file(file, &report);
@@ -75,18 +84,33 @@ int main(int argc, char** argv) {
     lodbake::remove_unreferenced_vertices(input);
     input.normals = {};
     input.texcoords = {};
-    lodbake::SimplifyOptions options;
-    options.record_pm = true;
+    lodbake::ProgressiveMesh pm;
     const Clock::time_point pm_start = Clock::now();
-    auto simplified = lodbake::simplify(input, options);
-    const double pm_seconds = seconds_since(pm_start);
-    if (!simplified.is_ok()) {
-      std::fprintf(stderr, "bench_dag: error: %s: %s\n", file.c_str(),
-                   simplified.status().message().c_str());
-      status = 4;
-      continue;
+    if (balanced) {
+      auto built = lodbake::build_balanced_hierarchy(input, lodbake::BalancedBuildOptions());
+      auto converted = built.is_ok()
+                           ? lodbake::hierarchy_to_progressive_mesh(built.value().hierarchy)
+                           : lodbake::Result<lodbake::ProgressiveMesh>(built.status());
+      if (!converted.is_ok()) {
+        std::fprintf(stderr, "bench_dag: error: %s: %s\n", file.c_str(),
+                     converted.status().message().c_str());
+        status = 4;
+        continue;
+      }
+      pm = std::move(converted).value();
+    } else {
+      lodbake::SimplifyOptions options;
+      options.record_pm = true;
+      auto simplified = lodbake::simplify(input, options);
+      if (!simplified.is_ok()) {
+        std::fprintf(stderr, "bench_dag: error: %s: %s\n", file.c_str(),
+                     simplified.status().message().c_str());
+        status = 4;
+        continue;
+      }
+      pm = std::move(*simplified.value().pm);
     }
-    const lodbake::ProgressiveMesh& pm = *simplified.value().pm;
+    const double pm_seconds = seconds_since(pm_start);
     std::vector<double> dag_times, vtre_times, validate_times;
     lodbake::VsplitDag dag;
     lodbake::VertexTrees trees;

@@ -1,4 +1,5 @@
-// Shared by the DAG and vertex-tree tests: recording a PM, an independent
+// Shared by the DAG and vertex-tree tests: recording a PM (greedy, or the
+// balanced hierarchy's), an independent
 // replay of any subset of a PM's splits (in split order, with the walk
 // progressive_mesh.h documents), triangle-set comparison and the invariants
 // every selectively refined mesh must keep.
@@ -14,6 +15,8 @@
 #include <vector>
 
 #include "formats/mesh/progressive_mesh.h"
+#include "lib/hierarchy/balanced_build.h"
+#include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/simplify/simplify.h"
 #include "simplify_test_meshes.h"
 
@@ -31,6 +34,35 @@ inline ProgressiveMesh record_half_pm(const std::string& file) {
   EXPECT_TRUE(result.is_ok()) << result.status().message();
   if (!result.is_ok()) return ProgressiveMesh();
   return *std::move(result).value().pm;
+}
+
+/// The progressive mesh of `file`'s balanced vertex hierarchy
+/// (hierarchy_to_progressive_mesh); the hierarchy and each split's node in
+/// *h and *node_of_split when not null.
+inline ProgressiveMesh balanced_pm(const std::string& file, VertexHierarchy* h = nullptr,
+                                   std::vector<uint32_t>* node_of_split = nullptr) {
+  TriangleMesh input = load_clean_mesh(file);
+  input.normals = MeshAttribute();
+  input.texcoords = MeshAttribute();
+  Result<BalancedHierarchy> built = build_balanced_hierarchy(input, BalancedBuildOptions());
+  EXPECT_TRUE(built.is_ok()) << built.status().message();
+  if (!built.is_ok()) return ProgressiveMesh();
+  Result<ProgressiveMesh> pm =
+      hierarchy_to_progressive_mesh(built.value().hierarchy, node_of_split);
+  EXPECT_TRUE(pm.is_ok()) << pm.status().message();
+  if (!pm.is_ok()) return ProgressiveMesh();
+  if (h != nullptr) *h = std::move(built).value().hierarchy;
+  return std::move(pm).value();
+}
+
+/// Test parameters name a shared mesh; "balanced:" in front asks for the
+/// balanced hierarchy's PM instead of the greedy one lodbake-simplify records.
+inline constexpr char kBalanced[] = "balanced:";
+inline std::string mesh_file(const std::string& param) {
+  return param.rfind(kBalanced, 0) == 0 ? param.substr(sizeof(kBalanced) - 1) : param;
+}
+inline ProgressiveMesh test_pm(const std::string& param) {
+  return param.rfind(kBalanced, 0) == 0 ? balanced_pm(mesh_file(param)) : record_half_pm(param);
 }
 
 /// The triangle rotated so its smallest index comes first (orientation kept).

@@ -1,4 +1,5 @@
-// Vertex trees built from recorded progressive meshes: reconstruction down
+// Vertex trees built from progressive meshes (recorded by the QEM engine,
+// and the balanced hierarchy's): reconstruction down
 // to the leaves gives the input mesh; on random fronts legal in the split
 // DAG and in the trees, the client's triangle list equals the DAG cut and an
 // independent replay of the same splits; the paper's states are 0 or 1 and
@@ -20,14 +21,13 @@ namespace lodbake {
 namespace {
 
 using front_test::mesh_problem;
-using front_test::record_half_pm;
 using front_test::replay_subset;
 using front_test::sorted_canonical;
 
 class VertexTreesOnSharedMesh : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
-    pm_ = record_half_pm(GetParam());
+    pm_ = front_test::test_pm(GetParam());
     ASSERT_GT(pm_.splits.size(), 0u);
     Result<VertexTrees> trees = build_vertex_trees(pm_);
     ASSERT_TRUE(trees.is_ok()) << trees.status().message();
@@ -88,7 +88,7 @@ TEST_P(VertexTreesOnSharedMesh, FullReconstructionIsTheInputMesh) {
   EXPECT_TRUE(same_oriented_triangles(rebuilt, refiner.value().mesh()));
   Result<TriangleMesh> mapped = map_to_input(pm_, rebuilt);
   ASSERT_TRUE(mapped.is_ok());
-  TriangleMesh input = load_clean_mesh(GetParam());
+  TriangleMesh input = load_clean_mesh(front_test::mesh_file(GetParam()));
   EXPECT_EQ(mapped.value().positions, input.positions);
   EXPECT_TRUE(same_oriented_triangles(mapped.value(), input));
   for (uint32_t k = static_cast<uint32_t>(pm_.splits.size()); k-- > 0;)
@@ -148,6 +148,14 @@ INSTANTIATE_TEST_SUITE_P(SharedMeshes, VertexTreesOnSharedMesh,
                          ::testing::Values("igl_decimated-knight.off", "npm_bunny.obj",
                                            "cgal_mushroom.off", "cgal_elephant.off",
                                            "cgal_elephant-with-holes.off"));
+// The same on the progressive mesh of the balanced vertex hierarchy
+// (hierarchy_to_progressive_mesh), which lodbake-hierarchy stores DAGE and
+// VTRE for.
+INSTANTIATE_TEST_SUITE_P(BalancedPm, VertexTreesOnSharedMesh,
+                         ::testing::Values("balanced:igl_decimated-knight.off",
+                                           "balanced:npm_bunny.obj", "balanced:cgal_mushroom.off",
+                                           "balanced:cgal_elephant.off",
+                                           "balanced:cgal_elephant-with-holes.off"));
 
 TEST(VertexTrees, RefusesAPmThatMovesTheSplitVertex) {
   ProgressiveMesh pm;

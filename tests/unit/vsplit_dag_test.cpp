@@ -1,4 +1,5 @@
-// The DAG of vertex splits built from recorded progressive meshes: edges go
+// The DAG of vertex splits built from progressive meshes (recorded by the
+// QEM engine, and the balanced hierarchy's): edges go
 // from lower to higher split index and none is transitively implied; any
 // random legal order of all splits ends at the input mesh; random walks of
 // splits and collapses over the two fronts keep the counters consistent and
@@ -19,7 +20,6 @@ namespace lodbake {
 namespace {
 
 using front_test::mesh_problem;
-using front_test::record_half_pm;
 using front_test::replay_subset;
 using front_test::sorted_canonical;
 
@@ -33,7 +33,7 @@ std::vector<uint8_t> split_flags(const DagFronts& fronts) {
 class DagOnSharedMesh : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
-    pm_ = record_half_pm(GetParam());
+    pm_ = front_test::test_pm(GetParam());
     ASSERT_GT(pm_.splits.size(), 0u);
     Result<SplitLineage> lineage = build_split_lineage(pm_);
     ASSERT_TRUE(lineage.is_ok()) << lineage.status().message();
@@ -87,7 +87,7 @@ TEST_P(DagOnSharedMesh, RandomLegalOrdersEndAtTheInputMesh) {
   ASSERT_TRUE(refiner.is_ok());
   ASSERT_TRUE(refiner.value().refine_to(pm_.full_vertex_count()).is_ok());
   const std::vector<Triangle> full = sorted_canonical(refiner.value().mesh().triangles);
-  TriangleMesh input = load_clean_mesh(GetParam());
+  TriangleMesh input = load_clean_mesh(front_test::mesh_file(GetParam()));
   std::mt19937 rng(12345);
   for (int order = 0; order < 8; ++order) {
     Result<DagFronts> created = DagFronts::create(dag_);
@@ -171,6 +171,14 @@ INSTANTIATE_TEST_SUITE_P(SharedMeshes, DagOnSharedMesh,
                          ::testing::Values("igl_decimated-knight.off", "npm_bunny.obj",
                                            "cgal_mushroom.off", "cgal_elephant.off",
                                            "cgal_elephant-with-holes.off"));
+// The same on the progressive mesh of the balanced vertex hierarchy
+// (hierarchy_to_progressive_mesh), which lodbake-hierarchy stores DAGE and
+// VTRE for.
+INSTANTIATE_TEST_SUITE_P(BalancedPm, DagOnSharedMesh,
+                         ::testing::Values("balanced:igl_decimated-knight.off",
+                                           "balanced:npm_bunny.obj", "balanced:cgal_mushroom.off",
+                                           "balanced:cgal_elephant.off",
+                                           "balanced:cgal_elephant-with-holes.off"));
 
 // The DAG is topological: a PM recorded with optimal placement (vs moves)
 // gives the same guarantees for the triangle sets.

@@ -1,7 +1,10 @@
 // lodbake-hierarchy: builds the balanced vertex hierarchy (lib/hierarchy) of
 // a mesh, or of the fully refined mesh of a progressive-mesh container, and
-// writes it as META + BASE + VHIE + RFIN. Thin: import, build, refinement
-// data and encoding live in lib/ and formats/.
+// writes the sections asked for: VHIE + RFIN (the hierarchy), DAGE (the split
+// DAG) and VTRE (the vertex trees). DAGE and VTRE are built from the
+// hierarchy's own progressive mesh (hierarchy_to_progressive_mesh), written
+// as VSPL next to them, so one BASE serves VHIE and VSPL alike. Thin: import,
+// builds and encoding live in lib/ and formats/.
 #include <chrono>
 #include <cstring>
 #include <iostream>
@@ -13,16 +16,21 @@
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
+#include "formats/sections/vtre.h"
 #include "formats/support/file_io.h"
 #include "lib/core/sha256.h"
+#include "lib/dag/vsplit_dag_builder.h"
 #include "lib/hierarchy/balanced_build.h"
+#include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/simplify/pm_replay.h"
+#include "lib/vtrees/vertex_tree_builder.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -34,9 +42,27 @@ constexpr const char* kHierarchySchema = "lodbake.hierarchy/1";
 struct Request {
   std::string input;
   std::string output;
-  std::string sections = "vhie";
+  std::string sections = "vhie,dage,vtre";
+  bool vhie = false;  // the parsed --sections
+  bool dage = false;
+  bool vtre = false;
   bool repair = false;
   BalancedBuildOptions options;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// One section to write: its tag, payload, the container's required flag
+// (VHIE and VSPL change what BASE means; RFIN, DAGE and VTRE only add to
+// them) and what its bytes-per-item figure divides by.
+struct Written {
+  const char* tag;
+  Bytes bytes;
+  bool required;
+  const char* per_what;  // "node", "split" or nullptr
+  uint64_t per_count;
 };
 
 // The input mesh and what META says about it.
@@ -87,6 +113,7 @@ int load_pm_input(const Tool& tool, const std::string& path, const Bytes& bytes,
 }
 
 int run(const Tool& tool, const Request& request) {
+  using Clock = std::chrono::steady_clock;
   Input in;
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
@@ -105,15 +132,77 @@ int run(const Tool& tool, const Request& request) {
   }
 
   Progress progress(tool, "building the hierarchy");
-  const auto start = std::chrono::steady_clock::now();
+  // Build time of each structure, in build order (the JSON object sorts).
+  std::vector<std::pair<std::string, double>> build_seconds;
+  Clock::time_point start = Clock::now();
   Result<BalancedHierarchy> built = build_balanced_hierarchy(in.mesh, request.options);
   if (!built.is_ok()) return tool.fail(request.input, built.status());
+  build_seconds.emplace_back("hierarchy", seconds_since(start));
   const VertexHierarchy& h = built.value().hierarchy;
-  Result<std::vector<NodeRefinement>> refinement = compute_refinement_data(h, in.mesh);
-  if (!refinement.is_ok()) return tool.fail(request.input, refinement.status());
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const HierarchyShape shape = hierarchy_shape(h);
+
+  std::vector<Written> sections;
+  if (request.vhie) {
+    start = Clock::now();
+    Result<std::vector<NodeRefinement>> refinement = compute_refinement_data(h, in.mesh);
+    if (!refinement.is_ok()) return tool.fail(request.input, refinement.status());
+    build_seconds.emplace_back("refinement", seconds_since(start));
+    Result<Bytes> vhie = encode_vhie(h);
+    if (!vhie.is_ok()) return tool.fail(request.output, vhie.status());
+    Result<Bytes> rfin = encode_rfin(h, refinement.value());
+    if (!rfin.is_ok()) return tool.fail(request.output, rfin.status());
+    sections.push_back({kVhieTag, std::move(vhie).value(), true, "node", shape.nodes});
+    sections.push_back({kRfinTag, std::move(rfin).value(), false, "split", shape.splits});
+  }
+  // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
+  // share BASE with VHIE (a greedy PM given as input has another base mesh).
+  ProgressiveMesh pm;
+  nlohmann::json dag_report, vtre_report;
+  if (request.dage || request.vtre) {
+    start = Clock::now();
+    Result<ProgressiveMesh> converted = hierarchy_to_progressive_mesh(h);
+    if (!converted.is_ok()) return tool.fail(request.input, converted.status());
+    pm = std::move(converted).value();
+    build_seconds.emplace_back("progressive_mesh", seconds_since(start));
+    Result<Bytes> vspl = encode_vspl(pm, VsplEncodeOptions());
+    if (!vspl.is_ok()) return tool.fail(request.output, vspl.status());
+    sections.push_back({kVsplTag, std::move(vspl).value(), true, "split", pm.splits.size()});
+  }
+  if (request.dage) {
+    start = Clock::now();
+    Result<VsplitDag> dag = build_vsplit_dag(pm);
+    if (!dag.is_ok()) return tool.fail(request.input, dag.status());
+    build_seconds.emplace_back("dag", seconds_since(start));
+    Result<Bytes> dage = encode_dage(dag.value());
+    if (!dage.is_ok()) return tool.fail(request.output, dage.status());
+    Result<DageSummary> summary = read_dage_summary(dage.value().data(), dage.value().size());
+    if (!summary.is_ok()) return tool.fail(request.output, summary.status());
+    dag_report = {{"nodes", summary.value().node_count},
+                  {"edges", summary.value().edge_count},
+                  {"roots", summary.value().root_count},
+                  {"leaves", summary.value().leaf_count}};
+    sections.push_back(
+        {kDageTag, std::move(dage).value(), false, "node", dag.value().node_count()});
+  }
+  if (request.vtre) {
+    start = Clock::now();
+    Result<VertexTrees> trees = build_vertex_trees(pm);
+    if (!trees.is_ok()) return tool.fail(request.input, trees.status());
+    build_seconds.emplace_back("vertex_trees", seconds_since(start));
+    Result<Bytes> vtre = encode_vtre(trees.value());
+    if (!vtre.is_ok()) return tool.fail(request.output, vtre.status());
+    const VtreRecordSizes rec = vtre_record_sizes(trees.value());
+    auto bytes_per = [](uint64_t bits, uint64_t count) {
+      return count == 0 ? nlohmann::json(nullptr)
+                        : nlohmann::json(static_cast<double>(bits) / 8.0 / count);
+    };
+    vtre_report = {{"nodes", trees.value().node_count()},
+                   {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
+                   {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
+                   {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
+    sections.push_back(
+        {kVtreTag, std::move(vtre).value(), false, "node", trees.value().node_count()});
+  }
 
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = {{"sections", request.sections},
@@ -125,32 +214,53 @@ int run(const Tool& tool, const Request& request) {
       {"vertices", h.base.vertex_count()},        {"triangles", h.base.triangle_count()},
       {"hierarchy_nodes", shape.nodes},           {"hierarchy_depth", shape.depth},
       {"input_vertices", in.mesh.vertex_count()}, {"input_triangles", in.mesh.triangle_count()}};
+  if (request.dage || request.vtre) {
+    meta.counts["splits"] = pm.splits.size();
+    meta.counts["full_vertices"] = pm.full_vertex_count();
+    meta.counts["full_triangles"] = full_triangle_count(pm.base.triangle_count(), pm.splits);
+  }
   Result<Bytes> meta_bytes = encode_meta(meta);
   if (!meta_bytes.is_ok()) return tool.fail(request.output, meta_bytes.status());
   Result<Bytes> base_bytes = encode_base(h.base, BaseEncodeOptions());
   if (!base_bytes.is_ok()) return tool.fail(request.output, base_bytes.status());
-  Result<Bytes> vhie_bytes = encode_vhie(h);
-  if (!vhie_bytes.is_ok()) return tool.fail(request.output, vhie_bytes.status());
-  Result<Bytes> rfin_bytes = encode_rfin(h, refinement.value());
-  if (!rfin_bytes.is_ok()) return tool.fail(request.output, rfin_bytes.status());
-  const size_t sizes[4] = {meta_bytes.value().size(), base_bytes.value().size(),
-                           vhie_bytes.value().size(), rfin_bytes.value().size()};
+  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes).value(), true, nullptr, 0});
+  sections.insert(sections.begin(), {kMetaTag, std::move(meta_bytes).value(), false, nullptr, 0});
+
+  nlohmann::json section_report = nlohmann::json::object();
+  std::ostringstream per;
+  per.precision(3);
+  for (const Written& w : sections) {
+    nlohmann::json entry = {{"bytes", w.bytes.size()}};
+    if (w.per_what != nullptr) {
+      // Per-item figures are null (JSON) / omitted (text) without items.
+      const std::string key = std::string("bytes_per_") + w.per_what;
+      const double each = w.per_count > 0 ? static_cast<double>(w.bytes.size()) / w.per_count : 0;
+      entry[key] = w.per_count > 0 ? nlohmann::json(each) : nlohmann::json(nullptr);
+      per << (per.tellp() > 0 ? ", " : "") << w.tag << " " << w.bytes.size();
+      if (w.per_count > 0) per << " (" << each << " per " << w.per_what << ")";
+    } else {
+      per << (per.tellp() > 0 ? ", " : "") << w.tag << " " << w.bytes.size();
+    }
+    if (std::strcmp(w.tag, kDageTag) == 0) entry["dag"] = dag_report;
+    if (std::strcmp(w.tag, kVtreTag) == 0) entry["trees"] = vtre_report;
+    section_report[w.tag] = entry;
+  }
   ContainerWriter writer;
-  Status added = writer.add_section(kMetaTag, std::move(meta_bytes).value(), false);
-  if (added.is_ok()) added = writer.add_section(kBaseTag, std::move(base_bytes).value(), true);
-  if (added.is_ok()) added = writer.add_section(kVhieTag, std::move(vhie_bytes).value(), true);
-  if (added.is_ok()) added = writer.add_section(kRfinTag, std::move(rfin_bytes).value(), false);
-  if (!added.is_ok()) return tool.fail(request.output, added);
+  for (Written& w : sections) {
+    Status added = writer.add_section(w.tag, std::move(w.bytes), w.required);
+    if (!added.is_ok()) return tool.fail(request.output, added);
+  }
   Result<Bytes> container = writer.finish();
   if (!container.is_ok()) return tool.fail(request.output, container.status());
   Status written = write_file_atomic(request.output, container.value());
   if (!written.is_ok()) return tool.fail(request.output, written);
 
-  const double nodes = shape.nodes > 0 ? static_cast<double>(shape.nodes) : 1.0;
-  // Per-split figures are null (JSON) / omitted (text) without splits.
-  const double splits = static_cast<double>(shape.splits);
-  const nlohmann::json rfin_per_split =
-      shape.splits > 0 ? nlohmann::json(sizes[3] / splits) : nlohmann::json(nullptr);
+  double seconds = 0;
+  nlohmann::json build_report = nlohmann::json::object();
+  for (const auto& [name, s] : build_seconds) {
+    seconds += s;
+    build_report[name] = s;
+  }
   nlohmann::json report = {
       {"schema", kHierarchySchema},
       {"input", request.input},
@@ -170,13 +280,10 @@ int run(const Tool& tool, const Request& request) {
       {"id_bits", shape.id_bits},
       {"id_bytes", shape.id_bytes},
       {"seconds", seconds},
+      {"build_seconds", build_report},
       {"output", request.output},
       {"bytes", container.value().size()},
-      {"sections",
-       {{"META", {{"bytes", sizes[0]}}},
-        {"BASE", {{"bytes", sizes[1]}}},
-        {"VHIE", {{"bytes", sizes[2]}, {"bytes_per_node", sizes[2] / nodes}}},
-        {"RFIN", {{"bytes", sizes[3]}, {"bytes_per_split", rfin_per_split}}}}}};
+      {"sections", section_report}};
   if (tool.json()) {
     tool.print_json(report);
     return 0;
@@ -185,17 +292,31 @@ int run(const Tool& tool, const Request& request) {
             << "): " << in.mesh.vertex_count() << " vertices, " << in.mesh.triangle_count()
             << " triangles\n";
   std::cout << "hierarchy   " << shape.nodes << " nodes, " << shape.roots << " roots, "
-            << shape.splits << " splits, depth " << shape.depth << " in " << seconds << " s\n";
+            << shape.splits << " splits, depth " << shape.depth << "\n";
   std::cout << "ids         <tree-id, node-id> = <" << shape.tree_bits << ", " << shape.depth
             << "> = " << shape.id_bits << " bits (" << shape.id_bytes << "-byte ids)\n";
   std::cout << "base        " << h.base.vertex_count() << " vertices, " << h.base.triangle_count()
             << " triangles\n";
-  std::ostringstream per;
-  per.precision(3);
-  per << "VHIE " << sizes[2] << " bytes (" << sizes[2] / nodes << " per node), RFIN " << sizes[3]
-      << " bytes";
-  if (shape.splits > 0) per << " (" << sizes[3] / splits << " per split)";
-  per << ", BASE " << sizes[1] << ", META " << sizes[0];
+  if (request.dage) {
+    std::cout << "dag         " << dag_report["nodes"] << " nodes, " << dag_report["edges"]
+              << " edges, " << dag_report["roots"] << " roots, " << dag_report["leaves"]
+              << " leaves\n";
+  }
+  if (request.vtre) {
+    std::ostringstream rec;
+    rec.precision(3);
+    rec << "vtrees      " << vtre_report["nodes"] << " nodes; record bytes";
+    for (const char* kind : {"base", "left", "right"}) {
+      const nlohmann::json& v = vtre_report[std::string(kind) + "_record_bytes"];
+      if (!v.is_null()) rec << " " << kind << " " << v.get<double>();
+    }
+    std::cout << rec.str() << "\n";
+  }
+  std::ostringstream times;
+  times.precision(3);
+  for (const auto& [name, s] : build_seconds)
+    times << (times.tellp() > 0 ? ", " : "") << name << " " << s << " s";
+  std::cout << "build time  " << times.str() << "\n";
   std::cout << "wrote       " << request.output << ": " << container.value().size() << " bytes; "
             << per.str() << "\n";
   return 0;
@@ -211,19 +332,23 @@ int main(int argc, char** argv) {
             "Builds the balanced vertex hierarchy of a mesh for truly selective refinement\n"
             "and view-dependent streaming (Kim, Lee and Kobbelt): half-edge collapses in\n"
             "levels of independent sets, ordered by subtree height then quadric error, with\n"
-            "<tree-id, node-id> heap ids and fundamental cut vertices. Writes META, BASE,\n"
-            "VHIE and RFIN. Given a container with a progressive mesh (BASE + VSPL), it\n"
-            "rebuilds the hierarchy from that PM's fully refined mesh: the PM's own greedy\n"
-            "collapse order is not balanced.");
+            "<tree-id, node-id> heap ids and fundamental cut vertices. From it, the split\n"
+            "DAG (Zheng and Chan) and the vertex trees (To, Lau and Green) of the\n"
+            "hierarchy's own progressive mesh. Writes META and BASE, then VHIE + RFIN\n"
+            "(vhie), VSPL + DAGE (dage), VSPL + VTRE (vtre); one BASE serves them all.\n"
+            "Given a container with a progressive mesh (BASE + VSPL), it rebuilds the\n"
+            "hierarchy from that PM's fully refined mesh (the PM's greedy collapse order\n"
+            "is not balanced), and DAGE and VTRE describe the rebuilt PM, not the input's.");
   Request request;
   tool.options().add_options()("output,o",
                                po::value<std::string>(&request.output)->value_name("OUT.lbk"),
                                "the container to write")(
       "sections", po::value<std::string>(&request.sections)->value_name("LIST"),
-      "sections to build, separated by commas; this build offers 'vhie' (VHIE + RFIN), "
-      "the default. META and BASE are always written")(
-      "boundary-weight", po::value<double>(&request.options.boundary_weight)->value_name("W"),
-      "weight of the boundary-preserving quadrics (default 10)")(
+      "sections to build, any of vhie (VHIE + RFIN), dage (DAGE), vtre (VTRE) separated by "
+      "commas (default vhie,dage,vtre); dage and vtre add the VSPL they index. META and BASE "
+      "are always written")("boundary-weight",
+                            po::value<double>(&request.options.boundary_weight)->value_name("W"),
+                            "weight of the boundary-preserving quadrics (default 10)")(
       "max-normal-change",
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
@@ -234,16 +359,20 @@ int main(int argc, char** argv) {
   if (request.output.empty()) return tool.usage_error("missing -o OUT.lbk");
   std::stringstream list(request.sections);
   std::string item;
-  bool any = false;
   while (std::getline(list, item, ',')) {
-    if (item == "vhie" || item == "meta" || item == "base") {
-      any = any || item == "vhie";
-      continue;
+    if (item == "vhie") {
+      request.vhie = true;
+    } else if (item == "dage") {
+      request.dage = true;
+    } else if (item == "vtre") {
+      request.vtre = true;
+    } else if (item != "meta" && item != "base") {
+      return tool.usage_error("--sections: '" + item +
+                              "' is not a section lodbake-hierarchy builds (vhie, dage, vtre)");
     }
-    return tool.usage_error("--sections: '" + item +
-                            "' is not built by this lodbake-hierarchy (it offers vhie)");
   }
-  if (!any) return tool.usage_error("--sections must include vhie");
+  if (!request.vhie && !request.dage && !request.vtre)
+    return tool.usage_error("--sections must include vhie, dage or vtre");
   if (!(request.options.max_normal_change_degrees > 0))
     return tool.usage_error("--max-normal-change takes a positive angle");
   if (same_file(request.input, request.output))
