@@ -126,6 +126,11 @@ struct alignas(32) VertexInfo {
 // contiguous list instead of from the scattered triangles.
 using Corner = FanCorner;
 
+// 96 bytes, so that a quadric spans two cache lines, never three.
+struct alignas(32) AlignedQuadric {
+  Quadric q;
+};
+
 enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther };
 
 Vec3d to_d(const Vec3f& p) {
@@ -289,7 +294,7 @@ class Engine {
 
   void setup_quadrics() {
     const size_t n = state_.positions.size();
-    quadric_.assign(n, Quadric());
+    quadric_.assign(n, AlignedQuadric());
     const double bw = options_.boundary_weight;
     for (const Triangle& t : state_.triangles) {
       const Vec3d p0 = to_d(state_.positions[t[0]]);
@@ -301,7 +306,7 @@ class Engine {
       Quadric q = Quadric::from_triangle(p0, p1, p2);
       if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
       for (uint32_t v : t)
-        quadric_[v] += q;
+        quadric_[v].q += q;
       if (!(bw > 0) ||
           (!is_set(t[0], kBoundary) && !is_set(t[1], kBoundary) && !is_set(t[2], kBoundary)))
         continue;
@@ -317,8 +322,8 @@ class Engine {
         if (!(len > 0)) continue;
         pn = {pn[0] / len, pn[1] / len, pn[2] / len};
         const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * std::sqrt(dot(e, e)));
-        quadric_[a] += bq;
-        quadric_[b] += bq;
+        quadric_[a].q += bq;
+        quadric_[b].q += bq;
       }
     }
   }
@@ -487,12 +492,11 @@ class Engine {
     }
   }
 
-  // A quadric (88 bytes) spans two or three cache lines.
+  // A quadric spans two cache lines.
   void prefetch_quadric(uint32_t v) const {
     const char* q = reinterpret_cast<const char*>(&quadric_[v]);
     __builtin_prefetch(q);
     __builtin_prefetch(q + 64);
-    __builtin_prefetch(q + sizeof(Quadric) - 1);
   }
 
   // Collapses vt into vs when the cost and the legality checks allow it.
@@ -538,7 +542,7 @@ class Engine {
   // Where vs ends up when vt collapses into it.
   Vec3f placement(uint32_t vt, uint32_t vs) const {
     if (options_.placement == Placement::kHalf || is_set(vs, kFixed)) return vinfo_[vs].position;
-    const Quadric q = quadric_[vt] + quadric_[vs];
+    const Quadric q = quadric_[vt].q + quadric_[vs].q;
     Vec3d p;
     if (q.minimizer(&p)) {
       const Vec3f pf{static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
@@ -559,8 +563,8 @@ class Engine {
     if (is_set(vt, kNoRemove) || is_set(vs, kNoKeep)) return kInfinity;
 
     // Evaluating both quadrics at p is cheaper than summing them first.
-    const Quadric& qt = quadric_[vt];
-    const Quadric& qs = quadric_[vs];
+    const Quadric& qt = quadric_[vt].q;
+    const Quadric& qs = quadric_[vs].q;
     // Half placement: the error vt's quadric sees at vs, as a mean over vt's
     // own weight. Adding vs's quadric (and weight) would let a survivor with a
     // large weight (long boundary edges, many merged vertices) dilute the
@@ -717,7 +721,7 @@ class Engine {
     state_.vertex_alive[vt] = 0;
     alias_[vt] = vs;
 
-    quadric_[vs] += quadric_[vt];
+    quadric_[vs].q += quadric_[vt].q;
     vinfo_[vs].flags |= vinfo_[vt].flags & kBoundary;
     if (options_.placement == Placement::kOptimal) move_vertex(vt, vs, p);
     state_.log.push_back(rec);
@@ -788,7 +792,7 @@ class Engine {
   std::vector<uint32_t> fill_;
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<std::vector<uint32_t>> seam_value_;  // per seam attribute, per removed vertex
-  std::vector<Quadric> quadric_;
+  std::vector<AlignedQuadric> quadric_;
   std::vector<uint32_t> ring_;  // check()'s scratch: vt's neighbours
   std::vector<Corner> fan_;     // check()'s scratch: vt's live faces
   std::vector<Corner> fan_s_;   // likewise for vs, in optimal placement

@@ -68,16 +68,17 @@ Status check_options(const SimplifyOptions& o) {
   return Status::ok();
 }
 
-double bbox_diagonal(const TriangleMesh& mesh) {
+// Of the referenced vertices (those with faces in `topology`), read in
+// vertex order rather than through the triangles.
+double bbox_diagonal(const TriangleMesh& mesh, const simplify_internal::MeshTopology& topology) {
   if (mesh.triangles.empty()) return 0;
   Vec3f lo = mesh.positions[mesh.triangles[0][0]];
   Vec3f hi = lo;
-  for (const Triangle& t : mesh.triangles) {
-    for (uint32_t v : t) {
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.positions[v][k]);
-        hi[k] = std::max(hi[k], mesh.positions[v][k]);
-      }
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (topology.face_start[v] == topology.face_start[v + 1]) continue;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], mesh.positions[v][k]);
+      hi[k] = std::max(hi[k], mesh.positions[v][k]);
     }
   }
   double d = 0;
@@ -148,7 +149,7 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
 
   const uint64_t input_triangles = input.triangles.size();
   EngineSettings settings;
-  settings.diagonal = bbox_diagonal(input);
+  settings.diagonal = bbox_diagonal(input, topology);
   settings.target_triangles = 0;
   if (options.target_triangles) settings.target_triangles = *options.target_triangles;
   if (options.target_ratio) {
