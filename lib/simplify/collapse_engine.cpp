@@ -12,8 +12,9 @@
 //   perpendicular to its face) by boundary_weight * |edge|: both lengths,
 //   as in meshoptimizer, whose border weight 10 is the default;
 // - order: passes, as in meshoptimizer. Each pass lists every edge once in
-//   its cheaper direction, sorts the list by cost (stable radix sort, so ties
-//   keep the listing order: triangle order) and walks it, collapsing every
+//   its cheaper direction, sorts the list by cost (stable radix sort on the
+//   upper 21 bits of the float cost, so ties keep the listing order:
+//   triangle order) and walks it, collapsing every
 //   legal edge neither of whose endpoints was touched earlier in the pass.
 //   Untouched endpoints keep their quadrics and positions, so each listed cost
 //   is exact when it is applied and the costs within a pass increase. A pass
@@ -33,8 +34,11 @@
 //   faces (one on a boundary), which rules out tetrahedron pockets, duplicate faces and vanishing
 //   components; no moved face may turn more than max_normal_change_degrees or
 //   become (nearly) degenerate;
-// - adjacency: per-vertex face lists in one flat array, rebuilt at each pass
-//   (an untouched vertex's list only loses faces during the pass).
+// - adjacency: per-vertex corner lists (the next and previous vertex of each
+//   face) in one flat array, rebuilt at each pass; a collapse only maps vt to
+//   vs (alias_), lists read during the pass go through that map, and the
+//   triangles are rewritten in one sweep before the next pass. The walk is
+//   bound by cache misses, so what it reads of a vertex sits in one record.
 #include "lib/simplify/collapse_engine.h"
 
 #include <algorithm>
@@ -119,6 +123,7 @@ struct alignas(32) VertexInfo {
   uint32_t size = 0;
   uint32_t count = 0;  // its live face count, always exact
   uint32_t flags = 0;
+  uint32_t input_id = 0;  // breaks ties between vertices (EngineSettings::input_ids)
 };
 
 // A face around a vertex, as the vertices after and before it: enough for
@@ -190,6 +195,7 @@ class Engine {
       info.count = topology.face_start[v + 1] - topology.face_start[v];
       info.size = info.count;
       info.flags = topology.boundary[v] ? kBoundary : 0;
+      info.input_id = settings.input_ids ? (*settings.input_ids)[v] : static_cast<uint32_t>(v);
     }
     alias_.resize(n);
     for (uint32_t v = 0; v < n; ++v)
@@ -231,6 +237,8 @@ class Engine {
 
  private:
   bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
+  // Vertex order for ties: the input's.
+  bool precedes(uint32_t a, uint32_t b) const { return vinfo_[a].input_id < vinfo_[b].input_id; }
 
   // ---- setup ----
 
@@ -281,8 +289,8 @@ class Engine {
       if (is_set(v, kBoundary) && vinfo_[v].count > 0) order.push_back(v);
     }
     const std::vector<Vec3f>& pos = state_.positions;
-    std::sort(order.begin(), order.end(), [&pos](uint32_t a, uint32_t b) {
-      return pos[a] < pos[b] || (pos[a] == pos[b] && a < b);
+    std::sort(order.begin(), order.end(), [this, &pos](uint32_t a, uint32_t b) {
+      return pos[a] < pos[b] || (pos[a] == pos[b] && precedes(a, b));
     });
     for (size_t i = 1; i < order.size(); ++i) {
       if (pos[order[i]] != pos[order[i - 1]]) continue;
@@ -340,7 +348,8 @@ class Engine {
   // ---- the passes ----
 
   // Every live edge once, in its cheaper direction. A half-edge a->b stands
-  // for its edge when a < b or when b->a does not exist (a boundary edge).
+  // for its edge when a precedes b or when b->a does not exist (a boundary
+  // edge).
   void list_candidates() {
     candidates_.clear();
     for (uint32_t f : live_triangles_) {
@@ -350,7 +359,7 @@ class Engine {
         const uint32_t b = t[(k + 1) % 3];
         const bool boundary_edge =
             is_set(a, kBoundary) && is_set(b, kBoundary) && is_boundary_half_edge(a, b);
-        if (a > b && !boundary_edge) continue;
+        if (precedes(b, a) && !boundary_edge) continue;
         // An interior edge between two boundary vertices would pinch the
         // surface; along any other interior edge a boundary vertex may only
         // be the survivor (meshoptimizer's collapse table: a border vertex
@@ -592,14 +601,14 @@ class Engine {
     // On equal costs remove the larger index, except in optimal placement
     // where both directions end at the same point: keep the endpoint nearer
     // to it (the smaller index on ties).
-    bool remove_a = fab < fba || (fab == fba && a > b);
+    bool remove_a = fab < fba || (fab == fba && precedes(b, a));
     if (fab == fba && options_.placement == Placement::kOptimal) {
       const Vec3d pd = to_d(placement(a, b));
       const Vec3d da = sub(pd, to_d(vinfo_[a].position));
       const Vec3d db = sub(pd, to_d(vinfo_[b].position));
       const double la = dot(da, da);
       const double lb = dot(db, db);
-      remove_a = lb < la || (lb == la && b < a);
+      remove_a = lb < la || (lb == la && precedes(b, a));
     }
     candidates_.push_back(remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
   }
