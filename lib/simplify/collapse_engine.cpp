@@ -12,8 +12,9 @@
 //   perpendicular to its face) by boundary_weight * |edge|: both lengths,
 //   as in meshoptimizer, whose border weight 10 is the default;
 // - order: passes, as in meshoptimizer. Each pass lists every edge once in
-//   its cheaper direction, sorts the list by cost (stable radix sort, so ties
-//   keep the listing order: triangle order) and walks it, collapsing every
+//   its cheaper direction, sorts the list by cost (stable radix sort on the
+//   upper 21 bits of the float cost, so ties keep the listing order:
+//   triangle order) and walks it, collapsing every
 //   legal edge neither of whose endpoints was touched earlier in the pass.
 //   Untouched endpoints keep their quadrics and positions, so each listed cost
 //   is exact when it is applied and the costs within a pass increase. A pass
@@ -33,8 +34,11 @@
 //   faces (one on a boundary), which rules out tetrahedron pockets, duplicate faces and vanishing
 //   components; no moved face may turn more than max_normal_change_degrees or
 //   become (nearly) degenerate;
-// - adjacency: per-vertex face lists in one flat array, rebuilt at each pass
-//   (an untouched vertex's list only loses faces during the pass).
+// - adjacency: per-vertex corner lists (the next and previous vertex of each
+//   face) in one flat array, rebuilt at each pass; a collapse only maps vt to
+//   vs (alias_), lists read during the pass go through that map, and the
+//   triangles are rewritten in one sweep before the next pass. The walk is
+//   bound by cache misses, so what it reads of a vertex sits in one record.
 #include "lib/simplify/collapse_engine.h"
 
 #include <algorithm>
@@ -68,32 +72,69 @@ struct Candidate {
 
 // Stable LSD radix sort on the cost's bits (costs are finite and never
 // negative, so their IEEE bits order like unsigned integers). Stability makes
-// ties keep the listing order, which is deterministic.
+// ties keep the listing order, which is deterministic. The 10 lowest mantissa
+// bits are left out: costs within a relative 2^-13 of each other keep their
+// listing order, and two digits of 11 bits (one counting sweep, two
+// scattering sweeps) do instead of three.
 void sort_by_cost(std::vector<Candidate>& items, std::vector<Candidate>& scratch) {
+  constexpr int kIgnoredBits = 10;
   constexpr int kDigitBits = 11;
   constexpr uint32_t kBuckets = 1u << kDigitBits;
   scratch.resize(items.size());
-  std::vector<uint32_t> histogram(kBuckets);
-  for (int shift = 0; shift < 32; shift += kDigitBits) {
-    std::fill(histogram.begin(), histogram.end(), 0);
-    auto digit = [shift](const Candidate& c) {
-      uint32_t bits;
-      std::memcpy(&bits, &c.cost, sizeof bits);
-      return (bits >> shift) & (kBuckets - 1);
-    };
-    for (const Candidate& c : items)
-      ++histogram[digit(c)];
+  std::vector<uint32_t> histogram(2 * kBuckets, 0);
+  auto key = [](const Candidate& c) {
+    uint32_t bits;
+    std::memcpy(&bits, &c.cost, sizeof bits);
+    return bits >> kIgnoredBits;
+  };
+  for (const Candidate& c : items) {
+    const uint32_t k = key(c);
+    ++histogram[k & (kBuckets - 1)];
+    ++histogram[kBuckets + ((k >> kDigitBits) & (kBuckets - 1))];
+  }
+  for (int digit = 0; digit < 2; ++digit) {
+    uint32_t* h = &histogram[digit * kBuckets];
     uint32_t sum = 0;
-    for (uint32_t& h : histogram) {
-      const uint32_t count = h;
-      h = sum;
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      const uint32_t count = h[b];
+      h[b] = sum;
       sum += count;
     }
+    const int shift = digit * kDigitBits;
     for (const Candidate& c : items)
-      scratch[histogram[digit(c)]++] = c;
+      scratch[h[(key(c) >> shift) & (kBuckets - 1)]++] = c;
     items.swap(scratch);
   }
 }
+
+// Vertex flags (VertexInfo::flags).
+constexpr uint32_t kBoundary = 1;     // has a boundary edge
+constexpr uint32_t kNoRemove = 2;     // never removed (locked border, seam)
+constexpr uint32_t kNoKeep = 4;       // never the survivor (seam)
+constexpr uint32_t kFixed = 8;        // never moves (optimal placement)
+constexpr uint32_t kCoincident = 16;  // boundary vertex with a twin at its position
+
+// What the walk reads of a vertex, in one 32-byte record (two per cache
+// line): the walk visits vertices in cost order, i.e. at random, and
+// separate arrays cost one cache miss each.
+struct alignas(32) VertexInfo {
+  Vec3f position;      // current position (moved ones in optimal mode)
+  uint32_t start = 0;  // its corners: corners_[start, start + size), listed at the pass start
+  uint32_t size = 0;
+  uint32_t count = 0;  // its live face count, always exact
+  uint32_t flags = 0;
+  uint32_t input_id = 0;  // breaks ties between vertices (EngineSettings::input_ids)
+};
+
+// A face around a vertex, as the vertices after and before it: enough for
+// the link condition, the wing vertices and the normal test, read from one
+// contiguous list instead of from the scattered triangles.
+using Corner = FanCorner;
+
+// 96 bytes, so that a quadric spans two cache lines, never three.
+struct alignas(32) AlignedQuadric {
+  Quadric q;
+};
 
 enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther };
 
@@ -143,17 +184,32 @@ class Engine {
     state_.texcoords = mesh.texcoords;
     triangle_count_ = mesh.triangles.size();
     state_.stats.input_triangles = triangle_count_;
+    // At most one collapse per vertex; growing the log by doubling would copy it.
+    state_.log.reserve(n);
 
-    boundary_ = std::move(topology.boundary);
-    refs_ = std::move(topology.faces);
-    start_ = std::move(topology.face_start);
-    count_.resize(n);
-    for (size_t v = 0; v < n; ++v)
-      count_[v] = start_[v + 1] - start_[v];
-
-    setup_locks(mesh);
-    setup_quadrics();
+    vinfo_.resize(n);
+    for (size_t v = 0; v < n; ++v) {
+      VertexInfo& info = vinfo_[v];
+      info.position = mesh.positions[v];
+      info.start = topology.face_start[v];
+      info.count = topology.face_start[v + 1] - topology.face_start[v];
+      info.size = info.count;
+      info.flags = topology.boundary[v] ? kBoundary : 0;
+      info.input_id = settings.input_ids ? (*settings.input_ids)[v] : static_cast<uint32_t>(v);
+    }
+    alias_.resize(n);
+    for (uint32_t v = 0; v < n; ++v)
+      alias_[v] = v;
     locked_.assign(n, 0);
+    live_triangles_.resize(state_.triangles.size());
+    for (uint32_t f = 0; f < live_triangles_.size(); ++f)
+      live_triangles_[f] = f;
+
+    setup_locks(mesh, topology);
+    // The first pass's corner lists are the topology's.
+    corners_ = std::move(topology.corners);
+    if (!seam_attrs_.empty()) faces_ = std::move(topology.faces);
+    setup_quadrics();
     max_cost_float_ = static_cast<float>(settings.max_cost);
     if (max_cost_float_ < settings.max_cost) {
       max_cost_float_ = std::nextafter(max_cost_float_, std::numeric_limits<float>::infinity());
@@ -163,29 +219,34 @@ class Engine {
 
   EngineState run() {
     const uint64_t target = settings_.target_triangles;
-    live_triangles_.resize(state_.triangles.size());
-    for (uint32_t f = 0; f < live_triangles_.size(); ++f)
-      live_triangles_[f] = f;
     while (triangle_count_ > target) {
+      if (pass_ > 0) {
+        apply_aliases();
+        rebuild_adjacency();
+      }
       list_candidates();
       sort_by_cost(candidates_, scratch_);
       if (run_pass() == 0) break;
     }
+    apply_aliases();
     state_.stats.output_triangles = triangle_count_;
+    for (size_t v = 0; v < vinfo_.size(); ++v)
+      state_.positions[v] = vinfo_[v].position;
     return std::move(state_);
   }
 
  private:
+  bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
+  // Vertex order for ties: the input's.
+  bool precedes(uint32_t a, uint32_t b) const { return vinfo_[a].input_id < vinfo_[b].input_id; }
+
   // ---- setup ----
 
-  void setup_locks(const TriangleMesh& mesh) {
+  void setup_locks(const TriangleMesh& mesh, const MeshTopology& topology) {
     const size_t n = mesh.positions.size();
-    no_remove_.assign(n, 0);
-    no_keep_.assign(n, 0);
-    fixed_.assign(n, 0);
     if (options_.lock_border) {
       for (size_t v = 0; v < n; ++v) {
-        if (boundary_[v]) no_remove_[v] = fixed_[v] = 1;
+        if (is_set(v, kBoundary)) vinfo_[v].flags |= kNoRemove | kFixed;
       }
     }
     mark_coincident_boundary_vertices();
@@ -195,15 +256,17 @@ class Engine {
     for (const MeshAttribute* attr : {&mesh.normals, &mesh.texcoords}) {
       if (attr->binding != AttributeBinding::kPerCorner) continue;
       seam_attrs_.push_back(attr == &mesh.normals ? &state_.normals : &state_.texcoords);
+      seam_value_.emplace_back(n, 0);
       if (options_.permissive) continue;
+      const std::vector<uint32_t>& start = topology.face_start;
       for (size_t v = 0; v < n; ++v) {
-        if (count_[v] == 0) continue;
-        const uint32_t first = refs_[start_[v]];
+        if (start[v] == start[v + 1]) continue;
+        const uint32_t first = topology.faces[start[v]];
         const uint32_t ref = attr->corners[first][corner_of(mesh.triangles[first], v)];
-        for (uint32_t i = start_[v] + 1; i < start_[v] + count_[v]; ++i) {
-          const uint32_t f = refs_[i];
+        for (uint32_t i = start[v] + 1; i < start[v + 1]; ++i) {
+          const uint32_t f = topology.faces[i];
           if (values_differ(*attr, ref, attr->corners[f][corner_of(mesh.triangles[f], v)])) {
-            no_remove_[v] = no_keep_[v] = fixed_[v] = 1;
+            vinfo_[v].flags |= kNoRemove | kNoKeep | kFixed;
             break;
           }
         }
@@ -221,26 +284,25 @@ class Engine {
   // kind); a PM records single vertices. Sorted by position then index:
   // deterministic.
   void mark_coincident_boundary_vertices() {
-    coincident_.assign(boundary_.size(), 0);
     std::vector<uint32_t> order;
-    for (uint32_t v = 0; v < boundary_.size(); ++v) {
-      if (boundary_[v] && count_[v] > 0) order.push_back(v);
+    for (uint32_t v = 0; v < vinfo_.size(); ++v) {
+      if (is_set(v, kBoundary) && vinfo_[v].count > 0) order.push_back(v);
     }
     const std::vector<Vec3f>& pos = state_.positions;
-    std::sort(order.begin(), order.end(), [&pos](uint32_t a, uint32_t b) {
-      return pos[a] < pos[b] || (pos[a] == pos[b] && a < b);
+    std::sort(order.begin(), order.end(), [this, &pos](uint32_t a, uint32_t b) {
+      return pos[a] < pos[b] || (pos[a] == pos[b] && precedes(a, b));
     });
     for (size_t i = 1; i < order.size(); ++i) {
       if (pos[order[i]] != pos[order[i - 1]]) continue;
       for (uint32_t v : {order[i], order[i - 1]}) {
-        coincident_[v] = fixed_[v] = 1;
+        vinfo_[v].flags |= kCoincident | kFixed;
       }
     }
   }
 
   void setup_quadrics() {
     const size_t n = state_.positions.size();
-    quadric_.assign(n, Quadric());
+    quadric_.assign(n, AlignedQuadric());
     const double bw = options_.boundary_weight;
     for (const Triangle& t : state_.triangles) {
       const Vec3d p0 = to_d(state_.positions[t[0]]);
@@ -252,8 +314,10 @@ class Engine {
       Quadric q = Quadric::from_triangle(p0, p1, p2);
       if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
       for (uint32_t v : t)
-        quadric_[v] += q;
-      if (!(bw > 0) || (!boundary_[t[0]] && !boundary_[t[1]] && !boundary_[t[2]])) continue;
+        quadric_[v].q += q;
+      if (!(bw > 0) ||
+          (!is_set(t[0], kBoundary) && !is_set(t[1], kBoundary) && !is_set(t[2], kBoundary)))
+        continue;
       const Vec3d normal = cross(sub(p1, p0), sub(p2, p0));
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
@@ -266,17 +330,17 @@ class Engine {
         if (!(len > 0)) continue;
         pn = {pn[0] / len, pn[1] / len, pn[2] / len};
         const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * std::sqrt(dot(e, e)));
-        quadric_[a] += bq;
-        quadric_[b] += bq;
+        quadric_[a].q += bq;
+        quadric_[b].q += bq;
       }
     }
   }
 
   // True when no face has the half-edge b->a (so a->b lies on the boundary).
   bool is_boundary_half_edge(uint32_t a, uint32_t b) const {
-    for (uint32_t i = start_[b], end = start_[b] + count_[b]; i < end; ++i) {
-      const Triangle& t = state_.triangles[refs_[i]];
-      if (t[(corner_of(t, b) + 1) % 3] == a) return false;
+    const VertexInfo& info = vinfo_[b];
+    for (uint32_t i = info.start, end = info.start + info.size; i < end; ++i) {
+      if (corners_[i].next == a) return false;
     }
     return true;
   }
@@ -284,50 +348,82 @@ class Engine {
   // ---- the passes ----
 
   // Every live edge once, in its cheaper direction. A half-edge a->b stands
-  // for its edge when a < b or when b->a does not exist (a boundary edge).
+  // for its edge when a precedes b or when b->a does not exist (a boundary
+  // edge).
   void list_candidates() {
-    rebuild_adjacency();
     candidates_.clear();
     for (uint32_t f : live_triangles_) {
       const Triangle& t = state_.triangles[f];
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
-        const bool boundary_edge = boundary_[a] && boundary_[b] && is_boundary_half_edge(a, b);
-        if (a > b && !boundary_edge) continue;
+        const bool boundary_edge =
+            is_set(a, kBoundary) && is_set(b, kBoundary) && is_boundary_half_edge(a, b);
+        if (precedes(b, a) && !boundary_edge) continue;
         // An interior edge between two boundary vertices would pinch the
         // surface; along any other interior edge a boundary vertex may only
         // be the survivor (meshoptimizer's collapse table: a border vertex
         // moves only along the border).
-        if (!boundary_edge && boundary_[a] && boundary_[b]) continue;
+        if (!boundary_edge && is_set(a, kBoundary) && is_set(b, kBoundary)) continue;
         add_candidate(a, b, boundary_edge);
       }
     }
   }
 
-  // Fresh face lists of the live triangles, in triangle order. Within a pass
-  // a list only loses faces until its vertex is touched (faces move only to
-  // the survivor, which is then locked), so the lists of untouched vertices
-  // stay exact without appending, and touched ones are not read again.
-  void rebuild_adjacency() {
+  // The collapses of a pass leave the triangles as they were: a removed
+  // vertex is mapped to its survivor (alias_) and the triangles are rewritten
+  // here, in one sequential sweep, rather than at each collapse, whose faces
+  // lie scattered in memory. Faces holding a vertex twice died in the pass.
+  void apply_aliases() {
+    std::vector<Triangle>& tris = state_.triangles;
     size_t live = 0;
     for (uint32_t f : live_triangles_) {
-      if (state_.triangle_alive[f]) live_triangles_[live++] = f;
+      Triangle& t = tris[f];
+      const Triangle old = t;
+      for (uint32_t& v : t)
+        v = alias_[v];
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+        state_.triangle_alive[f] = 0;
+        continue;
+      }
+      live_triangles_[live++] = f;
+      if (seam_attrs_.empty() || options_.permissive || t == old) continue;
+      // Corners moved from vt take vs's (unique) value, so no new seam appears.
+      for (int k = 0; k < 3; ++k) {
+        if (t[k] == old[k]) continue;
+        for (size_t a = 0; a < seam_attrs_.size(); ++a)
+          seam_attrs_[a]->corners[f][k] = seam_value_[a][old[k]];
+      }
     }
     live_triangles_.resize(live);
-    const size_t n = count_.size();
+  }
+
+  // Fresh corner lists of the live triangles, in triangle order. Within a
+  // pass the lists of untouched vertices keep their dead faces and name
+  // removed vertices, which alias_ maps to their survivors; the lists of
+  // touched vertices are not read again until the next rebuild.
+  void rebuild_adjacency() {
     uint32_t sum = 0;
-    for (size_t v = 0; v < n; ++v) {
-      start_[v] = sum;
-      sum += count_[v];
+    fill_.resize(vinfo_.size());
+    for (size_t v = 0; v < vinfo_.size(); ++v) {
+      VertexInfo& info = vinfo_[v];
+      info.start = sum;
+      info.size = info.count;
+      fill_[v] = sum;
+      sum += info.count;
     }
-    start_[n] = sum;
-    refs_.resize(sum);
-    fill_.assign(start_.begin(), start_.end() - 1);
+    corners_.resize(sum);
+    const bool faces = !seam_attrs_.empty();
+    if (faces) faces_.resize(sum);
     for (uint32_t f : live_triangles_) {
-      for (uint32_t v : state_.triangles[f])
-        refs_[fill_[v]++] = f;
+      const Triangle& t = state_.triangles[f];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t slot = fill_[t[k]]++;
+        corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
+        if (faces) faces_[slot] = f;
+      }
     }
+    std::memset(locked_.data(), 0, locked_.size());
   }
 
   // Walks the sorted candidates; returns the number of collapses made.
@@ -351,7 +447,7 @@ class Engine {
       if (triangle_count_ <= target || c.cost > max_cost_float_) break;
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
       if (c.cost > limit() && past_limit) break;
-      if (locked_[c.vt] == pass_ || locked_[c.vs] == pass_) continue;
+      if (locked_[c.vt] | locked_[c.vs]) continue;
       Verdict verdict = try_collapse(c.vt, c.vs);
       if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther) {
         // The other direction, when it fits in this pass.
@@ -368,26 +464,48 @@ class Engine {
   }
 
   // The walk visits the mesh in cost order, i.e. at random: ask for the data
-  // of the candidates a few steps ahead in two stages (the second needs
-  // what the first fetched).
+  // of the candidates a few steps ahead in three stages (each needs what the
+  // one before fetched). Candidates already locked will be skipped: locks are
+  // only set during a pass, so they are left out.
   void prefetch_candidate(size_t i) {
-    constexpr size_t kFar = 16;
+    constexpr size_t kFar = 24;
+    constexpr size_t kMid = 12;
     constexpr size_t kNear = 6;
-    if (i + kFar < candidates_.size()) {
+    const size_t size = candidates_.size();
+    if (i + kFar < size) {
       const Candidate& c = candidates_[i + kFar];
-      __builtin_prefetch(&locked_[c.vt]);
-      __builtin_prefetch(&locked_[c.vs]);
-      __builtin_prefetch(&start_[c.vt]);
-      __builtin_prefetch(&count_[c.vt]);
-      __builtin_prefetch(&start_[c.vs]);
-      __builtin_prefetch(&quadric_[c.vt]);
+      if (!(locked_[c.vt] | locked_[c.vs])) {
+        __builtin_prefetch(&vinfo_[c.vt]);
+        __builtin_prefetch(&vinfo_[c.vs]);
+        prefetch_quadric(c.vt);
+        prefetch_quadric(c.vs);
+      }
     }
-    if (i + kNear < candidates_.size()) {
+    if (i + kMid < size) {
+      const Candidate& c = candidates_[i + kMid];
+      if (!(locked_[c.vt] | locked_[c.vs])) {
+        for (uint32_t v : {c.vt, c.vs}) {
+          const char* list = reinterpret_cast<const char*>(&corners_[vinfo_[v].start]);
+          __builtin_prefetch(list);
+          __builtin_prefetch(list + vinfo_[v].size * sizeof(Corner) - 1);
+        }
+      }
+    }
+    if (i + kNear < size) {
       const Candidate& c = candidates_[i + kNear];
-      __builtin_prefetch(&refs_[start_[c.vt]]);
-      __builtin_prefetch(&refs_[start_[c.vs]]);
-      __builtin_prefetch(&state_.positions[c.vs]);
+      if (!(locked_[c.vt] | locked_[c.vs])) {
+        const VertexInfo& info = vinfo_[c.vt];
+        for (uint32_t k = info.start, end = info.start + info.size; k < end; ++k)
+          __builtin_prefetch(&vinfo_[corners_[k].next]);
+      }
     }
+  }
+
+  // A quadric spans two cache lines.
+  void prefetch_quadric(uint32_t v) const {
+    const char* q = reinterpret_cast<const char*>(&quadric_[v]);
+    __builtin_prefetch(q);
+    __builtin_prefetch(q + 64);
   }
 
   // Collapses vt into vs when the cost and the legality checks allow it.
@@ -432,15 +550,15 @@ class Engine {
 
   // Where vs ends up when vt collapses into it.
   Vec3f placement(uint32_t vt, uint32_t vs) const {
-    if (options_.placement == Placement::kHalf || fixed_[vs]) return state_.positions[vs];
-    const Quadric q = quadric_[vt] + quadric_[vs];
+    if (options_.placement == Placement::kHalf || is_set(vs, kFixed)) return vinfo_[vs].position;
+    const Quadric q = quadric_[vt].q + quadric_[vs].q;
     Vec3d p;
     if (q.minimizer(&p)) {
       const Vec3f pf{static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
       if (std::isfinite(pf[0]) && std::isfinite(pf[1]) && std::isfinite(pf[2])) return pf;
     }
-    const Vec3f& a = state_.positions[vs];
-    const Vec3f& b = state_.positions[vt];
+    const Vec3f& a = vinfo_[vs].position;
+    const Vec3f& b = vinfo_[vt].position;
     const Vec3f mid{0.5f * (a[0] + b[0]), 0.5f * (a[1] + b[1]), 0.5f * (a[2] + b[2])};
     const double ea = q.evaluate(to_d(a));
     const double eb = q.evaluate(to_d(b));
@@ -451,20 +569,20 @@ class Engine {
 
   // The cost of collapsing vt into vs, infinite when the locks forbid it.
   double cost(uint32_t vt, uint32_t vs) const {
-    if (no_remove_[vt] || no_keep_[vs]) return kInfinity;
+    if (is_set(vt, kNoRemove) || is_set(vs, kNoKeep)) return kInfinity;
 
     // Evaluating both quadrics at p is cheaper than summing them first.
-    const Quadric& qt = quadric_[vt];
-    const Quadric& qs = quadric_[vs];
+    const Quadric& qt = quadric_[vt].q;
+    const Quadric& qs = quadric_[vs].q;
     // Half placement: the error vt's quadric sees at vs, as a mean over vt's
     // own weight. Adding vs's quadric (and weight) would let a survivor with a
     // large weight (long boundary edges, many merged vertices) dilute the
     // error of a small vertex; vs does not move, so its own planes gain no
     // error from this collapse (meshoptimizer ranks collapses the same way).
     if (options_.placement == Placement::kHalf) {
-      const double e = qt.weight > 0 ? qt.evaluate(to_d(state_.positions[vs])) / qt.weight : 0;
-      if (!coincident_[vt]) return e;
-      const Vec3d d = sub(to_d(state_.positions[vt]), to_d(state_.positions[vs]));
+      const double e = qt.weight > 0 ? qt.evaluate(to_d(vinfo_[vs].position)) / qt.weight : 0;
+      if (!is_set(vt, kCoincident)) return e;
+      const Vec3d d = sub(to_d(vinfo_[vt].position), to_d(vinfo_[vs].position));
       return std::max(e, dot(d, d));
     }
     // Optimal placement moves both endpoints: both quadrics count.
@@ -475,22 +593,22 @@ class Engine {
 
   void add_candidate(uint32_t a, uint32_t b, bool boundary_edge) {
     // removing a, keeping b
-    const double ab = !boundary_edge && boundary_[a] ? kInfinity : cost(a, b);
-    const double ba = !boundary_edge && boundary_[b] ? kInfinity : cost(b, a);
+    const double ab = !boundary_edge && is_set(a, kBoundary) ? kInfinity : cost(a, b);
+    const double ba = !boundary_edge && is_set(b, kBoundary) ? kInfinity : cost(b, a);
     if (!(ab < kInfinity) && !(ba < kInfinity)) return;
     const auto fab = static_cast<float>(ab);
     const auto fba = static_cast<float>(ba);
     // On equal costs remove the larger index, except in optimal placement
     // where both directions end at the same point: keep the endpoint nearer
     // to it (the smaller index on ties).
-    bool remove_a = fab < fba || (fab == fba && a > b);
+    bool remove_a = fab < fba || (fab == fba && precedes(b, a));
     if (fab == fba && options_.placement == Placement::kOptimal) {
       const Vec3d pd = to_d(placement(a, b));
-      const Vec3d da = sub(pd, to_d(state_.positions[a]));
-      const Vec3d db = sub(pd, to_d(state_.positions[b]));
+      const Vec3d da = sub(pd, to_d(vinfo_[a].position));
+      const Vec3d db = sub(pd, to_d(vinfo_[b].position));
       const double la = dot(da, da);
       const double lb = dot(db, db);
-      remove_a = lb < la || (lb == la && b < a);
+      remove_a = lb < la || (lb == la && precedes(b, a));
     }
     candidates_.push_back(remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
   }
@@ -501,18 +619,19 @@ class Engine {
     uint32_t shared = 0;
     uint32_t vl = kNoVertex;
     uint32_t vr = kNoVertex;
-    const std::vector<Triangle>& tris = state_.triangles;
     // vt's neighbours, gathered while looking for the shared faces: every
     // face's next vertex, and on a boundary also the previous ones (one
     // neighbour there has no face after it). Small arrays compared pairwise
     // beat marking a vertex-sized array, whose writes miss the cache.
     ring_.clear();
-    const bool vt_boundary = boundary_[vt];
-    for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
-      const Triangle& t = tris[refs_[i]];
-      const int k = corner_of(t, vt);
-      const uint32_t next = t[(k + 1) % 3];
-      const uint32_t prev = t[(k + 2) % 3];
+    fan_.clear();
+    const VertexInfo& info_t = vinfo_[vt];
+    const bool vt_boundary = (info_t.flags & kBoundary) != 0;
+    for (uint32_t i = info_t.start, end = info_t.start + info_t.size; i < end; ++i) {
+      const uint32_t next = alias_[corners_[i].next];
+      const uint32_t prev = alias_[corners_[i].prev];
+      if (next == prev) continue;  // the face died in this pass
+      fan_.push_back({next, prev});
       ring_.push_back(next);
       if (vt_boundary) ring_.push_back(prev);
       if (prev == vs) {
@@ -525,44 +644,54 @@ class Engine {
     }
     if (shared == 0) return Verdict::kNotAnEdge;
     const bool edge_boundary = shared == 1;
-    if (!edge_boundary && vt_boundary && boundary_[vs]) return Verdict::kLink;
+    const VertexInfo& info_s = vinfo_[vs];
+    const bool vs_boundary = (info_s.flags & kBoundary) != 0;
+    if (!edge_boundary && vt_boundary && vs_boundary) return Verdict::kLink;
     if (!edge_boundary && vt_boundary) return Verdict::kOther;
-    const bool vs_boundary_after = vt_boundary || boundary_[vs];
-    if (count_[vs] + count_[vt] - 2 * shared < (vs_boundary_after ? 1u : 3u)) {
+    const bool vs_boundary_after = vt_boundary || vs_boundary;
+    if (info_s.count + info_t.count - 2 * shared < (vs_boundary_after ? 1u : 3u)) {
       return Verdict::kOther;
     }
     for (uint32_t w : {vl, vr}) {
-      if (w != kNoVertex && count_[w] - 1 < (boundary_[w] ? 1u : 3u)) return Verdict::kOther;
-    }
-    // Link condition: the only common neighbours are the wing vertices.
-    const bool vs_boundary = boundary_[vs];
-    for (uint32_t i = start_[vs], end = start_[vs] + count_[vs]; i < end; ++i) {
-      const Triangle& t = tris[refs_[i]];
-      const int k = corner_of(t, vs);
-      for (int step = 1; step <= (vs_boundary ? 2 : 1); ++step) {
-        const uint32_t w = t[(k + step) % 3];
-        if (w == vt || w == vl || w == vr) continue;
-        if (std::find(ring_.begin(), ring_.end(), w) != ring_.end()) return Verdict::kLink;
+      if (w != kNoVertex && vinfo_[w].count - 1 < (is_set(w, kBoundary) ? 1u : 3u)) {
+        return Verdict::kOther;
       }
     }
-    if (!faces_keep_orientation(vt, vs, p)) return Verdict::kFlip;
-    if (options_.placement == Placement::kOptimal && !faces_keep_orientation(vs, vt, p)) {
+    // Link condition: the only common neighbours are the wing vertices.
+    const bool optimal = options_.placement == Placement::kOptimal;
+    fan_s_.clear();
+    for (uint32_t i = info_s.start, end = info_s.start + info_s.size; i < end; ++i) {
+      const uint32_t next = alias_[corners_[i].next];
+      const uint32_t prev = alias_[corners_[i].prev];
+      if (next == prev) continue;
+      if (optimal) fan_s_.push_back({next, prev});
+      for (uint32_t w : {next, prev}) {
+        if (w == vt || w == vl || w == vr) continue;
+        if (std::find(ring_.begin(), ring_.end(), w) != ring_.end()) return Verdict::kLink;
+        if (!vs_boundary) break;  // inside, every neighbour is some face's next
+      }
+    }
+    if (!faces_keep_orientation(info_t.position, vs, p, fan_)) return Verdict::kFlip;
+    if (optimal && !faces_keep_orientation(info_s.position, vt, p, fan_s_)) {
       return Verdict::kFlip;
     }
+    vl_ = vl;
+    vr_ = vr;
+    shared_ = shared;
     return Verdict::kOk;
   }
 
-  // Moving vertex v to p: does every face of v not containing `other` keep
-  // its orientation within the threshold and stay non-degenerate?
-  bool faces_keep_orientation(uint32_t v, uint32_t other, const Vec3f& p) const {
+  // Moving a vertex from `from` to p: does every face of its `fan` not
+  // containing `other` keep its orientation within the threshold and stay
+  // non-degenerate?
+  bool faces_keep_orientation(const Vec3f& from, uint32_t other, const Vec3f& p,
+                              const std::vector<Corner>& fan) const {
     const Vec3d pd = to_d(p);
-    for (uint32_t i = start_[v], end = start_[v] + count_[v]; i < end; ++i) {
-      const Triangle& t = state_.triangles[refs_[i]];
-      if (t[0] == other || t[1] == other || t[2] == other) continue;
-      const int k = corner_of(t, v);
-      const Vec3d a = to_d(state_.positions[t[k]]);
-      const Vec3d b = to_d(state_.positions[t[(k + 1) % 3]]);
-      const Vec3d c = to_d(state_.positions[t[(k + 2) % 3]]);
+    const Vec3d a = to_d(from);
+    for (const Corner& corner : fan) {
+      if (corner.next == other || corner.prev == other) continue;
+      const Vec3d b = to_d(vinfo_[corner.next].position);
+      const Vec3d c = to_d(vinfo_[corner.prev].position);
       const Vec3d eb = sub(b, pd);
       const Vec3d ec = sub(c, pd);
       const Vec3d n_new = cross(eb, ec);
@@ -579,57 +708,30 @@ class Engine {
 
   // ---- the collapse ----
 
+  // Merges vt into vs, as check() found it (wings vl_, vr_, shared_ faces).
+  // The triangles are rewritten at the next pass (apply_aliases).
   void collapse(uint32_t vt, uint32_t vs, const Vec3f& p, double cost_value) {
-    std::vector<Triangle>& tris = state_.triangles;
     CollapseRecord rec;
     rec.vt = vt;
     rec.vs = vs;
-    rec.vt_position = state_.positions[vt];
-    rec.vs_position = state_.positions[vs];
+    rec.vl = vl_;
+    rec.vr = vr_;
+    rec.vt_position = vinfo_[vt].position;
+    rec.vs_position = vinfo_[vs].position;
     rec.error = static_cast<float>(std::sqrt(cost_value));
 
-    // The attribute value index the corners moving to vs take (seams only).
-    uint32_t vs_face = refs_[start_[vs]];
-    uint32_t removed = 0;
-    for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
-      const uint32_t f = refs_[i];
-      const Triangle& t = tris[f];
-      const int k = corner_of(t, vs);
-      if (t[k] != vs) continue;
-      const uint32_t third = t[(k + 1) % 3] == vt ? t[(k + 2) % 3] : t[(k + 1) % 3];
-      if (t[(k + 1) % 3] == vt) {
-        rec.vl = third;
-      } else {
-        rec.vr = third;
-      }
-      state_.triangle_alive[f] = 0;
-      --triangle_count_;
-      ++removed;
-      // A touched wing's list is stale anyway; only its face count matters.
-      if (locked_[third] == pass_) {
-        --count_[third];
-      } else {
-        remove_face(third, f);
-      }
+    if (!seam_attrs_.empty() && !options_.permissive) record_seam_values(vt, vs);
+    for (uint32_t w : {vl_, vr_}) {
+      if (w != kNoVertex) --vinfo_[w].count;
     }
-
-    for (uint32_t i = start_[vt], end = start_[vt] + count_[vt]; i < end; ++i) {
-      const uint32_t f = refs_[i];
-      if (!state_.triangle_alive[f]) continue;
-      const int k = corner_of(tris[f], vt);
-      tris[f][k] = vs;
-      if (!options_.permissive) {
-        for (MeshAttribute* attr : seam_attrs_) {
-          attr->corners[f][k] = attr->corners[vs_face][corner_of(tris[vs_face], vs)];
-        }
-      }
-    }
-    count_[vs] += count_[vt] - 2 * removed;
-    count_[vt] = 0;
+    triangle_count_ -= shared_;
+    vinfo_[vs].count += vinfo_[vt].count - 2 * shared_;
+    vinfo_[vt].count = 0;
     state_.vertex_alive[vt] = 0;
+    alias_[vt] = vs;
 
-    quadric_[vs] += quadric_[vt];
-    boundary_[vs] = boundary_[vs] | boundary_[vt];
+    quadric_[vs].q += quadric_[vt].q;
+    vinfo_[vs].flags |= vinfo_[vt].flags & kBoundary;
     if (options_.placement == Placement::kOptimal) move_vertex(vt, vs, p);
     state_.log.push_back(rec);
     ++state_.stats.collapses;
@@ -638,19 +740,34 @@ class Engine {
 
     // Their quadrics (and vs's faces) changed: the costs listed for their
     // other edges are stale until the next pass.
-    locked_[vt] = pass_;
-    locked_[vs] = pass_;
+    locked_[vt] = 1;
+    locked_[vs] = 1;
+  }
+
+  // The attribute values the corners moving from vt to vs take at the next
+  // apply_aliases(): those of vs, read from any live face of vs (vs is not on
+  // a seam, so its corners agree).
+  void record_seam_values(uint32_t vt, uint32_t vs) {
+    const VertexInfo& info = vinfo_[vs];
+    for (uint32_t i = info.start, end = info.start + info.size; i < end; ++i) {
+      if (alias_[corners_[i].next] == alias_[corners_[i].prev]) continue;
+      const uint32_t f = faces_[i];
+      const int k = corner_of(state_.triangles[f], vs);
+      for (size_t a = 0; a < seam_attrs_.size(); ++a)
+        seam_value_[a][vt] = seam_attrs_[a]->corners[f][k];
+      return;
+    }
   }
 
   // Optimal placement: vs moves to p and its per-vertex attributes are
   // interpolated along the edge at p's projection.
   void move_vertex(uint32_t vt, uint32_t vs, const Vec3f& p) {
-    const Vec3d a = to_d(state_.positions[vs]);
-    const Vec3d e = sub(to_d(state_.positions[vt]), a);
+    const Vec3d a = to_d(vinfo_[vs].position);
+    const Vec3d e = sub(to_d(vinfo_[vt].position), a);
     const double len = dot(e, e);
     double s = len > 0 ? dot(sub(to_d(p), a), e) / len : 0.5;
     s = std::min(1.0, std::max(0.0, s));
-    state_.positions[vs] = p;
+    vinfo_[vs].position = p;
     for (MeshAttribute* attr : {&state_.normals, &state_.texcoords}) {
       if (attr->binding != AttributeBinding::kPerVertex) continue;
       const uint32_t c = attr->components;
@@ -669,42 +786,31 @@ class Engine {
     }
   }
 
-  void remove_face(uint32_t v, uint32_t f) {
-    const uint32_t begin = start_[v];
-    const uint32_t end = begin + count_[v];
-    for (uint32_t i = begin; i < end; ++i) {
-      if (refs_[i] == f) {
-        refs_[i] = refs_[end - 1];
-        --count_[v];
-        return;
-      }
-    }
-  }
-
   const SimplifyOptions& options_;
   const EngineSettings& settings_;
   EngineState state_;
   uint64_t triangle_count_ = 0;
 
-  // Per-vertex face lists, rebuilt at each pass: the faces of v are
-  // refs_[start_[v] .. start_[v] + count_[v]) while v is untouched in the
-  // pass; count_[v] is always its live face count.
-  std::vector<uint32_t> refs_;
-  std::vector<uint32_t> start_;
-  std::vector<uint32_t> count_;
+  std::vector<VertexInfo> vinfo_;
+  // Per-vertex corner lists, rebuilt at each pass (see rebuild_adjacency);
+  // faces_ holds the face of each corner, only kept for seam attributes.
+  std::vector<Corner> corners_;
+  std::vector<uint32_t> faces_;
+  std::vector<uint32_t> alias_;  // a removed vertex's survivor; itself while alive
+  std::vector<uint8_t> locked_;  // touched in this pass
   std::vector<uint32_t> fill_;
-  std::vector<uint8_t> boundary_;
-  std::vector<uint8_t> no_remove_;
-  std::vector<uint8_t> no_keep_;
-  std::vector<uint8_t> fixed_;
-  std::vector<uint8_t> coincident_;  // boundary vertex with a twin at its position
   std::vector<MeshAttribute*> seam_attrs_;
-  std::vector<Quadric> quadric_;
-  std::vector<uint32_t> ring_;            // check()'s scratch: vt's neighbours
+  std::vector<std::vector<uint32_t>> seam_value_;  // per seam attribute, per removed vertex
+  std::vector<AlignedQuadric> quadric_;
+  std::vector<uint32_t> ring_;  // check()'s scratch: vt's neighbours
+  std::vector<Corner> fan_;     // check()'s scratch: vt's live faces
+  std::vector<Corner> fan_s_;   // likewise for vs, in optimal placement
+  uint32_t vl_ = kNoVertex;     // the wings and shared face count check() found
+  uint32_t vr_ = kNoVertex;
+  uint32_t shared_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<Candidate> candidates_;
   std::vector<Candidate> scratch_;
-  std::vector<uint32_t> locked_;  // the pass in which the vertex was last touched
   uint32_t pass_ = 0;
   float max_cost_float_ = 0;  // settings_.max_cost rounded up to float
   uint64_t since_progress_ = 0;

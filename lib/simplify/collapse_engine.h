@@ -29,6 +29,10 @@ struct EngineSettings {
   uint64_t target_triangles = 0;  // stop at or below
   double max_cost = 0;            // stop before a collapse costing more (mean squared distance)
   double diagonal = 0;            // of the bounding box, for the statistics
+  // The input id of each vertex, when the mesh was renumbered
+  // (vertex_order.h): ties between vertices are broken by it, so that the
+  // collapse sequence does not depend on the numbering. Null: identity.
+  const std::vector<uint32_t>* input_ids = nullptr;
 };
 
 struct EngineState {

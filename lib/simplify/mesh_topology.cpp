@@ -16,10 +16,7 @@ namespace lodbake {
 namespace simplify_internal {
 namespace {
 
-struct FanFace {
-  uint32_t next;  // vertex after v in the face
-  uint32_t prev;  // vertex before v
-};
+using FanFace = FanCorner;
 
 // Fans up to this size take the quadratic fast path: almost every vertex of
 // a real mesh, and far cheaper than the sorting path for them.
@@ -30,8 +27,7 @@ constexpr uint32_t kNone = 0xffffffffu;
 // `next` or as `prev` and the faces form one chain or one cycle, with *open
 // set for a chain. False sends the fan to the sorting path, which finds and
 // names the problem.
-bool small_fan_is_simple(const std::vector<FanFace>& fan, bool* open) {
-  const size_t k = fan.size();
+bool small_fan_is_simple(const FanFace* fan, size_t k, bool* open) {
   uint32_t successor[kSmallFan];
   uint32_t start = 0;
   size_t chain_starts = 0;
@@ -94,31 +90,30 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
   for (size_t v = 0; v < n; ++v)
     start[v + 1] += start[v];
   topology->faces.resize(3 * m);
+  topology->corners.resize(3 * m);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t t = 0; t < m; ++t) {
-      for (uint32_t v : mesh.triangles[t])
-        topology->faces[fill[v]++] = static_cast<uint32_t>(t);
+      const Triangle& tri = mesh.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t slot = fill[tri[k]]++;
+        topology->faces[slot] = static_cast<uint32_t>(t);
+        topology->corners[slot] = {tri[(k + 1) % 3], tri[(k + 2) % 3]};
+      }
     }
   }
   topology->boundary.assign(n, 0);
 
-  std::vector<FanFace> fan;
   std::vector<uint32_t> by_next;
   std::vector<uint8_t> visited;
   std::vector<uint32_t> prevs;
   std::vector<uint8_t> has_pred;
   for (size_t v = 0; v < n; ++v) {
-    fan.clear();
-    for (uint32_t i = start[v]; i < start[v + 1]; ++i) {
-      const Triangle& tri = mesh.triangles[topology->faces[i]];
-      const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
-      fan.push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
-    }
-    const size_t k = fan.size();
+    const FanFace* fan = &topology->corners[start[v]];
+    const size_t k = start[v + 1] - start[v];
     if (k == 0) continue;
     bool simple_open = false;
-    if (k <= kSmallFan && small_fan_is_simple(fan, &simple_open)) {
+    if (k <= kSmallFan && small_fan_is_simple(fan, k, &simple_open)) {
       topology->boundary[v] = simple_open ? 1 : 0;
       continue;
     }
@@ -138,7 +133,7 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
         const uint32_t w = a == b ? a : prevs[i];
         // Three or more faces on v-w, or two faces walking it the same way.
         const size_t uses = std::count_if(
-            fan.begin(), fan.end(), [&](const FanFace& f) { return f.next == w || f.prev == w; });
+            fan, fan + k, [&](const FanFace& f) { return f.next == w || f.prev == w; });
         if (uses > 2) {
           return invalid_input("edge " + std::to_string(std::min<size_t>(v, w)) + "-" +
                                std::to_string(std::max<size_t>(v, w)) + " has " +

@@ -12,9 +12,16 @@
 namespace lodbake {
 namespace simplify_internal {
 
+/// A face around a vertex, as the vertices after and before it.
+struct FanCorner {
+  uint32_t next;
+  uint32_t prev;
+};
+
 struct MeshTopology {
-  std::vector<uint32_t> face_start;  // vertex_count + 1 offsets into `faces`
+  std::vector<uint32_t> face_start;  // vertex_count + 1 offsets into `faces` and `corners`
   std::vector<uint32_t> faces;       // the faces of each vertex, in triangle order
+  std::vector<FanCorner> corners;    // the same faces seen from the vertex
   std::vector<uint8_t> boundary;     // 1 when the vertex has a boundary edge
 };
 

@@ -40,36 +40,6 @@ Quadric Quadric::from_triangle(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2
   return from_plane(n, d, 0.5 * len);
 }
 
-Quadric& Quadric::operator+=(const Quadric& o) {
-  a00 += o.a00;
-  a01 += o.a01;
-  a02 += o.a02;
-  a11 += o.a11;
-  a12 += o.a12;
-  a22 += o.a22;
-  b0 += o.b0;
-  b1 += o.b1;
-  b2 += o.b2;
-  c += o.c;
-  weight += o.weight;
-  return *this;
-}
-
-Quadric& Quadric::operator*=(double s) {
-  a00 *= s;
-  a01 *= s;
-  a02 *= s;
-  a11 *= s;
-  a12 *= s;
-  a22 *= s;
-  b0 *= s;
-  b1 *= s;
-  b2 *= s;
-  c *= s;
-  weight *= s;
-  return *this;
-}
-
 double Quadric::mean_error(const Vec3d& p) const {
   return weight > 0 ? evaluate(p) / weight : 0;
 }

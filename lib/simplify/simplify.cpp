@@ -13,6 +13,7 @@
 #include "lib/simplify/collapse_engine.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/pm_record.h"
+#include "lib/simplify/vertex_order.h"
 
 namespace lodbake {
 namespace {
@@ -68,16 +69,17 @@ Status check_options(const SimplifyOptions& o) {
   return Status::ok();
 }
 
-double bbox_diagonal(const TriangleMesh& mesh) {
+// Of the referenced vertices (those with faces in `topology`), read in
+// vertex order rather than through the triangles.
+double bbox_diagonal(const TriangleMesh& mesh, const simplify_internal::MeshTopology& topology) {
   if (mesh.triangles.empty()) return 0;
   Vec3f lo = mesh.positions[mesh.triangles[0][0]];
   Vec3f hi = lo;
-  for (const Triangle& t : mesh.triangles) {
-    for (uint32_t v : t) {
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.positions[v][k]);
-        hi[k] = std::max(hi[k], mesh.positions[v][k]);
-      }
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (topology.face_start[v] == topology.face_start[v + 1]) continue;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], mesh.positions[v][k]);
+      hi[k] = std::max(hi[k], mesh.positions[v][k]);
     }
   }
   double d = 0;
@@ -143,12 +145,26 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
         "a progressive mesh cannot record per-corner attributes; make them per-vertex first "
         "(split the vertices on seams)");
   }
+  // The engine runs on the vertices renumbered for locality
+  // (vertex_order.h); the state is turned back to input ids afterwards.
+  std::vector<uint32_t> order;
+  const bool renumber = simplify_internal::locality_order(input, &order);
+  const TriangleMesh renumbered =
+      renumber ? simplify_internal::renumbered_mesh(input, order) : TriangleMesh();
+  const TriangleMesh& work = renumber ? renumbered : input;
   simplify_internal::MeshTopology topology;
-  LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(input, &topology));
+  const Status valid = simplify_internal::build_topology(work, &topology);
+  if (!valid.is_ok()) {
+    // Name the problem in input ids, and the first one in input order.
+    simplify_internal::MeshTopology unused;
+    LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(input, &unused));
+    return valid;
+  }
 
   const uint64_t input_triangles = input.triangles.size();
   EngineSettings settings;
-  settings.diagonal = bbox_diagonal(input);
+  settings.diagonal = bbox_diagonal(work, topology);
+  if (renumber) settings.input_ids = &order;
   settings.target_triangles = 0;
   if (options.target_triangles) settings.target_triangles = *options.target_triangles;
   if (options.target_ratio) {
@@ -166,7 +182,8 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   }
 
   EngineState state =
-      simplify_internal::run_collapse_engine(input, std::move(topology), options, settings);
+      simplify_internal::run_collapse_engine(work, std::move(topology), options, settings);
+  if (renumber) simplify_internal::restore_input_ids(order, &state);
   SimplifyResult result;
   result.stats = state.stats;
   result.mesh = assemble_mesh(state);

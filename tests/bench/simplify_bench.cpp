@@ -11,9 +11,14 @@
 // timed from that TriangleMesh to a compact TriangleMesh: building the
 // peer's own structure and extracting its result are part of the time, as
 // they are part of lodbake's simplify(). The library call alone is shown as
-// "core s" for the peers. The time is the median of --runs runs; the error
-// of the result is measured once with lib/metrics (symmetric Hausdorff and
-// mean distance relative to the input's bounding-box diagonal).
+// "core s" for the peers. The time is the median of --runs runs, taken in
+// turns (run 1 of every method, then run 2, ...) so that a change in the
+// load of a shared machine falls on all methods alike; besides the wall
+// time the process CPU time is measured ("cpu s", every method is single
+// threaded), which other jobs on a shared machine disturb far less, and the
+// throughput and lodbake's speed-ups are computed from it. The error of the
+// result is measured once with lib/metrics (symmetric Hausdorff and mean
+// distance relative to the input's bounding-box diagonal).
 //
 //   bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] [--peers LIST]
 //                  [--samples N] [--markdown] FILE...
@@ -32,6 +37,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -244,7 +250,8 @@ struct Method {
 struct Row {
   bool ok = false;
   std::string error;
-  double seconds = 0;  // median total
+  double seconds = 0;      // median total
+  double cpu_seconds = 0;  // median process CPU time of the total
   double core_seconds = 0;
   uint64_t output_triangles = 0;
   double hausdorff = 0;  // relative to the input's diagonal
@@ -257,42 +264,59 @@ double median(std::vector<double> v) {
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-Row measure_method(const Method& method, const TriangleMesh& input, uint64_t target, int runs,
-                   const lodbake::DistanceOptions& distance) {
-  Row row;
-  std::vector<double> totals;
-  std::vector<double> cores;
-  Outcome last;
+// The runs of all methods in turns, then each result's error.
+std::vector<Row> measure_methods(const std::vector<Method>& methods, const TriangleMesh& input,
+                                 uint64_t target, int runs, const std::string& label,
+                                 const lodbake::DistanceOptions& distance) {
+  const size_t count = methods.size();
+  std::vector<Row> rows(count);
+  std::vector<std::vector<double>> totals(count), cpus(count), cores(count);
+  std::vector<Outcome> last(count);
+  std::vector<bool> failed(count, false);
   for (int i = 0; i < runs; ++i) {
-    auto start = Clock::now();
-    last = method.run(input, target);
-    const double total = seconds_since(start);
-    if (!last.ok) {
-      row.error = last.error;
-      return row;
+    for (size_t m = 0; m < count; ++m) {
+      if (failed[m]) continue;
+      std::fprintf(stderr, "bench_simplify: %s %s run %d\n", label.c_str(), methods[m].name.c_str(),
+                   i + 1);
+      const std::clock_t cpu_start = std::clock();
+      const auto start = Clock::now();
+      last[m] = methods[m].run(input, target);
+      const double total = seconds_since(start);
+      const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+      if (!last[m].ok) {
+        rows[m].error = last[m].error;
+        failed[m] = true;
+        continue;
+      }
+      totals[m].push_back(total);
+      cpus[m].push_back(cpu);
+      cores[m].push_back(last[m].core_seconds);
     }
-    totals.push_back(total);
-    cores.push_back(last.core_seconds);
   }
-  row.seconds = median(totals);
-  row.core_seconds = median(cores);
-  row.output_triangles = last.mesh.triangle_count();
-  if (last.mesh.triangles.empty()) {
-    row.error = "no triangles left";
-    return row;
+  for (size_t m = 0; m < count; ++m) {
+    Row& row = rows[m];
+    if (failed[m]) continue;
+    row.seconds = median(totals[m]);
+    row.cpu_seconds = median(cpus[m]);
+    row.core_seconds = median(cores[m]);
+    row.output_triangles = last[m].mesh.triangle_count();
+    if (last[m].mesh.triangles.empty()) {
+      row.error = "no triangles left";
+      continue;
+    }
+    auto measure_start = Clock::now();
+    auto d = lodbake::measure_surface_distance(input, last[m].mesh, distance);
+    std::fprintf(stderr, "bench_simplify:   %s: error measured in %.2f s\n",
+                 methods[m].name.c_str(), seconds_since(measure_start));
+    if (!d.is_ok()) {
+      row.error = "metrics: " + d.status().message();
+      continue;
+    }
+    row.hausdorff = d.value().hausdorff_relative;
+    row.mean = d.value().mean_relative;
+    row.ok = true;
   }
-  auto measure_start = Clock::now();
-  auto d = lodbake::measure_surface_distance(input, last.mesh, distance);
-  std::fprintf(stderr, "bench_simplify:   %s: error measured in %.2f s\n", method.name.c_str(),
-               seconds_since(measure_start));
-  if (!d.is_ok()) {
-    row.error = "metrics: " + d.status().message();
-    return row;
-  }
-  row.hausdorff = d.value().hausdorff_relative;
-  row.mean = d.value().mean_relative;
-  row.ok = true;
-  return row;
+  return rows;
 }
 
 std::vector<std::string> split_list(const std::string& text) {
@@ -365,13 +389,13 @@ int main(int argc, char** argv) {
 
   if (markdown) {
     std::printf(
-        "| mesh | target | method | seconds | core s | Mtri/s | output tris | Hausdorff/diag | "
-        "mean/diag | lodbake speed-up | lodbake Hausdorff ratio |\n"
-        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        "| mesh | target | method | seconds | cpu s | core s | Mtri/s | output tris | "
+        "Hausdorff/diag | mean/diag | lodbake speed-up | lodbake Hausdorff ratio |\n"
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   } else {
-    std::printf("%-26s %6s %-9s %9s %9s %8s %10s %12s %12s %9s %9s\n", "mesh", "target", "method",
-                "seconds", "core s", "Mtri/s", "out tris", "Hausdorff", "mean", "speed-up",
-                "H ratio");
+    std::printf("%-26s %6s %-9s %9s %9s %9s %8s %10s %12s %12s %9s %9s\n", "mesh", "target",
+                "method", "seconds", "cpu s", "core s", "Mtri/s", "out tris", "Hausdorff", "mean",
+                "speed-up", "H ratio");
   }
   int status = 0;
   for (const std::string& file : files) {
@@ -405,12 +429,8 @@ int main(int argc, char** argv) {
           std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(ratio * triangles)));
       char target_text[32];
       std::snprintf(target_text, sizeof(target_text), "%g%%", ratio * 100);
-      std::vector<Row> rows;
-      for (const Method& method : methods) {
-        std::fprintf(stderr, "bench_simplify: %s %s %s\n", name.c_str(), target_text,
-                     method.name.c_str());
-        rows.push_back(measure_method(method, input, target, runs, distance));
-      }
+      const std::vector<Row> rows =
+          measure_methods(methods, input, target, runs, name + " " + target_text, distance);
       for (size_t m = 0; m < methods.size(); ++m) {
         const Row& row = rows[m];
         if (!row.ok) {
@@ -425,7 +445,7 @@ int main(int argc, char** argv) {
         std::string h_ratio = "-";
         if (with_lodbake && m > 0 && rows[0].ok) {
           char buffer[32];
-          std::snprintf(buffer, sizeof(buffer), "%.2fx", row.seconds / rows[0].seconds);
+          std::snprintf(buffer, sizeof(buffer), "%.2fx", row.cpu_seconds / rows[0].cpu_seconds);
           speed_up = buffer;
           if (row.hausdorff > 0) {
             std::snprintf(buffer, sizeof(buffer), "%.2f", rows[0].hausdorff / row.hausdorff);
@@ -434,23 +454,24 @@ int main(int argc, char** argv) {
         }
         char core[32] = "-";
         if (row.core_seconds > 0) std::snprintf(core, sizeof(core), "%.3f", row.core_seconds);
-        const double mtris = static_cast<double>(triangles) / row.seconds / 1e6;
-        std::printf(markdown
-                        ? "| %s | %s | %s | %.3f | %s | %.2f | %llu | %.3e | %.3e | %s | %s |\n"
-                        : "%-26s %6s %-9s %9.3f %9s %8.2f %10llu %12.3e %12.3e %9s %9s\n",
-                    name.c_str(), target_text, methods[m].name.c_str(), row.seconds, core, mtris,
-                    static_cast<unsigned long long>(row.output_triangles), row.hausdorff, row.mean,
-                    speed_up.c_str(), h_ratio.c_str());
+        const double mtris = static_cast<double>(triangles) / row.cpu_seconds / 1e6;
+        std::printf(
+            markdown ? "| %s | %s | %s | %.3f | %.3f | %s | %.2f | %llu | %.3e | %.3e | %s | %s |\n"
+                     : "%-26s %6s %-9s %9.3f %9.3f %9s %8.2f %10llu %12.3e %12.3e %9s %9s\n",
+            name.c_str(), target_text, methods[m].name.c_str(), row.seconds, row.cpu_seconds, core,
+            mtris, static_cast<unsigned long long>(row.output_triangles), row.hausdorff, row.mean,
+            speed_up.c_str(), h_ratio.c_str());
       }
       std::fflush(stdout);
     }
   }
   if (!markdown) {
     std::printf(
-        "seconds: median of %d runs, TriangleMesh in to compact TriangleMesh out; core s: the "
-        "peer's library call alone\nHausdorff, mean: symmetric, relative to the input's "
+        "seconds: median of %d runs (methods in turns), TriangleMesh in to compact TriangleMesh "
+        "out; cpu s: its process CPU time; core s: the peer's library call alone (wall)\n"
+        "Mtri/s: input triangles / cpu s\nHausdorff, mean: symmetric, relative to the input's "
         "bounding-box diagonal (lib/metrics, %llu area samples per direction)\n"
-        "speed-up = peer seconds / lodbake seconds; H ratio = lodbake Hausdorff / peer Hausdorff\n",
+        "speed-up = peer cpu s / lodbake cpu s; H ratio = lodbake Hausdorff / peer Hausdorff\n",
         runs, static_cast<unsigned long long>(distance.area_samples));
   }
   return status;

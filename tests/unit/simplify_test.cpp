@@ -268,6 +268,53 @@ TEST(Simplify, SeamVerticesAreLockedUnlessPermissive) {
   EXPECT_EQ(simplify(mesh, options).status().kind(), ErrorKind::kUnsupported);
 }
 
+// The engine rewrites a pass's triangles after the pass (apply_aliases):
+// corners moved from a removed vertex must still take the survivor's value.
+// Each corner gets its own value index holding its vertex's (x, y), so no
+// vertex is on a seam, and a moved corner that kept the removed vertex's
+// value would no longer match its new vertex's position.
+TEST(Simplify, CornersMovedToTheSurvivorTakeItsValues) {
+  TriangleMesh mesh = load_clean_mesh("npm_bunny.obj");
+  MeshAttribute& tc = mesh.texcoords;
+  tc.binding = AttributeBinding::kPerCorner;
+  tc.components = 2;
+  tc.values.clear();
+  tc.corners.clear();
+  for (const Triangle& t : mesh.triangles) {
+    Triangle c;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = static_cast<uint32_t>(tc.values.size() / 2);
+      tc.values.push_back(mesh.positions[t[k]][0]);
+      tc.values.push_back(mesh.positions[t[k]][1]);
+    }
+    tc.corners.push_back(c);
+  }
+  auto mismatches = [](const TriangleMesh& m) {
+    size_t count = 0;
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3f& p = m.positions[m.triangles[t][k]];
+        const uint32_t value = m.texcoords.corners[t][k];
+        if (m.texcoords.values[2 * value] != p[0] || m.texcoords.values[2 * value + 1] != p[1]) {
+          ++count;
+        }
+      }
+    }
+    return count;
+  };
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  const SimplifyResult r = run(mesh, options);
+  ASSERT_EQ(r.mesh.texcoords.corners.size(), r.mesh.triangles.size());
+  EXPECT_LE(r.mesh.triangles.size(), mesh.triangles.size() / 10);
+  EXPECT_EQ(mismatches(r.mesh), 0u);
+  // With `permissive` moved corners keep their own values: the check above
+  // can see a corner that was not rewritten.
+  options.permissive = true;
+  const SimplifyResult p = run(mesh, options);
+  EXPECT_GT(mismatches(p.mesh), 0u);
+}
+
 TEST(Simplify, RefusesMeshesItCannotTake) {
   TriangleMesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
