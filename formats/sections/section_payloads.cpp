@@ -28,7 +28,11 @@ Status undefined_codec(const Section& section) {
                     section.tag().c_str(), section.entry.codec, name == nullptr ? "?" : name));
 }
 
-Result<Bytes> decode_base_payload(const Section& section) {
+}  // namespace
+
+Result<Bytes> decode_base_stored(const Section& section) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
   if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kDraco))
     return undefined_codec(section);
 #ifdef LODBAKE_HAVE_DRACO_CODEC
@@ -44,7 +48,13 @@ Result<Bytes> decode_base_payload(const Section& section) {
                          "section BASE uses codec 2 (draco), which this build cannot decode");
 }
 
-}  // namespace
+Result<Bytes> decode_vspl_stored(const Section& section, const TriangleMesh& base) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
+    return undefined_codec(section);
+  return decode_vspl_compact(section.data, section.size, base);
+}
 
 Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) {
   try {
@@ -66,7 +76,7 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
       if (section.tag() == kBaseTag) base = &section;
     }
     if (base != nullptr && base->entry.codec != static_cast<uint16_t>(SectionCodec::kRaw)) {
-      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_base_payload(*base));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_base_stored(*base));
       LODBAKE_RETURN_IF_ERROR(replace(base, std::move(raw)));
     }
     for (Section& section : container->sections) {
@@ -80,8 +90,7 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
                                "section VSPL is compact, which needs the BASE section");
       }
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
-      LODBAKE_ASSIGN_OR_RETURN(Bytes raw,
-                               decode_vspl_compact(section.data, section.size, base_mesh));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_vspl_stored(section, base_mesh));
       LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
     }
     return Status::ok();

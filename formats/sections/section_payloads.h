@@ -7,9 +7,18 @@
 #include <vector>
 
 #include "formats/container/container_reader.h"
+#include "formats/mesh/triangle_mesh.h"
 #include "formats/support/file_io.h"
 
 namespace lodbake {
+
+/// The raw BASE payload of a BASE section stored with any codec (a copy for
+/// raw). \return as decode_section_codecs() (the size is not checked here).
+Result<Bytes> decode_base_stored(const Section& base);
+
+/// The raw VSPL payload of a VSPL section stored with any codec, against
+/// its decoded BASE mesh (needed by the compact codec).
+Result<Bytes> decode_vspl_stored(const Section& vspl, const TriangleMesh& base);
 
 /// Decodes the coded sections of `container` in place: afterwards each
 /// Section's data and size are its raw payload (owned by `*storage`, which
