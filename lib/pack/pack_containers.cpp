@@ -181,6 +181,9 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
   if (inputs.empty()) return invalid_input("no input containers");
   std::vector<InputFile> files;
   LODBAKE_RETURN_IF_ERROR(read_inputs(inputs, &files, failed));
+  // The input hashes first: files of different inputs differ everywhere.
+  MetaSection merged_meta;
+  LODBAKE_RETURN_IF_ERROR(merge_meta(inputs, files, meta_options, &merged_meta, failed));
   PackResult result;
   for (const PackInput& input : inputs)
     result.input_bytes += input.bytes.size();
@@ -263,9 +266,7 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     uint64_t decoded_size = 0;
     bool required = false;
     if (tag == kMetaTag) {
-      MetaSection meta;
-      LODBAKE_RETURN_IF_ERROR(merge_meta(inputs, files, meta_options, &meta, failed));
-      LODBAKE_ASSIGN_OR_RETURN(stored, encode_meta(meta));
+      LODBAKE_ASSIGN_OR_RETURN(stored, encode_meta(merged_meta));
       decoded_size = stored.size();
       report.action = "rewritten";
     } else if (tag == kBaseTag) {

@@ -260,10 +260,6 @@ int main(int argc, char** argv) {
   const std::vector<std::string> inputs = tool.positionals("input");
   if (inputs.empty()) return tool.usage_error("missing MESH or A.lbk");
   if (options.output.empty()) return tool.usage_error("missing -o OUT.lbk");
-  for (const std::string& input : inputs) {
-    if (same_file(input, options.output))
-      return tool.usage_error("the output '" + options.output + "' is also an input");
-  }
   if (std::optional<int> code = check_quantize_bits(tool, options.quantize_bits)) return *code;
   if (options.qp < 1 || options.qp > 30)
     return tool.usage_error("--qp takes 1 to 30 bits, not " + std::to_string(options.qp));
@@ -279,6 +275,12 @@ int main(int argc, char** argv) {
   for (const std::string& input : inputs) {
     if (is_container_file(input)) containers = true;
   }
+  for (const std::string& input : inputs) {
+    if (same_file(input, options.output)) {
+      return tool.usage_error("the output '" + options.output + "' is " +
+                              (containers ? "also an input" : "the input mesh itself"));
+    }
+  }
   if (!containers) {
     if (inputs.size() != 1)
       return tool.usage_error("expected one MESH (or containers), got " +
@@ -289,7 +291,8 @@ int main(int argc, char** argv) {
   }
   for (const std::string& input : inputs) {
     if (!is_container_file(input))
-      return tool.usage_error("'" + input + "' is not a lodbake container; a mesh is packed alone");
+      return tool.usage_error("'" + input +
+                              "' is not a lodbake container (a mesh is packed alone)");
   }
   if (options.repair) return tool.usage_error("--repair applies to a mesh input");
   if (options.draco && !draco_codec_built())
