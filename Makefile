@@ -76,10 +76,14 @@ BENCH_MESHES := $(BUILD)/data/dragon_vrip.ply $(SHARED_DATA)/meshes/stanford_bun
 BENCH_RUNS ?= 3
 SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
+# Progressive-mesh container sizes: raw, compact and Draco against OpenMesh's
+# .pm, the streaming paper's vsplit topology and Draco single-rate.
+PACK_BENCH_MESHES := $(SIMPLIFY_BENCH_MESHES)
 bench: build
-	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify
+	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_pack
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_pack --runs $(BENCH_RUNS) $(PACK_BENCH_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

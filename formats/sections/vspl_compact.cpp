@@ -16,10 +16,16 @@
 //   about 8.3 bits per wing instead of 14. Replaying the connectivity would
 //   find every wing (Hoppe's ~5 bits) but needs the replay in the reader;
 //   the lists need no mesh and cannot fail on hostile records.
-// - Quantized positions: vt (and a stored vs) minus vs's quantized position
-//   before the split, in the section's own box and bits (a base vertex's
-//   float position is quantized into that box first, clamped), zigzag then
+// - Quantized positions, in the section's own box and bits (a base vertex's
+//   float position is quantized into that box first, clamped): vt minus the
+//   midpoint of its wings vl and vr (vs's position when a wing is missing),
+//   a stored vs minus vs's position before the split; zigzag, then
 //   Exp-Golomb of the order k that is smallest for each axis (k stored).
+//   Mean log2(|residual| + 1) per coordinate on the bunny at 14 bits: 5.57
+//   predicting from vs, 5.28 by the parallelogram vl + vr - vs, 5.20 from
+//   the centroid of vs, vl, vr, 5.03 from the wings' midpoint. QEM collapses
+//   short edges in any direction, so vt is not where a regular mesh's
+//   parallelogram puts it.
 //   Float32 positions are copied: they cannot be predicted losslessly
 //   without a float residual coder, and packing quantizes them on request.
 // - Errors (float32, exact): the difference of each error's bit pattern
@@ -227,6 +233,11 @@ class QuantizedPositions {
     }
   }
   uint32_t get(uint32_t v, int a) const { return q_[size_t{v} * 3 + a]; }
+  // vt from the midpoint of its wings when both exist, else from vs.
+  int64_t predict_vt(uint32_t vs, uint32_t vl, uint32_t vr, int a) const {
+    if (vl == kNoVertex || vr == kNoVertex) return get(vs, a);
+    return (int64_t{get(vl, a)} + int64_t{get(vr, a)}) / 2;
+  }
   void set(uint32_t v, int a, uint32_t q) { q_[size_t{v} * 3 + a] = q; }
   uint32_t steps() const { return steps_; }
 
@@ -263,7 +274,9 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
         ints.read(f.bits, &value[c]);
       for (size_t c = 0; c < per_split; ++c) {
         const int a = static_cast<int>(c % 3);
-        residuals[a].push_back(zigzag(int64_t{value[c]} - int64_t{q.get(vs, a)}));
+        const int64_t predicted =
+            c < 3 ? q.predict_vt(vs, splits[i].vl, splits[i].vr, a) : int64_t{q.get(vs, a)};
+        residuals[a].push_back(zigzag(int64_t{value[c]} - predicted));
       }
       for (int a = 0; a < 3; ++a) {
         q.set(vt, a, value[a]);
@@ -424,7 +437,10 @@ Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleM
         const int a = static_cast<int>(c % 3);
         uint64_t z = 0;
         if (!read_golomb(&in, order[a], &z)) return bad_compact("stream ends inside a position");
-        const int64_t v = int64_t{qp.get(vs, a)} + unzigzag(z);
+        const uint32_t vl = wing_value[0] == n ? kNoVertex : wing_value[0];
+        const uint32_t vr = wing_value[1] == n ? kNoVertex : wing_value[1];
+        const int64_t predicted = c < 3 ? qp.predict_vt(vs, vl, vr, a) : int64_t{qp.get(vs, a)};
+        const int64_t v = predicted + unzigzag(z);
         if (v < 0 || v > int64_t{qp.steps()}) {
           return bad_compact(string_printf(
               "split %u: position coordinate %" PRId64 " outside 0..%u", i, v, qp.steps()));

@@ -112,7 +112,7 @@ Result<Bytes> raw_payload(std::vector<InputFile>* files, size_t i, const Section
 Status merge_meta(const std::vector<PackInput>& inputs, const std::vector<InputFile>& files,
                   const nlohmann::json& meta_options, MetaSection* out, size_t* failed) {
   *out = make_meta(kPackTool);
-  out->options = meta_options;
+  out->options = meta_options.is_null() ? nlohmann::json::object() : meta_options;
   nlohmann::json sources = nlohmann::json::array();
   for (size_t i = 0; i < files.size(); ++i) {
     *failed = i;
