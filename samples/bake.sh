@@ -2,8 +2,8 @@
 # The end-to-end bake `make run` runs on the embedded sample: check the mesh,
 # pack it (float32 and quantized), validate both containers, extract the base
 # mesh as GLB and check that again, simplify it to a mesh, an LOD chain and a
-# progressive mesh whose full refinement is checked again, then print a
-# summary.
+# progressive mesh whose full refinement is checked again, repack that
+# (compact VSPL, Draco BASE), then print a summary.
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -36,6 +36,10 @@ step "5. simplify it, recording the progressive mesh (lodbake-simplify)"
 "$bin/lodbake-inspect" -q "$out/elephant-pm.lbk" --extract "$out/elephant-pm-full.obj" --lod 1.0 > /dev/null
 "$bin/lodbake-inspect" --strict -q "$out/elephant-pm-full.obj" | grep -E '^(triangles|genus|problems)'
 
+step "6. repack the progressive mesh: compact VSPL, Draco BASE (lodbake-pack)"
+"$bin/lodbake-pack" "$out/elephant-pm.lbk" --draco -o "$out/elephant-pm-packed.lbk"
+"$bin/lodbake-inspect" --validate --quiet "$out/elephant-pm-packed.lbk" > /dev/null
+
 size() { stat -c %s "$1"; }
 step "summary"
 printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
@@ -43,5 +47,6 @@ printf '%-28s %10s bytes\n' "elephant.lbk (float32)" "$(size "$out/elephant.lbk"
 printf '%-28s %10s bytes\n' "elephant-q16.lbk (16 bits)" "$(size "$out/elephant-q16.lbk")"
 printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.glb")"
 printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
+printf '%-28s %10s bytes\n' "elephant-pm-packed.lbk" "$(size "$out/elephant-pm-packed.lbk")"
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
 echo "all steps passed; outputs in $out"
