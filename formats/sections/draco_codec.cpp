@@ -109,6 +109,11 @@ Status read_attribute(const draco::Mesh& mesh, draco::GeometryAttribute::Type ty
   const int id = mesh.GetNamedAttributeId(type);
   if (id < 0) return Status::ok();
   const draco::PointAttribute* att = mesh.attribute(id);
+  // This codec writes float32 only; other types are refused before any
+  // read (Draco loads DT_BOOL as a C++ bool, undefined for other bytes).
+  if (att->data_type() != draco::DT_FLOAT32)
+    return bad_draco(string_printf("attribute of data type %d, not float32",
+                                   static_cast<int>(att->data_type())));
   if (att->num_components() != components)
     return bad_draco(string_printf("attribute with %d components", att->num_components()));
   const uint32_t points = mesh.num_points();

@@ -11,11 +11,9 @@
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/draco_codec.h"
 #include "formats/sections/vspl_compact.h"
 #include "formats/support/string_format.h"
-#ifdef LODBAKE_HAVE_DRACO_CODEC
-#include "formats/sections/draco_codec.h"
-#endif
 
 namespace lodbake {
 namespace {
@@ -35,7 +33,6 @@ Result<Bytes> decode_base_stored(const Section& section) {
     return Bytes(section.data, section.data + section.size);
   if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kDraco))
     return undefined_codec(section);
-#ifdef LODBAKE_HAVE_DRACO_CODEC
   if (codec_available(section.entry.codec)) {
     LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base_draco(section.data, section.size));
     Result<Bytes> raw = encode_base(mesh, BaseEncodeOptions{});
@@ -43,7 +40,6 @@ Result<Bytes> decode_base_stored(const Section& section) {
       return malformed_section(kBaseTag, "draco: " + raw.status().message());
     return raw;
   }
-#endif
   return container_error(ContainerError::kUnknownCodec,
                          "section BASE uses codec 2 (draco), which this build cannot decode");
 }

@@ -162,12 +162,8 @@ bool base_as_requested(const Section& section, const BaseSummary& summary,
                        const RepackOptions& options, bool draco_target) {
   if (draco_target) {
     if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kDraco)) return false;
-#ifdef LODBAKE_HAVE_DRACO_CODEC
     Result<DracoOptions> stored = read_draco_base_options(section.data, section.size);
     return stored.is_ok() && stored.value() == options.draco_options;
-#else
-    return false;
-#endif
   }
   if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kRaw)) return false;
   return options.quantize_bits == 0 || (summary.position_encoding == PositionEncoding::kQuantized &&
@@ -294,7 +290,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
         stored = raw;
         decoded_size = raw.size();
         if (draco_target) {
-#ifdef LODBAKE_HAVE_DRACO_CODEC
           Result<Bytes> draco = encode_base_draco(mesh, options.draco_options);
           if (draco.is_ok()) {
             stored = std::move(draco).value();
@@ -308,9 +303,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
           } else if (draco.status().kind() != ErrorKind::kUnsupported) {
             return draco.status();
           }
-#else
-          return unsupported("this build has no Draco codec");
-#endif
         }
         report.action = "recoded";
       }
