@@ -262,7 +262,20 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     uint64_t decoded_size = 0;
     bool required = false;
     if (tag == kMetaTag) {
-      LODBAKE_ASSIGN_OR_RETURN(stored, encode_meta(merged_meta));
+      // Counts describe sections (docs/format.md "META"): those of sections
+      // left out go too, or the output would not validate.
+      MetaSection meta = merged_meta;
+      const bool writes_base = chosen.count(kBaseTag) != 0 && wanted(kBaseTag);
+      const bool writes_vspl = chosen.count(kVsplTag) != 0 && wanted(kVsplTag);
+      if (!writes_base) {
+        meta.counts.erase("vertices");
+        meta.counts.erase("triangles");
+      }
+      if (!writes_vspl) {
+        for (const char* key : {"splits", "full_vertices", "full_triangles"})
+          meta.counts.erase(key);
+      }
+      LODBAKE_ASSIGN_OR_RETURN(stored, encode_meta(meta));
       decoded_size = stored.size();
       report.action = "rewritten";
     } else if (tag == kBaseTag) {

@@ -347,6 +347,7 @@ TEST(Repack, MergesFilesOfOneInputAndCopiesUnknownSectionsByteForByte) {
   ASSERT_TRUE(k.is_ok());
   EXPECT_EQ(k.value().sections.size(), 2u);  // META and BASE
   EXPECT_EQ(k.value().find(kVsplTag), nullptr);
+  EXPECT_TRUE(validate_sections(k.value()).empty());  // counts of VSPL left out with it
   RepackOptions drop;
   drop.drop = {"xTRA", "META"};
   PackResult dropped = repack({merged.file}, drop);
