@@ -400,5 +400,66 @@ TEST(Repack, ReaderWithoutDracoRefusesWithUnsupported) {
   EXPECT_TRUE(read_container(file.data(), file.size()).is_ok());
 }
 
+// The container-level rules of docs/format.md section 15: a codec a kind
+// does not define is E020, a decoded size other than the entry's is E021, a
+// compact VSPL without its BASE is E024.
+TEST(SectionCodecs, UndefinedCodecWrongDecodedSizeAndMissingBase) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(4));
+  const Bytes meta = encode_meta(make_meta("test")).value();
+  const Bytes base = encode_base(pm.base, BaseEncodeOptions{}).value();
+  const Bytes raw_vspl = encode_vspl(pm, VsplEncodeOptions{}).value();
+  const Bytes compact = encode_vspl_compact(raw_vspl.data(), raw_vspl.size(), pm.base).value();
+  auto decode = [](const Bytes& file) {
+    Result<Container> c = read_container(file.data(), file.size());
+    EXPECT_TRUE(c.is_ok()) << c.status().message();
+    std::vector<Bytes> storage;
+    return c.is_ok() ? decode_section_codecs(&c.value(), &storage) : c.status();
+  };
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kMetaTag, meta, SectionCodec::kCompact, meta.size(), false).is_ok());
+    Status s = decode(w.finish().value());
+    EXPECT_EQ(s.code(), 20);
+    EXPECT_EQ(s.kind(), ErrorKind::kUnsupported);
+    EXPECT_NE(s.message().find("not defined for this section kind"), std::string::npos);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(w.add_section(kBaseTag, base, true).is_ok());
+    ASSERT_TRUE(
+        w.add_stored_section(kVsplTag, compact, SectionCodec::kCompact, raw_vspl.size() + 1, false)
+            .is_ok());
+    Status s = decode(w.finish().value());
+    EXPECT_EQ(s.code(), 21);
+    EXPECT_NE(s.message().find("section VSPL decodes to"), std::string::npos);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kVsplTag, compact, SectionCodec::kCompact, raw_vspl.size(), false)
+            .is_ok());
+    EXPECT_EQ(decode(w.finish().value()).code(), 24);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(w.add_section(kBaseTag, base, true).is_ok());
+    ASSERT_TRUE(
+        w.add_stored_section(kVsplTag, compact, SectionCodec::kCompact, raw_vspl.size(), false)
+            .is_ok());
+    Bytes file = w.finish().value();
+    Result<Container> c = read_container(file.data(), file.size());
+    ASSERT_TRUE(c.is_ok());
+    std::vector<Bytes> storage;
+    ASSERT_TRUE(decode_section_codecs(&c.value(), &storage).is_ok());
+    const Section* vspl = c.value().find(kVsplTag);
+    EXPECT_EQ(Bytes(vspl->data, vspl->data + vspl->size), raw_vspl);
+    EXPECT_EQ(vspl->entry.stored_size, compact.size());  // the entry keeps what was stored
+  }
+  ContainerWriter w;
+  EXPECT_FALSE(
+      w.add_stored_section(kBaseTag, base, SectionCodec::kRaw, base.size() + 1, true).is_ok());
+}
+
 }  // namespace
 }  // namespace lodbake
