@@ -14,8 +14,7 @@
 //   (255 gave the same sizes on the bunny and the dragon, with longer
 //   scans). A wing found in vs's list costs 1 + bits(list size) bits,
 //   otherwise 1 + bits(n + 1). On the bunny 63% are found in lists of 7 on
-//   average:
-//   about 8.3 bits per wing instead of 14. Replaying the connectivity would
+//   average: about 8.3 bits per wing instead of 14. Replaying the connectivity would
 //   find every wing (Hoppe's ~5 bits) but needs the replay in the reader;
 //   the lists need no mesh and cannot fail on hostile records.
 // - Quantized positions, in the section's own box and bits (a base vertex's
