@@ -145,8 +145,21 @@ bool read_golomb(BitReader* in, int k, uint64_t* x) {
 }
 
 // The known-neighbour lists that predict the wings (see the file comment).
+// The first 8 entries of a list live inline (lists average about 7), the
+// rest in a shared overflow vector, so a million-split PM needs no
+// allocation per vertex.
 class NeighbourLists {
  public:
+  static constexpr size_t kInline = 8;
+  struct View {
+    const uint32_t* head;
+    const uint32_t* rest;
+    size_t count;
+    size_t size() const { return count; }
+    bool empty() const { return count == 0; }
+    uint32_t operator[](size_t k) const { return k < kInline ? head[k] : rest[k - kInline]; }
+  };
+
   NeighbourLists(size_t vertices, const std::vector<Triangle>& triangles) : lists_(vertices) {
     for (const Triangle& t : triangles) {
       for (int k = 0; k < 3; ++k) {
@@ -155,7 +168,12 @@ class NeighbourLists {
       }
     }
   }
-  const std::vector<uint32_t>& of(uint32_t v) const { return lists_[v]; }
+  // Valid until the next split().
+  View of(uint32_t v) const {
+    const List& list = lists_[v];
+    return {list.head, list.overflow == kNoOverflow ? nullptr : overflow_[list.overflow].data(),
+            list.count};
+  }
   void split(uint32_t vs, uint32_t vt, uint32_t vl, uint32_t vr) {
     add(vs, vt);
     add(vt, vs);
@@ -166,16 +184,33 @@ class NeighbourLists {
   }
 
  private:
+  static constexpr uint32_t kNoOverflow = UINT32_MAX;
+  struct List {
+    uint32_t count = 0;
+    uint32_t overflow = kNoOverflow;
+    uint32_t head[kInline] = {};
+  };
   void add(uint32_t a, uint32_t x) {
     if (a == kNoVertex || x == kNoVertex) return;
-    std::vector<uint32_t>& list = lists_[a];
-    if (list.size() >= kMaxNeighbours) return;
-    for (uint32_t y : list) {
-      if (y == x) return;
+    List& list = lists_[a];
+    if (list.count >= kMaxNeighbours) return;
+    const View known = of(a);
+    for (size_t k = 0; k < known.size(); ++k) {
+      if (known[k] == x) return;
     }
-    list.push_back(x);
+    if (list.count < kInline) {
+      list.head[list.count] = x;
+    } else {
+      if (list.overflow == kNoOverflow) {
+        list.overflow = static_cast<uint32_t>(overflow_.size());
+        overflow_.emplace_back();
+      }
+      overflow_[list.overflow].push_back(x);
+    }
+    ++list.count;
   }
-  std::vector<std::vector<uint32_t>> lists_;
+  std::vector<List> lists_;
+  std::vector<std::vector<uint32_t>> overflow_;
 };
 
 // The fixed fields a compact payload repeats from the raw one.
@@ -321,7 +356,7 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
     const VertexSplit& split = splits[i];
     const uint32_t n = f.base + static_cast<uint32_t>(i);
     stream.write(split.vs, bits_for_count(n));
-    const std::vector<uint32_t>& known = lists.of(split.vs);
+    const NeighbourLists::View known = lists.of(split.vs);
     for (uint32_t wing : {split.vl, split.vr}) {
       size_t index = known.size();
       for (size_t k = 0; k < known.size() && wing != kNoVertex; ++k) {
@@ -408,7 +443,7 @@ Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleM
     uint32_t vs = 0;
     if (!in.read(bits_for_count(n), &vs)) return bad_compact("stream ends inside the splits");
     if (vs >= n) return bad_compact(string_printf("split %u: vs %u out of range (%u)", i, vs, n));
-    const std::vector<uint32_t>& known = lists.of(vs);
+    const NeighbourLists::View known = lists.of(vs);
     uint32_t wing_value[2] = {0, 0};
     for (uint32_t& wing : wing_value) {
       uint32_t hit = 0;
