@@ -160,7 +160,10 @@ class NeighbourLists {
     uint32_t operator[](size_t k) const { return k < kInline ? head[k] : rest[k - kInline]; }
   };
 
-  NeighbourLists(size_t vertices, const std::vector<Triangle>& triangles) : lists_(vertices) {
+  // Lists for the base vertices; split() adds one per new vertex, so memory
+  // grows with the records decoded, never with a count read from the file.
+  NeighbourLists(size_t base_vertices, const std::vector<Triangle>& triangles)
+      : lists_(base_vertices) {
     for (const Triangle& t : triangles) {
       for (int k = 0; k < 3; ++k) {
         add(t[k], t[(k + 1) % 3]);
@@ -174,7 +177,9 @@ class NeighbourLists {
     return {list.head, list.overflow == kNoOverflow ? nullptr : overflow_[list.overflow].data(),
             list.count};
   }
+  // \pre vt is the next vertex id (the number of lists so far).
   void split(uint32_t vs, uint32_t vt, uint32_t vl, uint32_t vr) {
+    lists_.emplace_back();
     add(vs, vt);
     add(vt, vs);
     for (uint32_t wing : {vl, vr}) {
@@ -262,7 +267,7 @@ class QuantizedPositions {
  public:
   QuantizedPositions(const Fixed& f, const std::vector<Vec3f>& base)
       : steps_(quantization_steps(f.bits)) {
-    q_.resize((size_t{f.base} + f.splits) * 3);
+    q_.resize(base.size() * 3);
     for (size_t v = 0; v < base.size(); ++v) {
       for (int a = 0; a < 3; ++a)
         q_[3 * v + a] = quantize_coordinate(base[v][a], f.lo[a], f.hi[a], steps_);
@@ -275,6 +280,9 @@ class QuantizedPositions {
     return (int64_t{get(vl, a)} + int64_t{get(vr, a)}) / 2;
   }
   void set(uint32_t v, int a, uint32_t q) { q_[size_t{v} * 3 + a] = q; }
+  // The next vertex's position: storage grows with the records decoded, so
+  // a hostile split count allocates nothing up front.
+  void append(const uint32_t* q) { q_.insert(q_.end(), q, q + 3); }
   uint32_t steps() const { return steps_; }
 
  private:
@@ -304,7 +312,6 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
     BitReader ints(raw + parts.positions_offset, parts.positions_bytes);
     for (size_t i = 0; i < splits.size(); ++i) {
       const uint32_t vs = splits[i].vs;
-      const uint32_t vt = f.base + static_cast<uint32_t>(i);
       uint32_t value[6] = {};
       for (size_t c = 0; c < per_split; ++c)
         ints.read(f.bits, &value[c]);
@@ -314,10 +321,11 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
             c < 3 ? q.predict_vt(vs, splits[i].vl, splits[i].vr, a) : int64_t{q.get(vs, a)};
         residuals[a].push_back(zigzag(int64_t{value[c]} - predicted));
       }
-      for (int a = 0; a < 3; ++a) {
-        q.set(vt, a, value[a]);
-        if (with_vs) q.set(vs, a, value[3 + a]);
+      if (with_vs) {
+        for (int a = 0; a < 3; ++a)
+          q.set(vs, a, value[3 + a]);
       }
+      q.append(value);
     }
   }
   std::vector<uint64_t> error_deltas;
@@ -349,7 +357,7 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
         return invalid_input("cannot encode compact VSPL: a base triangle index is out of range");
     }
   }
-  NeighbourLists lists(size_t{f.base} + f.splits, base.triangles);
+  NeighbourLists lists(f.base, base.triangles);
   BitWriter stream(&out);
   size_t next_residual[3] = {0, 0, 0};
   for (size_t i = 0; i < splits.size(); ++i) {
@@ -435,7 +443,7 @@ Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleM
   ByteWriter errors_out(&errors);
   std::vector<QuantizedPositions> q;
   if (f.quantized) q.emplace_back(f, base.positions);
-  NeighbourLists lists(size_t{f.base} + f.splits, base.triangles);
+  NeighbourLists lists(f.base, base.triangles);
   BitReader in(data + pos, size - pos);
   uint32_t previous = 0;
   for (uint32_t i = 0; i < f.splits; ++i) {
@@ -484,10 +492,11 @@ Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleM
         value[c] = static_cast<uint32_t>(v);
         positions_out.write(value[c], f.bits);
       }
-      for (int a = 0; a < 3; ++a) {
-        qp.set(n, a, value[a]);
-        if (with_vs) qp.set(vs, a, value[3 + a]);
+      if (with_vs) {
+        for (int a = 0; a < 3; ++a)
+          qp.set(vs, a, value[3 + a]);
       }
+      qp.append(value);
     }
     uint64_t z = 0;
     if (!read_golomb(&in, error_order, &z)) return bad_compact("stream ends inside an error");
