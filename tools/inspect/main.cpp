@@ -281,7 +281,16 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   // Sections stored compact or with Draco are read as their raw payloads.
   std::vector<Bytes> decoded_payloads;
   Status codecs = decode_section_codecs(&container.value(), &decoded_payloads);
-  if (!codecs.is_ok()) return tool.fail(path, codecs);
+  if (!codecs.is_ok()) {
+    // As for a broken file: the listing, then the error.
+    report["error"] = codecs.message();
+    if (tool.json()) {
+      tool.print_json(report);
+    } else {
+      print_listing(std::cout, path, listing);
+    }
+    return tool.fail(path, codecs);
+  }
   Status undecodable;
   report["contents"] = section_contents(container.value(), &undecodable);
   // Without --validate a section that does not even decode is still an
