@@ -144,6 +144,11 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
             << r.input_bytes << "), " << r.vertices << " vertices, " << r.triangles
             << " triangles, " << per(r.file.size(), r.vertices) << " bits per vertex, "
             << per(r.file.size(), r.triangles) << " bits per triangle\n";
+  for (const PackedSection& s : r.sections) {
+    if (s.tag == "VSPL" && s.action != "dropped" && r.splits > 0)
+      std::cout << "VSPL: " << per(s.stored_after, r.splits) << " bits per vertex split ("
+                << r.splits << " splits)\n";
+  }
   return 0;
 }
 
