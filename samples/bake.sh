@@ -2,9 +2,10 @@
 # The end-to-end bake `make run` runs on the embedded sample: check the mesh,
 # pack it (float32 and quantized), validate both containers, extract the base
 # mesh as GLB and check that again, simplify it to a mesh, an LOD chain and a
-# progressive mesh whose full refinement is checked again, build the balanced
-# hierarchy with its split DAG and vertex trees and validate them, then print
-# a summary.
+# progressive mesh whose full refinement is checked again, repack that
+# (compact VSPL, Draco BASE), build the balanced hierarchy with its split DAG
+# and vertex trees, the fan-merge hierarchy, strips and the SETS graph and
+# validate them, then print a summary.
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -53,6 +54,10 @@ step "8. triangle strips and the SETS strip graph (lodbake-strips)"
 "$bin/lodbake-inspect" -q --validate "$out/elephant-strips.lbk" --extract "$out/elephant-strips.obj" > /dev/null
 "$bin/lodbake-inspect" --strict -q "$out/elephant-strips.obj" | grep -E '^(triangles|problems)'
 
+step "9. repack the progressive mesh: compact VSPL, Draco BASE (lodbake-pack)"
+"$bin/lodbake-pack" "$out/elephant-pm.lbk" --draco -o "$out/elephant-pm-packed.lbk"
+"$bin/lodbake-inspect" --validate --quiet "$out/elephant-pm-packed.lbk" > /dev/null
+
 size() { stat -c %s "$1"; }
 step "summary"
 printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
@@ -60,6 +65,7 @@ printf '%-28s %10s bytes\n' "elephant.lbk (float32)" "$(size "$out/elephant.lbk"
 printf '%-28s %10s bytes\n' "elephant-q16.lbk (16 bits)" "$(size "$out/elephant-q16.lbk")"
 printf '%-28s %10s bytes\n' "elephant.glb (extracted)" "$(size "$out/elephant.glb")"
 printf '%-28s %10s bytes\n' "elephant-pm.lbk (full PM)" "$(size "$out/elephant-pm.lbk")"
+printf '%-28s %10s bytes\n' "elephant-pm-packed.lbk" "$(size "$out/elephant-pm-packed.lbk")"
 printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.obj")"
 printf '%-28s %10s bytes\n' "elephant-hierarchy.lbk" "$(size "$out/elephant-hierarchy.lbk")"
 printf '%-28s %10s bytes\n' "elephant-fan.lbk (FANH)" "$(size "$out/elephant-fan.lbk")"

@@ -26,9 +26,10 @@ inline constexpr uint16_t kSectionFlagRequired = 0x0001;
 /// All section flag bits defined by format 1.0.
 inline constexpr uint16_t kKnownSectionFlags = kSectionFlagRequired;
 
-/// How a section's stored bytes encode its payload. 1.0 defines only raw
-/// (stored bytes == payload); other values are reserved for later codecs.
-enum class SectionCodec : uint16_t { kRaw = 0 };
+/// How a section's stored bytes encode its payload (docs/format.md "Codecs"):
+/// raw (stored bytes == payload), lodbake's compact coding of the section
+/// kind, or a Draco bitstream. Other values are reserved.
+enum class SectionCodec : uint16_t { kRaw = 0, kCompact = 1, kDraco = 2 };
 
 /// The 48-byte header, field by field in file order.
 struct ContainerHeader {

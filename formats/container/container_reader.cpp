@@ -17,6 +17,7 @@
 #include <set>
 
 #include "formats/container/container_errors.h"
+#include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/support/crc32c.h"
 #include "formats/support/string_format.h"
@@ -211,12 +212,21 @@ Status check_contents(std::vector<Section>* sections, const std::vector<std::str
                                  " bytes give 0x%08X",
                                  tag, entry.crc32c, entry.stored_size, actual));
     }
-    if (entry.codec != static_cast<uint16_t>(SectionCodec::kRaw)) {
+    if (!codec_available(entry.codec)) {
+      const char* name = codec_name(entry.codec);
       return error(ContainerError::kUnknownCodec,
-                   string_printf("section %s uses unsupported codec %u (format 1.0 knows 0 = raw)",
-                                 tag, entry.codec));
+                   name == nullptr
+                       ? string_printf("section %s uses unknown codec %u (0 raw, 1 compact, "
+                                       "2 draco)",
+                                       tag, entry.codec)
+                       : string_printf("section %s uses codec %u (%s), which this build cannot "
+                                       "decode",
+                                       tag, entry.codec, name));
     }
-    if (entry.decoded_size != entry.stored_size) {
+    // Only raw fixes the decoded size here; the others are checked once the
+    // payload is decoded (formats/sections/section_payloads.h).
+    if (entry.codec == static_cast<uint16_t>(SectionCodec::kRaw) &&
+        entry.decoded_size != entry.stored_size) {
       return error(ContainerError::kSizeMismatch,
                    string_printf("section %s is raw but its decoded size %" PRIu64
                                  " differs from its stored size %" PRIu64,

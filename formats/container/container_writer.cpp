@@ -13,6 +13,17 @@
 namespace lodbake {
 
 Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool required) {
+  const uint64_t size = payload.size();
+  return add_stored_section(tag, std::move(payload), SectionCodec::kRaw, size, required);
+}
+
+Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
+                                           uint64_t decoded_size, bool required) {
+  if (codec == SectionCodec::kRaw && decoded_size != stored.size()) {
+    return invalid_input("raw section " + printable_tag(tag) + " with a decoded size of " +
+                         std::to_string(decoded_size) + " bytes and " +
+                         std::to_string(stored.size()) + " stored");
+  }
   if (!is_valid_tag(tag)) {
     return container_error(ContainerError::kBadTag,
                            "section tag \"" + printable_tag(tag) +
@@ -24,7 +35,7 @@ Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool re
                              "section " + std::string(tag) + " was already added");
     }
   }
-  sections_.push_back(Pending{std::string(tag), std::move(payload), required});
+  sections_.push_back(Pending{std::string(tag), std::move(stored), required, codec, decoded_size});
   return Status::ok();
 }
 
@@ -39,11 +50,11 @@ Result<Bytes> ContainerWriter::finish() const {
     for (const Pending& pending : sections_) {
       SectionEntry entry;
       entry.tag = pending.tag;
-      entry.codec = static_cast<uint16_t>(SectionCodec::kRaw);
+      entry.codec = static_cast<uint16_t>(pending.codec);
       entry.flags = pending.required ? kSectionFlagRequired : 0;
       entry.offset = align_up8(end);
       entry.stored_size = pending.payload.size();
-      entry.decoded_size = pending.payload.size();
+      entry.decoded_size = pending.decoded_size;
       entry.crc32c = crc32c(pending.payload.data(), pending.payload.size());
       end = entry.offset + entry.stored_size;
       entries.push_back(std::move(entry));

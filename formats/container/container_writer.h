@@ -21,7 +21,7 @@ namespace lodbake {
 /// aligned offset after the header or the previous section with zero
 /// padding, then the section table, which ends the file. No timestamps, no
 /// pointer-dependent data, so two writers fed the same calls produce
-/// byte-identical files. All sections use the raw codec.
+/// byte-identical files.
 class ContainerWriter {
  public:
   /// Adds a section. `required` sets flag bit 0: a reader that does not know
@@ -30,6 +30,13 @@ class ContainerWriter {
   /// \return LBK-E016 when `tag` is not 4 characters in 0x21..0x7E, LBK-E017
   ///         when a section with that tag was already added; nothing is added then.
   Status add_section(std::string_view tag, Bytes payload, bool required);
+
+  /// Adds a section whose stored bytes encode its payload with `codec`;
+  /// `decoded_size` is the payload's size (for raw it must be stored.size()).
+  /// \return as add_section(), or kInvalidInput for a raw section whose
+  ///         decoded size differs from its stored size.
+  Status add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
+                            uint64_t decoded_size, bool required);
 
   /// Number of sections added so far.
   size_t section_count() const { return sections_.size(); }
@@ -44,6 +51,8 @@ class ContainerWriter {
     std::string tag;
     Bytes payload;
     bool required;
+    SectionCodec codec;
+    uint64_t decoded_size;
   };
   std::vector<Pending> sections_;
 };

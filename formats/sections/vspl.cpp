@@ -702,6 +702,20 @@ Result<VsplSummary> read_vspl_summary(const uint8_t* data, size_t size) {
   return layout.summary;
 }
 
+Result<VsplParts> locate_vspl_parts(const uint8_t* data, size_t size) {
+  VsplLayout layout;
+  LODBAKE_RETURN_IF_ERROR(parse_layout(data, size, &layout));
+  VsplParts parts;
+  parts.summary = layout.summary;
+  parts.topology_offset = layout.topology_offset;
+  parts.topology_bytes = static_cast<size_t>(layout.topology_bytes);
+  parts.positions_offset = layout.positions_offset;
+  parts.positions_bytes = static_cast<size_t>(layout.positions_bytes);
+  parts.errors_offset = layout.errors_offset;
+  parts.tail_offset = layout.errors_offset + size_t{4} * layout.summary.split_count;
+  return parts;
+}
+
 namespace {
 
 // One attribute of the joined PM: BASE's per-vertex values, then the split

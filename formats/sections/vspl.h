@@ -111,6 +111,21 @@ Result<VsplSection> decode_vspl(const uint8_t* data, size_t size,
 /// as decode_vspl() except what needs the base mesh or the record contents.
 Result<VsplSummary> read_vspl_summary(const uint8_t* data, size_t size);
 
+/// Where the parts of a VSPL payload lie (byte offsets into the payload),
+/// for codecs that transcode it (formats/sections/vspl_compact.h).
+struct VsplParts {
+  VsplSummary summary;
+  size_t topology_offset = 0;  ///< also the size of the fixed fields and the box
+  size_t topology_bytes = 0;
+  size_t positions_offset = 0;
+  size_t positions_bytes = 0;
+  size_t errors_offset = 0;
+  size_t tail_offset = 0;  ///< normals, texture coordinates, permutation: to the end
+};
+
+/// The parts of a payload whose size checks out (as read_vspl_summary()).
+Result<VsplParts> locate_vspl_parts(const uint8_t* data, size_t size);
+
 /// Joins a decoded BASE mesh and a VSPL section decoded against its
 /// positions into a progressive mesh. ProgressiveMesh::normals (texcoords)
 /// is BASE's per-vertex values followed by the section's split values.

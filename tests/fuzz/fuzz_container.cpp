@@ -13,6 +13,7 @@
 #include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
+#include "formats/sections/section_payloads.h"
 #include "formats/sections/section_validation.h"
 #include "tests/fuzz/fuzz_section_checks.h"
 
@@ -41,15 +42,26 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   if (container.is_ok()) {
     fuzz::require(listing.table_complete && listing.table_crc_ok, "valid file, broken listing");
-    (void)validate_sections(container.value());
     ContainerWriter writer;
     for (const Section& section : container.value().sections) {
       fuzz::require(
           writer
-              .add_section(section.tag(), Bytes(section.data, section.data + section.size),
-                           section.required())
+              .add_stored_section(section.tag(), Bytes(section.data, section.data + section.size),
+                                  static_cast<SectionCodec>(section.entry.codec),
+                                  section.entry.decoded_size, section.required())
               .is_ok(),
           "valid file has a section the writer refuses");
+    }
+    // Coded sections (compact VSPL, Draco BASE) decode to raw payloads,
+    // which the section checks then see like any other.
+    Container decoded = container.value();
+    std::vector<Bytes> storage;
+    if (decode_section_codecs(&decoded, &storage).is_ok()) {
+      for (const Section& section : decoded.sections) {
+        if (section.entry.codec == 0) continue;
+        if (section.tag() == kBaseTag) fuzz::check_base_payload(section.data, section.size);
+      }
+      (void)validate_sections(decoded);
     }
     Result<Bytes> rewritten = writer.finish();
     fuzz::require(rewritten.is_ok() && rewritten.value().size() == size &&

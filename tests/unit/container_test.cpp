@@ -447,8 +447,8 @@ void ErrorCodes::section_cases() {
     corrupt[70] ^= 0x40;
     expect(corrupt, 19, "section BASE checksum mismatch");
   }
-  expect(with_entry(file, 1, [](SectionEntry* e) { e->codec = 1; }), 20,
-         "section BASE uses unsupported codec 1");
+  expect(with_entry(file, 1, [](SectionEntry* e) { e->codec = 3; }), 20,
+         "section BASE uses unknown codec 3");
   expect(with_entry(file, 1, [](SectionEntry* e) { e->decoded_size = 1000; }), 21,
          "decoded size 1000 differs from its stored size 29");
   expect(with_entry(file, 2, [](SectionEntry* e) { e->flags = kSectionFlagRequired; }), 22,

@@ -8,12 +8,14 @@
 #include "formats/container/container_layout.h"
 #include "formats/container/container_listing.h"
 #include "formats/container/container_reader.h"
+#include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
+#include "formats/sections/section_payloads.h"
 #include "formats/sections/section_validation.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/strp.h"
@@ -82,14 +84,16 @@ nlohmann::json listing_json(const ContainerListing& listing) {
   j["table_checksum_ok"] = listing.table_crc_ok;
   nlohmann::json sections = nlohmann::json::array();
   for (const SectionListing& s : listing.sections) {
-    nlohmann::json js = {{"tag", s.display_tag},
-                         {"codec", s.entry.codec == 0 ? "raw" : std::to_string(s.entry.codec)},
-                         {"required", s.entry.required()},
-                         {"known", s.known},
-                         {"offset", s.entry.offset},
-                         {"stored_bytes", s.entry.stored_size},
-                         {"decoded_bytes", s.entry.decoded_size},
-                         {"crc32c", hex32(s.entry.crc32c)}};
+    nlohmann::json js = {
+        {"tag", s.display_tag},
+        {"codec", codec_name(s.entry.codec) != nullptr ? codec_name(s.entry.codec)
+                                                       : std::to_string(s.entry.codec)},
+        {"required", s.entry.required()},
+        {"known", s.known},
+        {"offset", s.entry.offset},
+        {"stored_bytes", s.entry.stored_size},
+        {"decoded_bytes", s.entry.decoded_size},
+        {"crc32c", hex32(s.entry.crc32c)}};
     js["checksum_ok"] = s.crc_checked ? nlohmann::json(s.crc_ok) : nlohmann::json(nullptr);
     sections.push_back(std::move(js));
   }
@@ -106,11 +110,12 @@ void print_listing(std::ostream& out, const std::string& path, const ContainerLi
   out << "sections      " << h.section_count << " (table at byte " << h.table_offset
       << ", checksum " << (listing.table_crc_ok ? "ok" : "BAD") << ")\n";
   if (listing.sections.empty()) return;
-  out << "  tag   codec  offset      stored     decoded     crc32c    checksum\n";
+  out << "  tag   codec   offset      stored     decoded     crc32c    checksum\n";
   for (const SectionListing& s : listing.sections) {
     char row[160];
-    std::snprintf(row, sizeof(row), "  %-5s %-6s %-11llu %-10llu %-11llu %s  %s%s\n",
-                  s.display_tag.c_str(), s.entry.codec == 0 ? "raw" : "?",
+    std::snprintf(row, sizeof(row), "  %-5s %-7s %-11llu %-10llu %-11llu %s  %s%s\n",
+                  s.display_tag.c_str(),
+                  codec_name(s.entry.codec) != nullptr ? codec_name(s.entry.codec) : "?",
                   static_cast<unsigned long long>(s.entry.offset),
                   static_cast<unsigned long long>(s.entry.stored_size),
                   static_cast<unsigned long long>(s.entry.decoded_size),
@@ -463,6 +468,19 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   }
   Result<Container> container = read_container(bytes.data(), bytes.size());
   if (!container.is_ok()) return tool.fail(path, container.status());
+  // Sections stored compact or with Draco are read as their raw payloads.
+  std::vector<Bytes> decoded_payloads;
+  Status codecs = decode_section_codecs(&container.value(), &decoded_payloads);
+  if (!codecs.is_ok()) {
+    // As for a broken file: the listing, then the error.
+    report["error"] = codecs.message();
+    if (tool.json()) {
+      tool.print_json(report);
+    } else {
+      print_listing(std::cout, path, listing);
+    }
+    return tool.fail(path, codecs);
+  }
   Status undecodable;
   report["contents"] = section_contents(container.value(), &undecodable);
   // Without --validate a section that does not even decode is still an

@@ -1,16 +1,26 @@
-// lodbake-pack: imports a mesh, checks it (optionally repairs it) and writes
-// a container with META and BASE. Later stages add their sections to the
-// same kind of file. Thin: import, check, repair and encoding live in lib/
-// and formats/.
+// lodbake-pack, two modes chosen by the inputs:
+// - a mesh: imports it, checks it (optionally repairs it) and writes a
+//   container with META and BASE;
+// - containers (.lbk, told by their magic): merges their sections, drops or
+//   keeps tags, and recodes BASE and VSPL (compact by default, Draco on
+//   request), printing each section's size before and after.
+// Thin: import, check, repair, packing and encoding live in lib/ and formats/.
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
+#include "formats/container/container_layout.h"
 #include "formats/container/container_writer.h"
+#include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/pack/pack_containers.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -19,11 +29,128 @@ namespace {
 
 constexpr const char* kPackSchema = "lodbake.pack/1";
 
+constexpr const char* kRepackSchema = "lodbake.pack.containers/1";
+
 struct PackOptions {
   std::string output;
   bool repair = false;
-  int quantize_bits = 0;  // 0: float32 positions
+  int quantize_bits = 0;  // 0: float32 positions (containers: keep the encoding)
+  bool draco = false;
+  int qp = 14;
+  int cl = 7;
+  bool raw = false;
+  std::string drop;
+  std::string keep;
 };
+
+// "A,B" -> {"A", "B"}; every tag must be 4 printable characters.
+bool parse_tags(const std::string& text, std::vector<std::string>* tags, std::string* bad) {
+  std::stringstream in(text);
+  std::string tag;
+  while (std::getline(in, tag, ',')) {
+    if (!is_valid_tag(tag)) {
+      *bad = tag;
+      return false;
+    }
+    tags->push_back(tag);
+  }
+  return true;
+}
+
+// Told by the magic, not the name; an unreadable file is not one (the
+// mesh path then reports why it cannot be read).
+bool is_container_file(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  std::ifstream in(path, std::ios::binary);
+  char head[sizeof(kContainerMagic)] = {};
+  return in.read(head, sizeof(head)) &&
+         std::memcmp(head, kContainerMagic, sizeof(kContainerMagic)) == 0;
+}
+
+double per(uint64_t bytes, uint64_t count) {
+  return count == 0 ? 0.0 : 8.0 * static_cast<double>(bytes) / static_cast<double>(count);
+}
+
+int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOptions& options,
+           const RepackOptions& repack_options) {
+  std::vector<PackInput> inputs;
+  for (const std::string& path : paths) {
+    Result<Bytes> bytes = read_file(path);
+    if (!bytes.is_ok()) return tool.fail(path, bytes.status());
+    inputs.push_back({path, std::move(bytes).value()});
+  }
+  nlohmann::json meta_options = {
+      {"draco", options.draco},
+      {"compact", !options.raw},
+      {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
+                                                   : nlohmann::json(options.quantize_bits)},
+      {"drop", repack_options.drop},
+      {"keep", repack_options.keep}};
+  if (options.draco) meta_options["draco_options"] = {{"qp", options.qp}, {"cl", options.cl}};
+  size_t failed = inputs.size();
+  Result<PackResult> packed = repack_containers(inputs, repack_options, meta_options, &failed);
+  if (!packed.is_ok())
+    return tool.fail(failed < paths.size() ? paths[failed] : options.output, packed.status());
+  const PackResult& r = packed.value();
+  Status written = write_file_atomic(options.output, r.file);
+  if (!written.is_ok()) return tool.fail(options.output, written);
+
+  nlohmann::json sections = nlohmann::json::array();
+  for (const PackedSection& s : r.sections) {
+    nlohmann::json js = {{"tag", s.tag},
+                         {"source", s.source},
+                         {"action", s.action},
+                         {"codec_before", s.codec_before},
+                         {"stored_before", s.stored_before}};
+    if (s.action != "dropped") {
+      js["codec_after"] = s.codec_after;
+      js["stored_after"] = s.stored_after;
+      js["decoded_after"] = s.decoded_after;
+      js["bits_per_vertex"] = per(s.stored_after, r.vertices);
+      if (s.tag == "VSPL") js["bits_per_split"] = per(s.stored_after, r.splits);
+    }
+    sections.push_back(std::move(js));
+  }
+  nlohmann::json report = {{"schema", kRepackSchema},
+                           {"inputs", paths},
+                           {"output", options.output},
+                           {"input_bytes", r.input_bytes},
+                           {"bytes", r.file.size()},
+                           {"vertices", r.vertices},
+                           {"triangles", r.triangles},
+                           {"splits", r.splits},
+                           {"bits_per_vertex", per(r.file.size(), r.vertices)},
+                           {"bits_per_triangle", per(r.file.size(), r.triangles)},
+                           {"sections", sections}};
+  if (tool.json()) {
+    tool.print_json(report);
+    return 0;
+  }
+  std::cout << "  tag   action     codec            stored before -> after\n";
+  for (const PackedSection& s : r.sections) {
+    char row[200];
+    std::snprintf(
+        row, sizeof(row), "  %-5s %-10s %-16s %llu -> %llu\n", s.tag.c_str(), s.action.c_str(),
+        (s.codec_before.empty()
+             ? std::string("new")
+             : s.codec_before + " -> " + (s.codec_after.empty() ? std::string("-") : s.codec_after))
+            .c_str(),
+        static_cast<unsigned long long>(s.stored_before),
+        static_cast<unsigned long long>(s.stored_after));
+    std::cout << row;
+  }
+  std::cout << "wrote " << options.output << ": " << r.file.size() << " bytes (inputs "
+            << r.input_bytes << "), " << r.vertices << " vertices, " << r.triangles
+            << " triangles, " << per(r.file.size(), r.vertices) << " bits per vertex, "
+            << per(r.file.size(), r.triangles) << " bits per triangle\n";
+  for (const PackedSection& s : r.sections) {
+    if (s.tag == "VSPL" && s.action != "dropped" && r.splits > 0)
+      std::cout << "VSPL: " << per(s.stored_after, r.splits) << " bits per vertex split ("
+                << r.splits << " splits)\n";
+  }
+  return 0;
+}
 
 int pack(const Tool& tool, const std::string& input, const PackOptions& options) {
   LoadOptions load;
@@ -97,29 +224,88 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
 int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
-  Tool tool("lodbake-pack", "MESH -o OUT.lbk [options]",
-            "Imports a mesh (.obj .ply .off .stl .gltf .glb .drc, optionally .gz), checks it,\n"
-            "optionally repairs it, and writes a lodbake container with a META section\n"
-            "(tool, options, input name and SHA-256, counts) and a BASE section (the mesh).\n"
+  Tool tool("lodbake-pack",
+            "MESH -o OUT.lbk [options]\n       lodbake-pack A.lbk [B.lbk ...] -o OUT.lbk [options]",
+            "With a mesh (.obj .ply .off .stl .gltf .glb .drc, optionally .gz): imports it,\n"
+            "checks it, optionally repairs it, and writes a lodbake container with a META\n"
+            "section (tool, options, input name and SHA-256, counts) and a BASE section.\n"
             "Meshes with non-finite coordinates or edges shared by more than two triangles\n"
-            "are refused unless --repair fixes them; other problems are kept with a warning.");
+            "are refused unless --repair fixes them; other problems are kept with a warning.\n"
+            "\n"
+            "With containers (.lbk) baked from the same input (META input hash): merges\n"
+            "their sections, drops or keeps tags, stores VSPL with the compact codec (or\n"
+            "raw with --raw) and BASE with Draco on --draco, copies other sections byte for\n"
+            "byte, and prints each section's size before and after. Same inputs and\n"
+            "options give the same bytes; packing a packed file again changes nothing.");
   PackOptions options;
   tool.options().add_options()("output,o",
                                po::value<std::string>(&options.output)->value_name("OUT"),
                                "the container to write (required)")(
       "repair", po::bool_switch(&options.repair),
-      "fix what can be fixed first (CGAL Polygon Mesh Processing): drop non-finite, degenerate "
-      "and duplicate triangles and unreferenced vertices, split non-manifold edges and "
-      "vertices, orient consistently")(
+      "mesh input: fix what can be fixed first (CGAL Polygon Mesh Processing): drop "
+      "non-finite, degenerate and duplicate triangles and unreferenced vertices, split "
+      "non-manifold edges and vertices, orient consistently")(
       "quantize", po::value<int>(&options.quantize_bits)->value_name("BITS"),
-      "store positions quantized to BITS (1..30) bits per coordinate instead of float32");
-  tool.positional("mesh", -1);
+      "store positions quantized to BITS (1..30) bits per coordinate instead of float32 "
+      "(containers: BASE and VSPL positions not already at BITS)")(
+      "draco", po::bool_switch(&options.draco),
+      "containers: store BASE as a Draco bitstream (vertex ids kept); a float32 VSPL is "
+      "quantized to --qp bits")("qp", po::value<int>(&options.qp)->value_name("BITS"),
+                                "Draco position quantization, 1..30 bits (default 14)")(
+      "cl", po::value<int>(&options.cl)->value_name("LEVEL"),
+      "Draco compression level, 0..10 (default 7)")(
+      "raw", po::bool_switch(&options.raw),
+      "containers: store VSPL raw instead of with the compact codec")(
+      "drop", po::value<std::string>(&options.drop)->value_name("TAG,..."),
+      "containers: leave out these sections")(
+      "keep", po::value<std::string>(&options.keep)->value_name("TAG,..."),
+      "containers: write only these sections (and META)");
+  tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
-  std::string input;
-  if (std::optional<int> code = tool.single_positional("mesh", "MESH", &input)) return *code;
+  const std::vector<std::string> inputs = tool.positionals("input");
+  if (inputs.empty()) return tool.usage_error("missing MESH or A.lbk");
   if (options.output.empty()) return tool.usage_error("missing -o OUT.lbk");
-  if (same_file(input, options.output))
-    return tool.usage_error("the output '" + options.output + "' is the input mesh itself");
   if (std::optional<int> code = check_quantize_bits(tool, options.quantize_bits)) return *code;
-  return tool.run([&] { return pack(tool, input, options); });
+  if (options.qp < 1 || options.qp > 30)
+    return tool.usage_error("--qp takes 1 to 30 bits, not " + std::to_string(options.qp));
+  if (options.cl < 0 || options.cl > 10)
+    return tool.usage_error("--cl takes 0 to 10, not " + std::to_string(options.cl));
+  RepackOptions repack_options;
+  std::string bad;
+  if (!parse_tags(options.drop, &repack_options.drop, &bad) ||
+      !parse_tags(options.keep, &repack_options.keep, &bad))
+    return tool.usage_error("'" + bad + "' is not a section tag (4 printable characters)");
+
+  bool containers = false;
+  for (const std::string& input : inputs) {
+    if (is_container_file(input)) containers = true;
+  }
+  for (const std::string& input : inputs) {
+    if (same_file(input, options.output)) {
+      return tool.usage_error("the output '" + options.output + "' is " +
+                              (containers ? "also an input" : "the input mesh itself"));
+    }
+  }
+  if (!containers) {
+    if (inputs.size() != 1)
+      return tool.usage_error("expected one MESH (or containers), got " +
+                              std::to_string(inputs.size()));
+    if (options.draco || options.raw || !options.drop.empty() || !options.keep.empty())
+      return tool.usage_error("--draco, --raw, --drop and --keep apply to .lbk inputs");
+    return tool.run([&] { return pack(tool, inputs.front(), options); });
+  }
+  for (const std::string& input : inputs) {
+    if (!is_container_file(input))
+      return tool.usage_error("'" + input +
+                              "' is not a lodbake container (a mesh is packed alone)");
+  }
+  if (options.repair) return tool.usage_error("--repair applies to a mesh input");
+  if (options.draco && !draco_codec_built())
+    return tool.fail("", unsupported("--draco: this build has no Draco codec"));
+  repack_options.quantize_bits = options.quantize_bits;
+  repack_options.compact = !options.raw;
+  repack_options.draco = options.draco;
+  repack_options.draco_options.quantization_bits = options.qp;
+  repack_options.draco_options.compression_level = options.cl;
+  return tool.run([&] { return repack(tool, inputs, options, repack_options); });
 }

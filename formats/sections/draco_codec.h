@@ -1,0 +1,47 @@
+// The draco codec (codec 2) of the BASE section: the base mesh as a Draco
+// bitstream, layout in docs/format.md "Draco BASE". Sequential connectivity
+// keeps every vertex id and the triangle order; positions are quantized by
+// Draco (qp bits), normals and texture coordinates are stored unquantized.
+// Built only with LODBAKE_DRACO_CODEC (formats/container/section_codecs.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "formats/mesh/triangle_mesh.h"
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+
+/// The layout version written first in every Draco BASE payload.
+inline constexpr uint8_t kDracoBaseVersion = 1;
+
+struct DracoOptions {
+  int quantization_bits = 14;  ///< Draco's qp for positions, 1..30
+  int compression_level = 7;   ///< Draco's cl, 0..10 (speed = 10 - cl)
+
+  bool operator==(const DracoOptions& o) const {
+    return quantization_bits == o.quantization_bits && compression_level == o.compression_level;
+  }
+};
+
+/// Encodes `mesh` (a BASE mesh) with Draco. Deterministic.
+/// \return kUnsupported when the mesh has per-corner normals or texture
+///         coordinates or no triangles (keep such a BASE raw); kInvalidInput
+///         for options out of range; kRuntime when Draco fails.
+Result<Bytes> encode_base_draco(const TriangleMesh& mesh, const DracoOptions& options);
+
+/// The options a Draco BASE payload was written with (its first bytes).
+Result<DracoOptions> read_draco_base_options(const uint8_t* data, size_t size);
+
+/// Decodes a Draco BASE payload: vertex v and triangle t are those encoded.
+/// Only the bitstream version this build writes (2.2, triangular mesh,
+/// sequential connectivity) is accepted.
+/// \return LBK-E023 "section BASE: draco ..." (kInvalidInput) for an unknown
+///         layout version, a bitstream of another version or method, a
+///         bitstream Draco refuses, or a mesh whose attributes do not map
+///         every point. Never throws.
+Result<TriangleMesh> decode_base_draco(const uint8_t* data, size_t size);
+
+}  // namespace lodbake

@@ -1,0 +1,98 @@
+// Which codec each section kind defines (docs/format.md "Codecs"): BASE
+// raw or draco, VSPL raw or compact, every other kind raw only. A pack tool
+// that does not know a kind copies its bytes as they are, so a kind gains
+// codecs here without older tools mangling it.
+#include "formats/sections/section_payloads.h"
+
+#include <cinttypes>
+#include <new>
+
+#include "formats/container/container_errors.h"
+#include "formats/container/section_codecs.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/draco_codec.h"
+#include "formats/sections/vspl_compact.h"
+#include "formats/support/string_format.h"
+
+namespace lodbake {
+namespace {
+
+Status undefined_codec(const Section& section) {
+  const char* name = codec_name(section.entry.codec);
+  return container_error(
+      ContainerError::kUnknownCodec,
+      string_printf("section %s uses codec %u (%s), which is not defined for this section kind",
+                    section.tag().c_str(), section.entry.codec, name == nullptr ? "?" : name));
+}
+
+}  // namespace
+
+Result<Bytes> decode_base_stored(const Section& section) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kDraco))
+    return undefined_codec(section);
+  if (codec_available(section.entry.codec)) {
+    LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base_draco(section.data, section.size));
+    Result<Bytes> raw = encode_base(mesh, BaseEncodeOptions{});
+    if (!raw.is_ok() && raw.status().kind() == ErrorKind::kInvalidInput)
+      return malformed_section(kBaseTag, "draco: " + raw.status().message());
+    return raw;
+  }
+  return container_error(ContainerError::kUnknownCodec,
+                         "section BASE uses codec 2 (draco), which this build cannot decode");
+}
+
+Result<Bytes> decode_vspl_stored(const Section& section, const TriangleMesh& base) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
+    return undefined_codec(section);
+  return decode_vspl_compact(section.data, section.size, base);
+}
+
+Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) {
+  try {
+    storage->reserve(storage->size() + container->sections.size());
+    auto replace = [&](Section* section, Bytes raw) -> Status {
+      if (raw.size() != section->entry.decoded_size) {
+        return container_error(
+            ContainerError::kSizeMismatch,
+            string_printf("section %s decodes to %zu bytes, its entry says %" PRIu64,
+                          section->tag().c_str(), raw.size(), section->entry.decoded_size));
+      }
+      storage->push_back(std::move(raw));
+      section->data = storage->back().data();
+      section->size = storage->back().size();
+      return Status::ok();
+    };
+    Section* base = nullptr;
+    for (Section& section : container->sections) {
+      if (section.tag() == kBaseTag) base = &section;
+    }
+    if (base != nullptr && base->entry.codec != static_cast<uint16_t>(SectionCodec::kRaw)) {
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_base_stored(*base));
+      LODBAKE_RETURN_IF_ERROR(replace(base, std::move(raw)));
+    }
+    for (Section& section : container->sections) {
+      if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw) || &section == base)
+        continue;
+      if (section.tag() != kVsplTag ||
+          section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
+        return undefined_codec(section);
+      if (base == nullptr) {
+        return container_error(ContainerError::kMissingSection,
+                               "section VSPL is compact, which needs the BASE section");
+      }
+      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_vspl_stored(section, base_mesh));
+      LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
+    }
+    return Status::ok();
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory while decoding section codecs");
+  }
+}
+
+}  // namespace lodbake

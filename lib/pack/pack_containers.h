@@ -1,0 +1,83 @@
+// Repacking lodbake containers: merge the sections of several containers
+// baked from the same input, drop or keep sections, and recode the section
+// kinds lodbake-pack knows (BASE, VSPL) compactly or with Draco. What
+// `lodbake-pack A.lbk [B.lbk ...] -o OUT.lbk` runs; memory in, memory out.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "formats/sections/draco_codec.h"
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+
+struct PackInput {
+  std::string name;  ///< for messages and the report (e.g. the file's name)
+  Bytes bytes;       ///< the whole container
+};
+
+struct RepackOptions {
+  /// Quantize float32 (or differently quantized) BASE and VSPL positions to
+  /// this many bits (1..30); 0 keeps the positions' encoding.
+  int quantize_bits = 0;
+  /// Store VSPL with the compact codec (else raw).
+  bool compact = true;
+  /// Store BASE with the Draco codec (`draco` options); a float32 VSPL is
+  /// then quantized to draco.quantization_bits unless quantize_bits is set.
+  bool draco = false;
+  DracoOptions draco_options;
+  /// When not empty, only these tags are written (META is always written
+  /// unless dropped).
+  std::vector<std::string> keep;
+  /// Tags not written.
+  std::vector<std::string> drop;
+};
+
+/// What happened to one section of the output (or a dropped one).
+struct PackedSection {
+  std::string tag;
+  std::string source;          ///< the input it came from
+  std::string codec_before;    ///< "raw", "compact", "draco" or the number
+  std::string codec_after;     ///< empty when dropped
+  uint64_t stored_before = 0;  ///< bytes in the source file
+  uint64_t stored_after = 0;   ///< bytes in the output (0 when dropped)
+  uint64_t decoded_after = 0;  ///< its raw payload's size
+  std::string action;          ///< "recoded", "copied", "rewritten" (META) or "dropped"
+};
+
+struct PackResult {
+  Bytes file;                           ///< the output container
+  std::vector<PackedSection> sections;  ///< output order, then the dropped ones
+  uint64_t input_bytes = 0;             ///< all inputs together
+  uint64_t vertices = 0;   ///< of the fully refined mesh (BASE + VSPL), else BASE's; 0 without
+  uint64_t triangles = 0;  ///< likewise
+  uint64_t splits = 0;     ///< VSPL's records, 0 without
+};
+
+/// Merges, filters and recodes `inputs` into one container. Deterministic:
+/// the output is a function of the inputs' sections and the options, with
+/// META first, then BASE, VSPL, then the other sections in the order they
+/// first appear. Sections of a kind this function does not recode are
+/// copied byte for byte (codec and sizes included). A BASE already stored
+/// as requested is copied, so packing a packed file with the same options
+/// gives the same bytes. The output META records lodbake-pack, `options`,
+/// the common input, the union of the inputs' counts, and the inputs'
+/// provenance ("sources": tool, version and options of each, flattened
+/// through earlier packs).
+/// \return kInvalidInput when an input is not a valid container, inputs
+///         disagree on the input hash, a tag occurs in two inputs with
+///         different contents, counts disagree, or VSPL would be written
+///         without BASE; kUnsupported for a codec this build lacks.
+/// `meta_options` is what the output META records as the options (the
+/// tool's own spelling). When the failure concerns one input, its index is
+/// stored in `*failed_input` (else inputs.size()), so a tool can name it.
+Result<PackResult> repack_containers(const std::vector<PackInput>& inputs,
+                                     const RepackOptions& options,
+                                     const nlohmann::json& meta_options, size_t* failed_input);
+
+}  // namespace lodbake

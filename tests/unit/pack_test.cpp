@@ -1,0 +1,465 @@
+// Compact and Draco section codecs and container repacking (issue 7), on
+// progressive meshes the QEM engine records from real meshes: the compact
+// VSPL decodes to the raw payload byte for byte, Draco keeps every vertex
+// and triangle id with positions within its quantization step, packing is
+// deterministic and idempotent, merge / drop / keep follow the rules of
+// lib/pack/pack_containers.h, and a reader without the Draco codec refuses
+// with LBK-E020 (exit code 5).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "formats/container/container_reader.h"
+#include "formats/container/container_writer.h"
+#include "formats/container/section_codecs.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/draco_codec.h"
+#include "formats/sections/meta.h"
+#include "formats/sections/section_payloads.h"
+#include "formats/sections/section_validation.h"
+#include "formats/sections/vspl.h"
+#include "formats/sections/vspl_compact.h"
+#include "lib/pack/pack_containers.h"
+#include "lib/simplify/pm_replay.h"
+#include "lib/simplify/simplify.h"
+#include "simplify_test_meshes.h"
+
+namespace lodbake {
+namespace {
+
+// An open height-field grid with per-vertex normals and texture coordinates.
+TriangleMesh attributed_grid(int cells) {
+  TriangleMesh mesh;
+  mesh.normals = {AttributeBinding::kPerVertex, 3, {}, {}};
+  mesh.texcoords = {AttributeBinding::kPerVertex, 2, {}, {}};
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      const float u = static_cast<float>(i) / cells;
+      const float v = static_cast<float>(j) / cells;
+      mesh.positions.push_back({u, v, 0.1f * std::sin(6 * u) * std::cos(9 * v)});
+      mesh.normals.values.insert(mesh.normals.values.end(), {0, 0, 1});
+      mesh.texcoords.values.insert(mesh.texcoords.values.end(), {u, v});
+    }
+  }
+  const auto id = [cells](int i, int j) { return static_cast<uint32_t>(j * (cells + 1) + i); };
+  for (int j = 0; j < cells; ++j) {
+    for (int i = 0; i < cells; ++i) {
+      mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return mesh;
+}
+
+// The engine's PM of `mesh` down to 8 triangles; per-corner attributes (which
+// a PM cannot record) are left out.
+ProgressiveMesh record_pm(TriangleMesh mesh, bool optimal = false) {
+  for (MeshAttribute* attr : {&mesh.normals, &mesh.texcoords}) {
+    if (attr->binding == AttributeBinding::kPerCorner) *attr = {};
+  }
+  SimplifyOptions options;
+  options.target_triangles = 8;
+  options.record_pm = true;
+  if (optimal) options.placement = Placement::kOptimal;
+  Result<SimplifyResult> result = simplify(mesh, options);  // NOLINT
+  EXPECT_TRUE(result.is_ok()) << result.status().message();
+  if (!result.is_ok() || !result.value().pm) return {};
+  return *result.value().pm;
+}
+
+// A container with META (input hash `sha`) + BASE + VSPL of `pm`.
+Bytes pm_container(const ProgressiveMesh& pm, int quantize_bits = 0,
+                   const std::string& sha = std::string(64, 'a')) {
+  MetaSection meta = make_meta("lodbake-simplify");
+  meta.input = MetaInput{"mesh.off", sha, 123};
+  meta.counts = {{"splits", pm.splits.size()}};
+  BaseEncodeOptions base_options;
+  VsplEncodeOptions vspl_options;
+  if (quantize_bits != 0) {
+    base_options.quantize = vspl_options.quantize = true;
+    base_options.bits = vspl_options.bits = quantize_bits;
+  }
+  ContainerWriter writer;
+  EXPECT_TRUE(writer.add_section(kMetaTag, encode_meta(meta).value(), false).is_ok());
+  EXPECT_TRUE(
+      writer.add_section(kBaseTag, encode_base(pm.base, base_options).value(), true).is_ok());
+  EXPECT_TRUE(writer.add_section(kVsplTag, encode_vspl(pm, vspl_options).value(), false).is_ok());
+  return writer.finish().value();
+}
+
+// The progressive mesh a packed file holds, read the way every tool reads it.
+ProgressiveMesh read_pm(const Bytes& file) {
+  Result<Container> container = read_container(file.data(), file.size());
+  EXPECT_TRUE(container.is_ok()) << container.status().message();
+  if (!container.is_ok()) return {};
+  std::vector<Bytes> storage;
+  Status decoded = decode_section_codecs(&container.value(), &storage);
+  EXPECT_TRUE(decoded.is_ok()) << decoded.message();
+  EXPECT_TRUE(validate_sections(container.value()).empty());
+  const Section* base = container.value().find(kBaseTag);
+  const Section* vspl = container.value().find(kVsplTag);
+  if (base == nullptr || vspl == nullptr) return {};
+  Result<ProgressiveMesh> pm =
+      decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size);
+  EXPECT_TRUE(pm.is_ok()) << pm.status().message();
+  return pm.is_ok() ? std::move(pm).value() : ProgressiveMesh{};
+}
+
+PackResult repack(const std::vector<Bytes>& files, const RepackOptions& options) {
+  std::vector<PackInput> inputs;
+  for (size_t i = 0; i < files.size(); ++i)
+    inputs.push_back({"in" + std::to_string(i) + ".lbk", files[i]});
+  Result<PackResult> result = repack_containers(inputs, options, nlohmann::json::object(), nullptr);
+  EXPECT_TRUE(result.is_ok()) << result.status().message();
+  return result.is_ok() ? std::move(result).value() : PackResult{};
+}
+
+double max_position_error(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b) {
+  double worst = 0;
+  for (size_t v = 0; v < a.size() && v < b.size(); ++v) {
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, std::fabs(static_cast<double>(a[v][k]) - b[v][k]));
+  }
+  return worst;
+}
+
+// Same ids: every split's vs, vl, vr and the permutation, and the fully
+// refined meshes have identical triangle lists.
+void expect_same_ids(const ProgressiveMesh& a, const ProgressiveMesh& b) {
+  ASSERT_EQ(a.splits.size(), b.splits.size());
+  ASSERT_EQ(a.base.triangles, b.base.triangles);
+  for (size_t i = 0; i < a.splits.size(); ++i) {
+    ASSERT_EQ(a.splits[i].vs, b.splits[i].vs) << i;
+    ASSERT_EQ(a.splits[i].vl, b.splits[i].vl) << i;
+    ASSERT_EQ(a.splits[i].vr, b.splits[i].vr) << i;
+    ASSERT_EQ(a.splits[i].error, b.splits[i].error) << i;
+  }
+  EXPECT_EQ(a.input_vertex, b.input_vertex);
+  Result<TriangleMesh> full_a = mesh_at_lod(a, a.full_vertex_count());
+  Result<TriangleMesh> full_b = mesh_at_lod(b, b.full_vertex_count());
+  ASSERT_TRUE(full_a.is_ok() && full_b.is_ok());
+  EXPECT_EQ(full_a.value().triangles, full_b.value().triangles);
+}
+
+std::vector<Vec3f> full_positions(const ProgressiveMesh& pm) {
+  Result<TriangleMesh> full = mesh_at_lod(pm, pm.full_vertex_count());
+  EXPECT_TRUE(full.is_ok());
+  return full.is_ok() ? full.value().positions : std::vector<Vec3f>{};
+}
+
+double extent(const std::vector<Vec3f>& positions) {
+  Vec3f lo{}, hi{};
+  bounding_box(positions, &lo, &hi);
+  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+}
+
+class CompactVspl : public ::testing::TestWithParam<int> {};
+
+// Compact coding is lossless: the raw payload comes back byte for byte, for
+// float32 and quantized positions, half and optimal placement (stored vs
+// positions), attributes and boundary splits.
+TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
+  const int bits = GetParam();
+  std::vector<ProgressiveMesh> pms = {record_pm(load_clean_mesh("cgal_elephant-with-holes.off")),
+                                      record_pm(load_clean_mesh("c3d_spot.obj"), true),
+                                      record_pm(attributed_grid(12))};
+  for (const ProgressiveMesh& pm : pms) {
+    ASSERT_FALSE(pm.splits.empty());
+    VsplEncodeOptions options;
+    options.quantize = bits != 0;
+    options.bits = bits == 0 ? 16 : bits;
+    Bytes raw = encode_vspl(pm, options).value();
+    Result<Bytes> compact = encode_vspl_compact(raw.data(), raw.size(), pm.base);
+    ASSERT_TRUE(compact.is_ok()) << compact.status().message();
+    Result<Bytes> back =
+        decode_vspl_compact(compact.value().data(), compact.value().size(), pm.base);
+    ASSERT_TRUE(back.is_ok()) << back.status().message();
+    EXPECT_EQ(back.value(), raw);
+    EXPECT_LT(compact.value().size(), raw.size());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Bits, CompactVspl, ::testing::Values(0, 8, 14, 30));
+
+// Every truncation and a flipped bit in each byte fail cleanly (ASan and
+// UBSan check the decoder's reads) or decode to something else.
+TEST(CompactVsplHostile, TruncatedAndFlippedPayloads) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(5));
+  VsplEncodeOptions options;
+  options.quantize = true;
+  options.bits = 12;
+  Bytes raw = encode_vspl(pm, options).value();
+  Bytes compact = encode_vspl_compact(raw.data(), raw.size(), pm.base).value();
+  for (size_t n = 0; n < compact.size(); ++n) {
+    Result<Bytes> cut = decode_vspl_compact(compact.data(), n, pm.base);
+    EXPECT_FALSE(cut.is_ok()) << n;
+  }
+  for (size_t i = 0; i < compact.size(); ++i) {
+    Bytes flipped = compact;
+    flipped[i] ^= 0x10;
+    Result<Bytes> decoded = decode_vspl_compact(flipped.data(), flipped.size(), pm.base);
+    if (decoded.is_ok()) {
+      EXPECT_NE(decoded.value(), raw) << i;
+    }
+  }
+  Bytes wrong_version = compact;
+  wrong_version[0] = 2;
+  Result<Bytes> refused = decode_vspl_compact(wrong_version.data(), wrong_version.size(), pm.base);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_NE(refused.status().message().find("layout version 2 is unknown"), std::string::npos);
+}
+
+TEST(DracoBase, KeepsVertexAndTriangleIdsWithinTheQuantizationStep) {
+  if (!draco_codec_built()) GTEST_SKIP() << "built without the Draco codec";
+  for (const TriangleMesh& mesh : {load_clean_mesh("c3d_spot.obj"), attributed_grid(9)}) {
+    TriangleMesh per_vertex = mesh;
+    if (per_vertex.texcoords.binding == AttributeBinding::kPerCorner) per_vertex.texcoords = {};
+    if (per_vertex.normals.binding == AttributeBinding::kPerCorner) per_vertex.normals = {};
+    for (int qp : {11, 14}) {
+      DracoOptions options;
+      options.quantization_bits = qp;
+      Result<Bytes> stored = encode_base_draco(per_vertex, options);
+      ASSERT_TRUE(stored.is_ok()) << stored.status().message();
+      Result<TriangleMesh> back = decode_base_draco(stored.value().data(), stored.value().size());
+      ASSERT_TRUE(back.is_ok()) << back.status().message();
+      EXPECT_EQ(back.value().triangles, per_vertex.triangles);
+      ASSERT_EQ(back.value().vertex_count(), per_vertex.vertex_count());
+      const double step = extent(per_vertex.positions) / ((1 << qp) - 1);
+      EXPECT_LE(max_position_error(back.value().positions, per_vertex.positions), step);
+      EXPECT_EQ(back.value().normals, per_vertex.normals);
+      EXPECT_EQ(back.value().texcoords, per_vertex.texcoords);
+    }
+  }
+}
+
+TEST(DracoBase, RefusesPerCornerAttributesAndForeignBitstreams) {
+  if (!draco_codec_built()) GTEST_SKIP() << "built without the Draco codec";
+  TriangleMesh mesh = attributed_grid(2);
+  mesh.texcoords.binding = AttributeBinding::kPerCorner;
+  mesh.texcoords.corners.assign(mesh.triangles.size(), Triangle{0, 0, 0});
+  Result<Bytes> refused = encode_base_draco(mesh, DracoOptions{});
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_EQ(refused.status().kind(), ErrorKind::kUnsupported);
+  const Bytes not_draco = {kDracoBaseVersion, 14, 7, 'D', 'R', 'A', 'C', 'O', 1, 0, 1, 0};
+  Result<TriangleMesh> bad = decode_base_draco(not_draco.data(), not_draco.size());
+  ASSERT_FALSE(bad.is_ok());
+  EXPECT_NE(bad.status().message().find("section BASE: draco: bitstream version 1.0"),
+            std::string::npos);
+}
+
+// Round trip of a whole container, compact and with Draco: same ids, the
+// positions within the stated quantization, validation passes.
+TEST(Repack, RoundTripKeepsIdsAndPositionsWithinQuantization) {
+  const ProgressiveMesh pm = record_pm(load_clean_mesh("cgal_elephant-with-holes.off"));
+  const Bytes original = pm_container(pm);
+  const std::vector<Vec3f> exact = full_positions(pm);
+
+  RepackOptions compact;
+  PackResult lossless = repack({original}, compact);
+  ProgressiveMesh same = read_pm(lossless.file);
+  EXPECT_EQ(same, pm);  // float32 + compact: exact
+  EXPECT_LT(lossless.file.size(), original.size());
+
+  RepackOptions quantized;
+  quantized.quantize_bits = 14;
+  ProgressiveMesh q = read_pm(repack({original}, quantized).file);
+  expect_same_ids(q, pm);
+  Vec3f lo{}, hi{};
+  bounding_box(exact, &lo, &hi);
+  EXPECT_LE(max_position_error(full_positions(q), exact), quantization_error_bound(lo, hi, 14));
+
+  if (draco_codec_built()) {
+    RepackOptions draco;
+    draco.draco = true;
+    PackResult packed = repack({original}, draco);
+    ProgressiveMesh d = read_pm(packed.file);
+    expect_same_ids(d, pm);
+    // Draco's step on BASE (its own box) and VSPL's on the split vertices.
+    const double bound =
+        extent(pm.base.positions) / ((1 << 14) - 1) + quantization_error_bound(lo, hi, 14);
+    EXPECT_LE(max_position_error(full_positions(d), exact), bound);
+    Result<Container> c = read_container(packed.file.data(), packed.file.size());
+    ASSERT_TRUE(c.is_ok());
+    EXPECT_EQ(c.value().find(kBaseTag)->entry.codec, static_cast<uint16_t>(SectionCodec::kDraco));
+    EXPECT_EQ(c.value().find(kVsplTag)->entry.codec, static_cast<uint16_t>(SectionCodec::kCompact));
+  }
+}
+
+TEST(Repack, PackingAPackedFileGivesTheSameBytes) {
+  const ProgressiveMesh pm = record_pm(load_clean_mesh("c3d_spot.obj"), true);
+  const Bytes original = pm_container(pm);
+  std::vector<RepackOptions> variants(4);
+  variants[1].quantize_bits = 12;
+  variants[2].compact = false;
+  variants[3].draco = draco_codec_built();
+  variants[3].draco_options.compression_level = 10;
+  for (const RepackOptions& options : variants) {
+    const Bytes once = repack({original}, options).file;
+    const Bytes twice = repack({once}, options).file;
+    EXPECT_EQ(once, twice);
+    EXPECT_EQ(repack({original}, options).file, once);  // deterministic
+  }
+}
+
+TEST(Repack, MergesFilesOfOneInputAndCopiesUnknownSectionsByteForByte) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(8));
+  const Bytes pm_file = pm_container(pm, 16);
+  // A second file of the same input with BASE and a section pack does not know.
+  const Bytes unknown_payload = {1, 2, 3, 4, 5};
+  ContainerWriter writer;
+  MetaSection meta = make_meta("lodbake-hierarchy");
+  meta.input = MetaInput{"mesh.off", std::string(64, 'a'), 123};
+  meta.counts = {{"nodes", 7}};
+  ASSERT_TRUE(writer.add_section(kMetaTag, encode_meta(meta).value(), false).is_ok());
+  BaseEncodeOptions q16;
+  q16.quantize = true;
+  ASSERT_TRUE(writer.add_section(kBaseTag, encode_base(pm.base, q16).value(), true).is_ok());
+  ASSERT_TRUE(writer.add_section("xTRA", unknown_payload, false).is_ok());
+  const Bytes other = writer.finish().value();
+
+  PackResult merged = repack({pm_file, other}, RepackOptions{});
+  Result<Container> c = read_container(merged.file.data(), merged.file.size());
+  ASSERT_TRUE(c.is_ok()) << c.status().message();
+  std::vector<std::string> tags;
+  for (const Section& s : c.value().sections)
+    tags.push_back(s.tag());
+  EXPECT_EQ(tags, (std::vector<std::string>{"META", "BASE", "VSPL", "xTRA"}));
+  const Section* extra = c.value().find("xTRA");
+  EXPECT_EQ(Bytes(extra->data, extra->data + extra->size), unknown_payload);
+  EXPECT_FALSE(extra->required());
+  Result<MetaSection> out_meta =
+      decode_meta(c.value().find(kMetaTag)->data, c.value().find(kMetaTag)->size);
+  ASSERT_TRUE(out_meta.is_ok());
+  EXPECT_EQ(out_meta.value().tool, "lodbake-pack");
+  EXPECT_EQ(out_meta.value().counts.at("nodes"), 7u);
+  EXPECT_EQ(out_meta.value().counts.at("splits"), pm.splits.size());
+  EXPECT_EQ(out_meta.value().extra.at("sources").size(), 2u);
+  EXPECT_EQ(read_pm(merged.file).splits.size(), pm.splits.size());
+
+  RepackOptions keep;
+  keep.keep = {"BASE"};
+  PackResult only_base = repack({merged.file}, keep);
+  Result<Container> k = read_container(only_base.file.data(), only_base.file.size());
+  ASSERT_TRUE(k.is_ok());
+  EXPECT_EQ(k.value().sections.size(), 2u);  // META and BASE
+  EXPECT_EQ(k.value().find(kVsplTag), nullptr);
+  EXPECT_TRUE(validate_sections(k.value()).empty());  // counts of VSPL left out with it
+  RepackOptions drop;
+  drop.drop = {"xTRA", "META"};
+  PackResult dropped = repack({merged.file}, drop);
+  Result<Container> d = read_container(dropped.file.data(), dropped.file.size());
+  ASSERT_TRUE(d.is_ok());
+  EXPECT_EQ(d.value().find("xTRA"), nullptr);
+  EXPECT_EQ(d.value().find(kMetaTag), nullptr);
+  EXPECT_NE(d.value().find(kVsplTag), nullptr);
+}
+
+TEST(Repack, RefusesOtherInputsConflictsAndVsplWithoutBase) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(6));
+  const Bytes a = pm_container(pm);
+  const Bytes b = pm_container(pm, 0, std::string(64, 'b'));
+  std::vector<PackInput> inputs = {{"a.lbk", a}, {"b.lbk", b}};
+  size_t failed = 9;
+  Result<PackResult> other = repack_containers(inputs, RepackOptions{}, {}, &failed);
+  ASSERT_FALSE(other.is_ok());
+  EXPECT_EQ(failed, 1u);
+  EXPECT_NE(other.status().message().find("was baked from another input"), std::string::npos);
+
+  inputs[1] = {"c.lbk", pm_container(pm, 12)};  // same input, different BASE
+  Result<PackResult> conflict = repack_containers(inputs, RepackOptions{}, {}, &failed);
+  ASSERT_FALSE(conflict.is_ok());
+  EXPECT_EQ(failed, 1u);
+  EXPECT_EQ(conflict.status().message(), "section BASE differs from the one in a.lbk");
+
+  RepackOptions drop_base;
+  drop_base.drop = {"BASE"};
+  Result<PackResult> orphan = repack_containers({{"a.lbk", a}}, drop_base, {}, nullptr);
+  ASSERT_FALSE(orphan.is_ok());
+  EXPECT_EQ(orphan.status().kind(), ErrorKind::kInvalidInput);
+}
+
+// A reader without the Draco codec refuses a Draco section with LBK-E020,
+// kind unsupported (the tools' exit code 5); with it back, the file reads.
+TEST(Repack, ReaderWithoutDracoRefusesWithUnsupported) {
+  if (!draco_codec_built()) GTEST_SKIP() << "built without the Draco codec";
+  RepackOptions draco;
+  draco.draco = true;
+  const Bytes file = repack({pm_container(record_pm(attributed_grid(6)))}, draco).file;
+  set_codec_disabled_for_testing(SectionCodec::kDraco, true);
+  Result<Container> refused = read_container(file.data(), file.size());
+  set_codec_disabled_for_testing(SectionCodec::kDraco, false);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_EQ(refused.status().kind(), ErrorKind::kUnsupported);
+  EXPECT_EQ(refused.status().code(), 20);
+  EXPECT_NE(refused.status().message().find("codec 2 (draco), which this build cannot decode"),
+            std::string::npos);
+  EXPECT_TRUE(read_container(file.data(), file.size()).is_ok());
+}
+
+// The container-level rules of docs/format.md section 22: a codec a kind
+// does not define is E020, a decoded size other than the entry's is E021, a
+// compact VSPL without its BASE is E024.
+TEST(SectionCodecs, UndefinedCodecWrongDecodedSizeAndMissingBase) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(4));
+  const Bytes meta = encode_meta(make_meta("test")).value();
+  const Bytes base = encode_base(pm.base, BaseEncodeOptions{}).value();
+  const Bytes raw_vspl = encode_vspl(pm, VsplEncodeOptions{}).value();
+  const Bytes compact = encode_vspl_compact(raw_vspl.data(), raw_vspl.size(), pm.base).value();
+  auto decode = [](const Bytes& file) {
+    Result<Container> c = read_container(file.data(), file.size());
+    EXPECT_TRUE(c.is_ok()) << c.status().message();
+    std::vector<Bytes> storage;
+    return c.is_ok() ? decode_section_codecs(&c.value(), &storage) : c.status();
+  };
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kMetaTag, meta, SectionCodec::kCompact, meta.size(), false).is_ok());
+    Status s = decode(w.finish().value());
+    EXPECT_EQ(s.code(), 20);
+    EXPECT_EQ(s.kind(), ErrorKind::kUnsupported);
+    EXPECT_NE(s.message().find("not defined for this section kind"), std::string::npos);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(w.add_section(kBaseTag, base, true).is_ok());
+    ASSERT_TRUE(
+        w.add_stored_section(kVsplTag, compact, SectionCodec::kCompact, raw_vspl.size() + 1, false)
+            .is_ok());
+    Status s = decode(w.finish().value());
+    EXPECT_EQ(s.code(), 21);
+    EXPECT_NE(s.message().find("section VSPL decodes to"), std::string::npos);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kVsplTag, compact, SectionCodec::kCompact, raw_vspl.size(), false)
+            .is_ok());
+    EXPECT_EQ(decode(w.finish().value()).code(), 24);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(w.add_section(kBaseTag, base, true).is_ok());
+    ASSERT_TRUE(
+        w.add_stored_section(kVsplTag, compact, SectionCodec::kCompact, raw_vspl.size(), false)
+            .is_ok());
+    Bytes file = w.finish().value();
+    Result<Container> c = read_container(file.data(), file.size());
+    ASSERT_TRUE(c.is_ok());
+    std::vector<Bytes> storage;
+    ASSERT_TRUE(decode_section_codecs(&c.value(), &storage).is_ok());
+    const Section* vspl = c.value().find(kVsplTag);
+    EXPECT_EQ(Bytes(vspl->data, vspl->data + vspl->size), raw_vspl);
+    EXPECT_EQ(vspl->entry.stored_size, compact.size());  // the entry keeps what was stored
+  }
+  ContainerWriter w;
+  EXPECT_FALSE(
+      w.add_stored_section(kBaseTag, base, SectionCodec::kRaw, base.size() + 1, true).is_ok());
+}
+
+}  // namespace
+}  // namespace lodbake
