@@ -287,6 +287,12 @@ class FanBuilder {
         if (mark_[x] != stamp) {
           mark_[x] = stamp;
           out->push_back(x);
+          // Every caller evaluates the link's quadrics next (88 bytes,
+          // usually two cache lines, far apart in error order): start
+          // loading them now.
+          const char* q = reinterpret_cast<const char*>(&quadric_[x]);
+          __builtin_prefetch(q);
+          __builtin_prefetch(q + 80);
         }
   }
 
@@ -345,9 +351,13 @@ class FanBuilder {
   bool final_turns_ok(uint32_t v) {
     const uint32_t stamp = next_stamp();
     mark_[v] = stamp;
-    for (uint32_t u : children_)
-      mark_[u] = stamp;
     for (uint32_t u : children_) {
+      mark_[u] = stamp;
+      state_.prefetch_star(u);  // memory-bound: issue the children's misses together
+    }
+    for (uint32_t u : children_) {
+      for (uint32_t t : state_.triangles_of(u))
+        state_.prefetch_corners(t);
       for (uint32_t t : state_.triangles_of(u)) {
         const Triangle& tri = state_.corners(t);
         if ((mark_[tri[0]] == stamp) + (mark_[tri[1]] == stamp) + (mark_[tri[2]] == stamp) != 1)

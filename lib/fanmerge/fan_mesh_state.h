@@ -43,6 +43,8 @@ class IncidenceLists {
     return {d, d + s.size};
   }
   uint32_t size(uint32_t v) const { return slots_[v].size; }
+  /// Hints that list v is read soon.
+  void prefetch(uint32_t v) const { __builtin_prefetch(&slots_[v]); }
   void push_back(uint32_t v, uint32_t t);
   /// Swap-removes the first occurrence of t (no-op when absent).
   void remove(uint32_t v, uint32_t t);
@@ -79,6 +81,10 @@ class FanMeshState {
   void star(uint32_t v, std::vector<uint32_t>* out) const;
   /// The same without a copy; valid until the next edit.
   TriangleList triangles_of(uint32_t v) const { return incident_[v]; }
+  /// Hints that v's list (triangles_of) is read soon; no effect otherwise.
+  void prefetch_star(uint32_t v) const { incident_.prefetch(v); }
+  /// Hints that triangle t's corners are read soon.
+  void prefetch_corners(uint32_t t) const { __builtin_prefetch(&corners_[t]); }
 
   /// The half-edge collapse of c into v: the `removed` triangles die, `c`
   /// becomes `v` in the `modified` ones, c is no longer present.
