@@ -40,8 +40,8 @@ step "6. balanced vertex hierarchy for selective refinement (lodbake-hierarchy)"
 "$bin/lodbake-hierarchy" "$mesh" -o "$out/elephant-hierarchy.lbk"
 "$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" | grep -E '^(VHIE|RFIN|validation)'
 
-step "7. build the fan-merge hierarchy (lodbake-fan) and validate it"
-"$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk"
+step "7. build the fan-merge hierarchy (lodbake-fan, compared with the balanced vertex hierarchy) and validate it"
+"$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk" --compare
 "$bin/lodbake-inspect" --validate "$out/elephant-fan.lbk" | grep -E '^(FANH|validation)'
 
 step "8. triangle strips and the SETS strip graph (lodbake-strips)"
