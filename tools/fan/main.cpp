@@ -187,7 +187,12 @@ int run(const Tool& tool, Request& request) {
   if (request.compare) {
     Result<HierarchyFigures> balanced =
         balanced_figures(loaded.mesh, request.options.boundary_weight);
-    if (!balanced.is_ok()) return tool.fail(request.input, balanced.status());
+    if (!balanced.is_ok()) {
+      const Status& s = balanced.status();
+      return tool.fail(
+          request.input,
+          Status(s.kind(), "--compare: balanced vertex hierarchy: " + s.message(), s.code()));
+    }
     balanced_side = std::move(balanced).value();
     fan_side.build_seconds = seconds;
     fan_side.internal_nodes = stats.internal_nodes;
