@@ -43,8 +43,8 @@ step "6. balanced vertex hierarchy, split DAG and vertex trees (lodbake-hierarch
 "$bin/lodbake-inspect" --validate "$out/elephant-hierarchy.lbk" |
   grep -E '^(VHIE|RFIN|VSPL|DAGE|VTRE|validation)'
 
-step "7. build the fan-merge hierarchy (lodbake-fan) and validate it"
-"$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk"
+step "7. build the fan-merge hierarchy (lodbake-fan, compared with the balanced vertex hierarchy) and validate it"
+"$bin/lodbake-fan" "$mesh" -o "$out/elephant-fan.lbk" --compare
 "$bin/lodbake-inspect" --validate "$out/elephant-fan.lbk" | grep -E '^(FANH|validation)'
 
 step "8. triangle strips and the SETS strip graph (lodbake-strips)"

@@ -84,14 +84,19 @@ class VertexHeap {
     up(i);
     down(position_[v]);
   }
-  void pop() {
-    position_[entries_.front().vertex] = kAbsent;
-    entries_.front() = entries_.back();
+  void pop() { erase(entries_.front().vertex); }
+  /// Removes v (no-op when absent): the last entry takes its place and moves
+  /// up or down.
+  void erase(uint32_t v) {
+    const uint32_t i = position_[v];
+    if (i == kAbsent) return;
+    position_[v] = kAbsent;
+    const Entry last = entries_.back();
     entries_.pop_back();
-    if (!entries_.empty()) {
-      position_[entries_.front().vertex] = 0;
-      down(0);
-    }
+    if (i == entries_.size()) return;
+    place(i, last);
+    up(i);
+    down(position_[last.vertex]);
   }
 
  private:
@@ -282,6 +287,12 @@ class FanBuilder {
         if (mark_[x] != stamp) {
           mark_[x] = stamp;
           out->push_back(x);
+          // Every caller evaluates the link's quadrics next (88 bytes,
+          // usually two cache lines, far apart in error order): start
+          // loading them now.
+          const char* q = reinterpret_cast<const char*>(&quadric_[x]);
+          __builtin_prefetch(q);
+          __builtin_prefetch(q + 80);
         }
   }
 
@@ -340,9 +351,13 @@ class FanBuilder {
   bool final_turns_ok(uint32_t v) {
     const uint32_t stamp = next_stamp();
     mark_[v] = stamp;
-    for (uint32_t u : children_)
-      mark_[u] = stamp;
     for (uint32_t u : children_) {
+      mark_[u] = stamp;
+      state_.prefetch_star(u);  // memory-bound: issue the children's misses together
+    }
+    for (uint32_t u : children_) {
+      for (uint32_t t : state_.triangles_of(u))
+        state_.prefetch_corners(t);
       for (uint32_t t : state_.triangles_of(u)) {
         const Triangle& tri = state_.corners(t);
         if ((mark_[tri[0]] == stamp) + (mark_[tri[1]] == stamp) + (mark_[tri[2]] == stamp) != 1)
@@ -438,6 +453,12 @@ class FanBuilder {
       h_.modified_start.push_back(static_cast<uint32_t>(h_.modified.size()));
       sum += delta(s.vertex, v);
       quadric_[v] += quadric_[s.vertex];
+      // Gone from the mesh: dropping it now spares the heap the stale entry
+      // (popping and, when dirty, re-keying it). The heap's order is total
+      // (priority, index), so which present vertex comes out next does not
+      // depend on the entries removed.
+      heap_.erase(s.vertex);
+      dirty_[s.vertex] = 0;
     }
     h_.child_start.push_back(static_cast<uint32_t>(h_.children.size()));
     h_.error.push_back(static_cast<float>(sum));

@@ -6,7 +6,11 @@
 // - vertex-to-triangle lists are exact (a killed or renamed triangle is
 //   swap-removed from the old corner's list): fans are small, so the removal
 //   scan is cheaper than filtering stale entries on every read, and the
-//   validity check reads the lists without copying;
+//   validity check reads the lists without copying. They live in one 64-byte
+//   slot per vertex (IncidenceLists) rather than a std::vector each: the
+//   construction visits vertices in error order, i.e. at random, and a slot
+//   is one cache miss where a vector was two (header, then block); this cut
+//   the dragon's build by about a sixth (docs/benchmarks.md);
 // - the validity check is local: a collapse or split changes only triangles
 //   of the two vertices' stars, so checking the stars of the corners of
 //   those triangles covers every edge, vertex and duplicate it can affect;
@@ -16,9 +20,47 @@
 #include "lib/fanmerge/fan_mesh_state.h"
 
 #include <algorithm>
+#include <new>
 
 namespace lodbake {
 namespace fan_internal {
+
+void IncidenceLists::init(size_t n, const std::vector<uint32_t>& capacity) {
+  slots_.assign(n, Slot());
+  pool_.assign(1, 0);  // offset 0 means "inline"
+  for (size_t v = 0; v < n; ++v)
+    if (capacity[v] > kInline) grow(slots_[v], capacity[v]);
+}
+
+uint32_t* IncidenceLists::grow(Slot& s, uint32_t capacity) {
+  const size_t at = pool_.size() + 1;
+  // Offsets are 32-bit; the old block is left unused (a list only grows by
+  // doubling, so the waste is bounded by the lists' largest sizes).
+  if (at + capacity > 0xffffffffu) throw std::bad_alloc();
+  pool_.resize(at + capacity);  // may move the pool: copy by offset, after
+  pool_[at - 1] = capacity;
+  const uint32_t* old = s.where == 0 ? s.items : pool_.data() + s.where;
+  std::copy(old, old + s.size, pool_.data() + at);
+  s.where = static_cast<uint32_t>(at);
+  return pool_.data() + at;
+}
+
+void IncidenceLists::push_back(uint32_t v, uint32_t t) {
+  Slot& s = slots_[v];
+  const uint32_t capacity = s.where == 0 ? kInline : pool_[s.where - 1];
+  uint32_t* d = s.size < capacity ? data(s) : grow(s, 2 * capacity);
+  d[s.size++] = t;
+}
+
+void IncidenceLists::remove(uint32_t v, uint32_t t) {
+  Slot& s = slots_[v];
+  uint32_t* d = data(s);
+  for (uint32_t i = 0; i < s.size; ++i)
+    if (d[i] == t) {
+      d[i] = d[--s.size];
+      return;
+    }
+}
 
 void FanMeshState::init(const TriangleMesh& mesh) {
   const size_t n = mesh.positions.size();
@@ -27,16 +69,14 @@ void FanMeshState::init(const TriangleMesh& mesh) {
   present_.assign(n, 0);
   mark_.assign(n, 0);
   stamp_ = 0;
-  incident_.assign(n, {});
   std::vector<uint32_t> degree(n, 0);
   for (const Triangle& t : corners_)
     for (uint32_t v : t)
       ++degree[v];
-  for (size_t v = 0; v < n; ++v)
-    incident_[v].reserve(degree[v]);
+  incident_.init(n, degree);
   for (uint32_t t = 0; t < corners_.size(); ++t)
     for (uint32_t v : corners_[t])
-      incident_[v].push_back(t);
+      incident_.push_back(v, t);
   present_count_ = 0;
   for (size_t v = 0; v < n; ++v) {
     present_[v] = degree[v] > 0;
@@ -46,17 +86,8 @@ void FanMeshState::init(const TriangleMesh& mesh) {
 }
 
 void FanMeshState::star(uint32_t v, std::vector<uint32_t>* out) const {
-  out->assign(incident_[v].begin(), incident_[v].end());
-}
-
-void FanMeshState::unlink(uint32_t v, uint32_t t) {
-  std::vector<uint32_t>& list = incident_[v];
-  for (size_t i = 0; i < list.size(); ++i)
-    if (list[i] == t) {
-      list[i] = list.back();
-      list.pop_back();
-      return;
-    }
+  const TriangleList list = incident_[v];
+  out->assign(list.begin(), list.end());
 }
 
 void FanMeshState::collapse(uint32_t c, uint32_t v, const uint32_t* removed, size_t removed_count,
@@ -65,15 +96,15 @@ void FanMeshState::collapse(uint32_t c, uint32_t v, const uint32_t* removed, siz
     const uint32_t t = removed[i];
     alive_[t] = 0;
     for (uint32_t x : corners_[t])
-      unlink(x, t);
+      incident_.remove(x, t);
   }
   alive_count_ -= removed_count;
   for (size_t i = 0; i < modified_count; ++i) {
     const uint32_t t = modified[i];
     for (uint32_t& x : corners_[t])
       if (x == c) x = v;
-    unlink(c, t);
-    incident_[v].push_back(t);
+    incident_.remove(c, t);
+    incident_.push_back(v, t);
   }
   present_[c] = 0;
   --present_count_;
@@ -87,14 +118,14 @@ void FanMeshState::split(uint32_t c, uint32_t v, const uint32_t* removed, size_t
     const uint32_t t = modified[i];
     for (uint32_t& x : corners_[t])
       if (x == v) x = c;
-    unlink(v, t);
-    incident_[c].push_back(t);
+    incident_.remove(v, t);
+    incident_.push_back(c, t);
   }
   for (size_t i = 0; i < removed_count; ++i) {
     const uint32_t t = removed[i];
     alive_[t] = 1;
     for (uint32_t x : corners_[t])
-      incident_[x].push_back(t);
+      incident_.push_back(x, t);
   }
   alive_count_ += removed_count;
 }
@@ -123,9 +154,12 @@ void FanMeshState::collect_changed(uint32_t c, uint32_t v, const uint32_t* remov
 
 bool FanMeshState::stars_valid(const std::vector<uint32_t>& vertices) {
   constexpr uint32_t kNone = 0xffffffffu;
-  std::vector<uint32_t> next, prev, successor;
+  // Members, not locals: this runs for every collapse of every fine path.
+  std::vector<uint32_t>& next = next_;
+  std::vector<uint32_t>& prev = prev_;
+  std::vector<uint32_t>& successor = successor_;
   for (uint32_t v : vertices) {
-    const std::vector<uint32_t>& star = incident_[v];
+    const TriangleList star = incident_[v];
     if (!present_[v]) {
       if (!star.empty()) return false;
       continue;

@@ -13,12 +13,11 @@
 
 #include "formats/mesh/fan_hierarchy.h"
 #include "formats/mesh/triangle_mesh.h"
+#include "formats/mesh/vertex_hierarchy.h"  // kNoNode, shared with the vertex hierarchy
 #include "formats/support/status.h"
 #include "lib/fanmerge/fan_mesh_state.h"
 
 namespace lodbake {
-
-inline constexpr uint32_t kNoNode = 0xffffffffu;
 
 /// The active nodes as the paper's implementation keeps them: blocks of 256
 /// entries; an activated node is appended, a deactivated one is replaced by

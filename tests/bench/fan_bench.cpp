@@ -5,6 +5,10 @@
 //   - the edge-collapse hierarchy to the same vertex count (lodbake
 //     simplify() recording the progressive mesh, half-edge placement): build
 //     time, internal nodes (one per collapse), VSPL bytes;
+//   - the balanced vertex hierarchy (lib/hierarchy, as lodbake-hierarchy and
+//     lodbake-fan --compare build it): build + refinement-data time, internal
+//     nodes, depth, VHIE + RFIN bytes, and its ratios to the fan hierarchy
+//     (the paper: 4-6x the internal nodes, 1.3-1.7x the size);
 //   - the runtime: the coarse path (fan-merge every node) against the fine
 //     path (every child's collapse one at a time) from the input to the
 //     coarsest mesh, and the operation counts each needs.
@@ -21,10 +25,14 @@
 #include <vector>
 
 #include "formats/sections/fanh.h"
+#include "formats/sections/rfin.h"
+#include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "lib/core/unreferenced_vertices.h"
 #include "lib/fanmerge/fan_build.h"
 #include "lib/fanmerge/fan_runtime.h"
+#include "lib/hierarchy/balanced_build.h"
+#include "lib/hierarchy/refinement_data.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/simplify/simplify.h"
 
@@ -82,8 +90,11 @@ int main(int argc, char** argv) {
     std::printf(
         "| mesh | triangles | fan build s (cpu) | internal nodes | depth | avg children | FANH "
         "bytes | PM build s (cpu) | PM internal nodes | VSPL bytes | node ratio | size ratio | "
-        "coarse path s (ops) | fine path s (ops) |\n"
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        "coarse path s (ops) | fine path s (ops) | balanced build s (cpu) | balanced internal "
+        "nodes | "
+        "balanced depth | VHIE+RFIN bytes | balanced node ratio | balanced size ratio |\n"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "---:|---:|\n");
   }
   int status = 0;
   for (const std::string& file : files) {
@@ -171,6 +182,47 @@ int main(int argc, char** argv) {
                    file.c_str());
       status = 3;
     }
+    // The balanced vertex hierarchy of the same mesh, timed like
+    // lodbake-hierarchy (build + refinement data); depth in edges as FANH's.
+    std::vector<Timing> balanced_times;
+    HierarchyShape shape;
+    size_t balanced_bytes = 0;
+    for (int r = 0; r < runs && !failed; ++r) {
+      BalancedHierarchy balanced;
+      std::vector<NodeRefinement> refinement;
+      balanced_times.push_back(time_once([&] {
+        Result<BalancedHierarchy> b = build_balanced_hierarchy(input, {});
+        if (!b.is_ok()) {
+          failed = true;
+          return;
+        }
+        balanced = std::move(b).value();
+        Result<std::vector<NodeRefinement>> rd = compute_refinement_data(balanced.hierarchy, input);
+        if (!rd.is_ok()) {
+          failed = true;
+          return;
+        }
+        refinement = std::move(rd).value();
+      }));
+      if (!failed && r == 0) {
+        shape = hierarchy_shape(balanced.hierarchy);
+        balanced_bytes = encode_vhie(balanced.hierarchy).value().size() +
+                         encode_rfin(balanced.hierarchy, refinement).value().size();
+      }
+    }
+    if (failed) {
+      std::fprintf(stderr, "bench_fan: error: %s: the balanced hierarchy failed\n", file.c_str());
+      status = 3;
+      continue;
+    }
+    const Timing balanced_t = median(balanced_times);
+    const uint64_t balanced_depth = shape.depth > 0 ? shape.depth - 1 : 0;
+    const double balanced_node_ratio =
+        static_cast<double>(shape.splits) /
+        static_cast<double>(std::max<uint64_t>(1, stats.internal_nodes));
+    const double balanced_size_ratio =
+        static_cast<double>(balanced_bytes) / static_cast<double>(std::max<size_t>(1, fanh_bytes));
+
     const Timing fan_t = median(fan_times), pm_t = median(pm_times);
     const double node_ratio = static_cast<double>(pm_nodes) /
                               static_cast<double>(std::max<uint64_t>(1, stats.internal_nodes));
@@ -179,13 +231,16 @@ int main(int argc, char** argv) {
     if (markdown) {
       std::printf(
           "| %s | %zu | %.3f (%.3f) | %llu | %llu | %.2f | %zu | %.3f (%.3f) | %llu | %zu | %.2f | "
-          "%.2f | %.3f (%llu) | %.3f (%llu) |\n",
+          "%.2f | %.3f (%llu) | %.3f (%llu) | %.3f (%.3f) | %llu | %llu | %zu | %.2f | %.2f |\n",
           name.c_str(), input.triangle_count(), fan_t.wall, fan_t.cpu,
           static_cast<unsigned long long>(stats.internal_nodes),
           static_cast<unsigned long long>(stats.depth), stats.average_children, fanh_bytes,
           pm_t.wall, pm_t.cpu, static_cast<unsigned long long>(pm_nodes), vspl_bytes, node_ratio,
           size_ratio, coarse.wall, static_cast<unsigned long long>(stats.internal_nodes), fine.wall,
-          static_cast<unsigned long long>(fine_ops));
+          static_cast<unsigned long long>(fine_ops), balanced_t.wall, balanced_t.cpu,
+          static_cast<unsigned long long>(shape.splits),
+          static_cast<unsigned long long>(balanced_depth), balanced_bytes, balanced_node_ratio,
+          balanced_size_ratio);
     } else {
       std::printf("%s: %zu triangles -> %llu vertices, %llu triangles\n", name.c_str(),
                   input.triangle_count(),
@@ -201,6 +256,12 @@ int main(int argc, char** argv) {
           "%.2fx the nodes, %.2fx the bytes of the fan hierarchy\n",
           pm_t.wall, pm_t.cpu, static_cast<unsigned long long>(pm_nodes), vspl_bytes, node_ratio,
           size_ratio);
+      std::printf(
+          "  balanced       build %.3f s (cpu %.3f s), %llu internal nodes, depth %llu, VHIE+RFIN "
+          "%zu bytes: %.2fx the nodes, %.2fx the bytes of the fan hierarchy\n",
+          balanced_t.wall, balanced_t.cpu, static_cast<unsigned long long>(shape.splits),
+          static_cast<unsigned long long>(balanced_depth), balanced_bytes, balanced_node_ratio,
+          balanced_size_ratio);
       std::printf(
           "  runtime        coarse path %.3f s (%llu fan-merges), fine path %.3f s (%llu edge "
           "collapses)\n",

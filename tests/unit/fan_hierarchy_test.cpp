@@ -13,6 +13,7 @@
 #include "formats/sections/fanh.h"
 #include "formats/sections/section_validation.h"
 #include "lib/fanmerge/fan_build.h"
+#include "lib/fanmerge/fan_mesh_state.h"
 #include "lib/fanmerge/fan_runtime.h"
 #include "lib/simplify/mesh_topology.h"
 #include "tests/unit/simplify_test_meshes.h"
@@ -422,6 +423,40 @@ TEST(FanhSection, ContainerValidationReplaysTheListsOverBase) {
   findings = validate_sections(c.value());
   ASSERT_EQ(findings.size(), 1u);
   EXPECT_NE(findings[0].message.find("no BASE"), std::string::npos) << findings[0].message;
+}
+
+// The build's order of operations depends on the exact order of each
+// vertex's triangle list: the flat lists must behave as std::vector with
+// swap-remove, through the inline-to-pool move and the pool's growth.
+TEST(FanMeshState, IncidenceListsKeepVectorOrder) {
+  constexpr uint32_t kLists = 5;
+  fan_internal::IncidenceLists lists;
+  lists.init(kLists, {0, 3, 20, 14, 15});
+  std::vector<std::vector<uint32_t>> expected(kLists);
+  std::mt19937 random(7);
+  for (int step = 0; step < 20000; ++step) {
+    const uint32_t v = random() % kLists;
+    const uint32_t t = random() % 64;
+    if (random() % 3 != 0 || expected[v].empty()) {
+      lists.push_back(v, t);
+      expected[v].push_back(t);
+    } else {
+      lists.remove(v, t);
+      auto& e = expected[v];
+      auto it = std::find(e.begin(), e.end(), t);
+      if (it != e.end()) {
+        *it = e.back();
+        e.pop_back();
+      }
+    }
+    const fan_internal::TriangleList got = lists[v];
+    ASSERT_EQ(std::vector<uint32_t>(got.begin(), got.end()), expected[v]) << "step " << step;
+  }
+  for (uint32_t v = 0; v < kLists; ++v) {
+    const fan_internal::TriangleList got = lists[v];
+    EXPECT_EQ(std::vector<uint32_t>(got.begin(), got.end()), expected[v]);
+    EXPECT_EQ(lists.size(v), expected[v].size());
+  }
 }
 
 }  // namespace

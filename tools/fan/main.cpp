@@ -1,8 +1,12 @@
 // lodbake-fan: builds the fan-merge hierarchy (lib/fanmerge) of one mesh and
-// writes it with the mesh as a container (META + BASE + FANH). Thin: the
-// construction lives in lib/, the encoding in formats/.
+// writes it with the mesh as a container (META + BASE + FANH). With
+// --compare it also builds the balanced vertex hierarchy (lib/hierarchy) of
+// the same mesh and reports both side by side; that hierarchy's sections
+// (VHIE + RFIN) are encoded to count their bytes, never written. Thin: the
+// constructions live in lib/, the encodings in formats/.
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -11,8 +15,12 @@
 #include "formats/sections/base.h"
 #include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/rfin.h"
+#include "formats/sections/vhie.h"
 #include "formats/support/file_io.h"
 #include "lib/fanmerge/fan_build.h"
+#include "lib/hierarchy/balanced_build.h"
+#include "lib/hierarchy/refinement_data.h"
 #include "lib/ingest/load_mesh.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
@@ -26,8 +34,101 @@ struct Request {
   std::string input;
   std::string output;
   bool repair = false;
+  bool compare = false;
   FanBuildOptions options;
 };
+
+// The figures --compare puts side by side, defined alike for both
+// hierarchies (docs/fan.md "Comparison with the balanced vertex hierarchy").
+struct HierarchyFigures {
+  double build_seconds = 0;
+  uint64_t internal_nodes = 0;
+  uint64_t leaves = 0;
+  uint64_t roots = 0;
+  uint64_t depth = 0;           // edges on the longest root-to-leaf path
+  double average_children = 0;  // collapsed children per internal node
+  uint64_t bytes = 0;           // the hierarchy's own sections
+  nlohmann::json sections;      // tag -> bytes
+};
+
+nlohmann::json figures_json(const HierarchyFigures& f) {
+  return {{"build_seconds", f.build_seconds},
+          {"internal_nodes", f.internal_nodes},
+          {"leaves", f.leaves},
+          {"roots", f.roots},
+          {"depth", f.depth},
+          {"average_children", f.average_children},
+          {"total_bytes", f.bytes},
+          {"sections", f.sections}};
+}
+
+// The balanced vertex hierarchy of `mesh` as lodbake-hierarchy builds it
+// (default options but the fan's boundary weight, so both rank boundaries
+// alike), timed like that tool (build + refinement data), its VHIE and RFIN
+// encoded only to count their bytes. Half-edge collapses: every split has
+// two children of which one (the right) is collapsed, so its average of
+// collapsed children is 1 by construction.
+Result<HierarchyFigures> balanced_figures(const TriangleMesh& input, double boundary_weight) {
+  TriangleMesh mesh;
+  mesh.positions = input.positions;
+  mesh.triangles = input.triangles;
+  BalancedBuildOptions options;
+  options.boundary_weight = boundary_weight;
+  const auto start = std::chrono::steady_clock::now();
+  LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built, build_balanced_hierarchy(mesh, options));
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<NodeRefinement> refinement,
+                           compute_refinement_data(built.hierarchy, mesh));
+  HierarchyFigures f;
+  f.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  LODBAKE_ASSIGN_OR_RETURN(Bytes vhie, encode_vhie(built.hierarchy));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes rfin, encode_rfin(built.hierarchy, refinement));
+  const HierarchyShape shape = hierarchy_shape(built.hierarchy);
+  f.internal_nodes = shape.splits;
+  f.leaves = shape.leaves;
+  f.roots = shape.roots;
+  f.depth = shape.depth > 0 ? shape.depth - 1 : 0;  // shape counts levels
+  f.average_children = shape.splits > 0 ? 1.0 : 0.0;
+  f.bytes = vhie.size() + rfin.size();
+  f.sections = {{"VHIE", vhie.size()}, {"RFIN", rfin.size()}};
+  return f;
+}
+
+// balanced / fan; null when the fan side is 0 (nothing merged).
+nlohmann::json ratio(double balanced, double fan) {
+  return fan > 0 ? nlohmann::json(balanced / fan) : nlohmann::json(nullptr);
+}
+
+void print_comparison(const HierarchyFigures& fan, const HierarchyFigures& balanced,
+                      const nlohmann::json& comparison) {
+  auto row = [](const char* name, const std::string& a, const std::string& b,
+                const std::string& r) {
+    std::printf("  %-18s %16s %16s %10s\n", name, a.c_str(), b.c_str(), r.c_str());
+  };
+  auto num = [](double x, const char* format) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, x);
+    return std::string(buffer);
+  };
+  auto count = [](uint64_t x) { return std::to_string(x); };
+  auto shown = [&](const nlohmann::json& r) {
+    return r.is_number() ? num(r.get<double>(), "%.2fx") : std::string("-");
+  };
+  std::printf(
+      "compare         (balanced / fan; paper: 4-6x the internal nodes, 1.3-1.7x the size)\n");
+  row("", "fan", "balanced", "ratio");
+  row("build seconds", num(fan.build_seconds, "%.3f"), num(balanced.build_seconds, "%.3f"),
+      shown(ratio(balanced.build_seconds, fan.build_seconds)));
+  row("internal nodes", count(fan.internal_nodes), count(balanced.internal_nodes),
+      shown(comparison["internal_nodes_ratio"]));
+  row("leaves", count(fan.leaves), count(balanced.leaves), "");
+  row("roots", count(fan.roots), count(balanced.roots), "");
+  row("depth", count(fan.depth), count(balanced.depth), "");
+  row("average children", num(fan.average_children, "%.2f"), num(balanced.average_children, "%.2f"),
+      "");
+  row("total bytes", count(fan.bytes), count(balanced.bytes),
+      shown(comparison["total_size_ratio"]));
+  std::fflush(stdout);
+}
 
 Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
                             const FanBuildResult& built, nlohmann::json* sections) {
@@ -78,6 +179,39 @@ int run(const Tool& tool, Request& request) {
   nlohmann::json sections;
   Result<Bytes> container = fan_container(request, loaded, result, &sections);
   if (!container.is_ok()) return tool.fail(request.output, container.status());
+
+  // Built before writing, so a mesh the balanced build refuses leaves no
+  // output behind.
+  HierarchyFigures fan_side, balanced_side;
+  nlohmann::json comparison;
+  if (request.compare) {
+    Result<HierarchyFigures> balanced =
+        balanced_figures(loaded.mesh, request.options.boundary_weight);
+    if (!balanced.is_ok()) {
+      const Status& s = balanced.status();
+      return tool.fail(
+          request.input,
+          Status(s.kind(), "--compare: balanced vertex hierarchy: " + s.message(), s.code()));
+    }
+    balanced_side = std::move(balanced).value();
+    fan_side.build_seconds = seconds;
+    fan_side.internal_nodes = stats.internal_nodes;
+    fan_side.leaves = stats.leaves;
+    fan_side.roots = stats.roots;
+    fan_side.depth = stats.depth;
+    fan_side.average_children = stats.average_children;
+    fan_side.bytes = sections["FANH"].get<uint64_t>();
+    fan_side.sections = {{"FANH", fan_side.bytes}};
+    comparison = {
+        {"fan", figures_json(fan_side)},
+        {"balanced", figures_json(balanced_side)},
+        {"internal_nodes_ratio", ratio(static_cast<double>(balanced_side.internal_nodes),
+                                       static_cast<double>(fan_side.internal_nodes))},
+        {"total_size_ratio",
+         ratio(static_cast<double>(balanced_side.bytes), static_cast<double>(fan_side.bytes))},
+        {"build_time_ratio", ratio(balanced_side.build_seconds, fan_side.build_seconds)},
+        {"paper", {{"internal_nodes_ratio", {4.0, 6.0}}, {"total_size_ratio", {1.3, 1.7}}}}};
+  }
   Status written = write_file_atomic(request.output, container.value());
   if (!written.is_ok()) return tool.fail(request.output, written);
 
@@ -107,7 +241,13 @@ int run(const Tool& tool, Request& request) {
       {"sections", sections},
       {"total_bytes", container.value().size()}};
   if (tool.json()) {
-    tool.print_json(report);
+    if (request.compare) {
+      nlohmann::json with_comparison = report;
+      with_comparison["compare"] = comparison;
+      tool.print_json(with_comparison);
+    } else {
+      tool.print_json(report);
+    }
     return 0;
   }
   std::cout << "input         " << request.input << ": " << loaded.mesh.vertex_count()
@@ -120,6 +260,7 @@ int run(const Tool& tool, Request& request) {
   std::cout << "wrote         " << request.output << ": " << container.value().size()
             << " bytes (FANH " << sections["FANH"].get<uint64_t>() << ", BASE "
             << sections["BASE"].get<uint64_t>() << ")\n";
+  if (request.compare) print_comparison(fan_side, balanced_side, comparison);
   return 0;
 }
 
@@ -135,7 +276,8 @@ int main(int argc, char** argv) {
             "children are the fine path of edge collapses giving the same mesh. Writes\n"
             "META, the mesh (BASE) and the hierarchy (FANH). Stops at the first of\n"
             "--vertices and --ratio reached, or when no legal fan-merge is left;\n"
-            "--error skips fans over the limit.");
+            "--error skips fans over the limit. --compare also builds the balanced vertex\n"
+            "hierarchy of the same mesh (as lodbake-hierarchy) and reports both side by side.");
   Request request;
   double ratio = 0, error = 0;
   uint64_t vertices = 0;
@@ -154,7 +296,10 @@ int main(int argc, char** argv) {
       "max-normal-change",
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse fan-merges that turn a modified triangle by more than DEG degrees (default 90)")(
-      "repair", po::bool_switch(&request.repair), "repair the input first (see lodbake-pack)");
+      "repair", po::bool_switch(&request.repair), "repair the input first (see lodbake-pack)")(
+      "compare", po::bool_switch(&request.compare),
+      "also build the balanced vertex hierarchy of the mesh and report both side by side: build "
+      "time, internal nodes, leaves, depth, average children, bytes and their ratios");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
