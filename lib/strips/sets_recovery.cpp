@@ -10,10 +10,15 @@
 //   directly.
 // - Memory layout: each node is one variable-length record in one pool of
 //   32-bit words (vertex, epoch, cursor, run end, arc count, then its arc
-//   labels, its successor run starts and its successors), in node id order
-//   (the LoD-0 walk order within each strip), and successors name records
-//   by pool offset: a first visit reads one or two adjacent cache lines
-//   instead of a node record, an arc and a successor in three arrays.
+//   labels, its successor run starts and its successors), and successors
+//   name records by pool offset: a first visit reads one or two adjacent
+//   cache lines instead of a node record, an arc and a successor in three
+//   arrays. A strip's records are laid out in the order the walks at
+//   sampled LoDs visit them, coarsest LoD first: at a coarse LoD the live
+//   nodes sit together at the front of the strip's range, and at fine
+//   LoDs each sample's newcomers follow in walk order. (Ordering by vertex
+//   id instead halved the fine-LoD rate; plain creation order, the LoD-0
+//   walk order, was 5-25% slower than this on the dragon.)
 // - Walks are pointer chases (the next node is known only after reading
 //   the successor), so at middle and coarse LoDs, where nearly every visit
 //   misses the cache, one walk waits on one miss at a time. Up to kLanes
@@ -88,9 +93,38 @@ Result<StripRecovery> StripRecovery::create(const SetsGraph& graph) {
 Status StripRecovery::lay_out_records() {
   const SetsGraph& g = *graph_;
   const size_t nodes = g.node_count();
+  // Each strip's nodes in the order walks visit them from the coarsest
+  // sampled LoD to the finest: a walk at any LoD then reads mostly the
+  // strip's first records, those of the nodes still alive.
+  std::vector<uint32_t> order;
+  order.reserve(nodes);
+  std::vector<uint8_t> placed(nodes, 0);
+  std::vector<std::pair<uint32_t, uint32_t>> by_vertex;
+  for (size_t s = 0; s < g.strip_count(); ++s) {
+    by_vertex.clear();
+    for (uint32_t n = g.node_first[s]; n < g.node_first[s + 1]; ++n)
+      by_vertex.push_back({g.node_vertex[n], n});
+    std::sort(by_vertex.begin(), by_vertex.end());
+    for (double fraction : {1.0, 0.97, 0.9, 0.75, 0.5, 0.25, 0.0}) {
+      const uint32_t lod = static_cast<uint32_t>(fraction * (g.lod_count - 1));
+      // A walk that fails here (a malformed graph) only leaves its nodes to
+      // a later sample; recover() reports the failure at that LoD.
+      const Result<std::vector<uint32_t>> sequence = walk_strip(g, s, lod);
+      if (!sequence.is_ok()) continue;
+      for (uint32_t v : sequence.value()) {
+        const auto it = std::lower_bound(by_vertex.begin(), by_vertex.end(),
+                                         std::pair<uint32_t, uint32_t>{v, 0});
+        if (it == by_vertex.end() || it->first != v || placed[it->second]) continue;
+        placed[it->second] = 1;
+        order.push_back(it->second);
+      }
+    }
+    for (uint32_t n = g.node_first[s]; n < g.node_first[s + 1]; ++n)
+      if (!placed[n]) order.push_back(n);
+  }
   std::vector<uint32_t> offset(nodes);
   uint64_t words = 0;
-  for (size_t n = 0; n < nodes; ++n) {
+  for (uint32_t n : order) {
     offset[n] = static_cast<uint32_t>(words);
     const uint64_t arcs = g.arc_first[n + 1] - g.arc_first[n];
     const uint64_t successors =

@@ -17,8 +17,10 @@ class StripRecovery {
  public:
   /// Prepares recovery from `graph` (which must outlive this object): checks
   /// check_sets_structure(), walks every strip at LoD 0 to size its slot in
-  /// the index buffer, and sorts every strip's change LoDs
-  /// (strip_change_lods()) into one event list. No strips are recovered yet.
+  /// the index buffer, lays out each strip's nodes in the order walks at
+  /// seven sampled LoDs (coarsest first) visit them, and sorts every strip's
+  /// change LoDs (strip_change_lods()) into one event list. No strips are
+  /// recovered yet.
   /// \return kInvalidInput when the structure check or a LoD-0 walk fails;
   ///         kRuntime when memory runs out.
   static Result<StripRecovery> create(const SetsGraph& graph);
@@ -70,8 +72,8 @@ class StripRecovery {
 
   Status lay_out_records();
 
-  // Each node is one record in pool_, in node id order (the build's order:
-  // the LoD-0 walk order within each strip), so that a first visit reads
+  // Each node is one record in pool_ (each strip's records in the order
+  // walks from its coarsest LoD to LoD 0 visit them), so that a first visit reads
   // one or two cache lines: the words below, then the arc labels, the
   // arcs' successor run starts (pool offsets, one more than the arcs) and
   // the successors themselves (pool offsets of their records, or kSetsEnd).
