@@ -17,8 +17,10 @@ class StripRecovery {
  public:
   /// Prepares recovery from `graph` (which must outlive this object): checks
   /// check_sets_structure(), walks every strip at LoD 0 to size its slot in
-  /// the index buffer, and sorts every strip's change LoDs
-  /// (strip_change_lods()) into one event list. No strips are recovered yet.
+  /// the index buffer, lays out each strip's nodes in the order walks at
+  /// seven sampled LoDs (coarsest first) visit them, and sorts every strip's
+  /// change LoDs (strip_change_lods()) into one event list. No strips are
+  /// recovered yet.
   /// \return kInvalidInput when the structure check or a LoD-0 walk fails;
   ///         kRuntime when memory runs out.
   static Result<StripRecovery> create(const SetsGraph& graph);
@@ -54,25 +56,36 @@ class StripRecovery {
 
  private:
   explicit StripRecovery(const SetsGraph& graph) : graph_(&graph) {}
-  Status walk(size_t strip, uint32_t lod);
+  // One strip walk in progress: the next node and the output cursor.
+  struct Lane {
+    uint32_t strip;
+    uint32_t id;
+    uint32_t out, out_end;  // into indices_
+  };
+  static constexpr size_t kLanes = 16;
+  void start_lane(Lane* lane, uint32_t strip, uint32_t lod) const;
+  void finish_lane(const Lane& lane);
+  template <typename NextStrip>
+  Status walk_strips(uint32_t lod, NextStrip next_strip);
   Status bad_walk(size_t strip, uint32_t lod, const char* what) const;
   void next_epoch();
 
-  // Everything a walk touches per node in one 24-byte record.
-  struct Node {
-    uint32_t vertex;
-    uint32_t arc_begin, arc_end;  // into arcs_
-    uint32_t epoch;               // == epoch_ when cursor/end are set for this recovery
-    uint32_t cursor;              // next successor to take
-    uint32_t end;                 // end of the successor run valid at the LoD
-  };
-  struct Arc {
-    uint32_t lod;         // label: the last LoD this run is valid at
-    uint32_t succ_first;  // run is successors[succ_first, next arc's succ_first)
-  };
+  Status lay_out_records();
+
+  // Each node is one record in pool_ (each strip's records in the order
+  // walks from its coarsest LoD to LoD 0 visit them), so that a first visit reads
+  // one or two cache lines: the words below, then the arc labels, the
+  // arcs' successor run starts (pool offsets, one more than the arcs) and
+  // the successors themselves (pool offsets of their records, or kSetsEnd).
+  static constexpr uint32_t kVertex = 0;
+  static constexpr uint32_t kEpoch = 1;   // == epoch_ when cursor/end are set for this recovery
+  static constexpr uint32_t kCursor = 2;  // next successor to take
+  static constexpr uint32_t kEnd = 3;     // end of the successor run valid at the LoD
+  static constexpr uint32_t kArcCount = 4;
+  static constexpr uint32_t kLabels = 5;
   const SetsGraph* graph_;
-  std::vector<Node> nodes_;
-  std::vector<Arc> arcs_;  // graph arcs plus one sentinel
+  std::vector<uint32_t> pool_;
+  std::vector<uint32_t> beginning_record_;  // graph.beginning_node as pool offsets
   uint32_t epoch_ = 0;
   std::vector<uint32_t> strip_epoch_;
   std::vector<uint32_t> event_lod_, event_strip_;  // sorted by (LoD, strip)

@@ -270,6 +270,41 @@ TEST(SetsGraph, CodecRoundTripsAndValidationFindsBrokenWalks) {
   EXPECT_FALSE(encode_sets(unsorted).is_ok());
 }
 
+// A loop that only a coarser LoD's walk takes: create() (whose node layout
+// walks sampled LoDs) still succeeds, recover() at LoD 0 works, and the
+// broken LoD gives a Status naming the strip, fresh and coherent, while
+// other strips are walked interleaved with it.
+TEST(SetsGraph, RecoveryReportsAWalkThatBreaksOnlyAtACoarseLod) {
+  const Sets sets = build(test_meshes::torus(10, 8));
+  const SetsGraph& g = sets.graph;
+  bool found = false;
+  for (size_t s = 0; s < g.strip_count() && !found; ++s) {
+    for (uint32_t n = g.node_first[s]; n < g.node_first[s + 1] && !found; ++n) {
+      for (uint32_t a = g.arc_first[n]; a + 1 < g.arc_first[n + 1] && !found; ++a) {
+        if (a == g.arc_first[n]) continue;  // keep the LoD-0 run intact
+        SetsGraph broken = g;
+        broken.successors[broken.successor_first[a]] = n;
+        const uint32_t lod = g.arc_lod[a];
+        if (walk_strip(broken, s, lod).is_ok() || !walk_strip(broken, s, 0).is_ok()) continue;
+        found = true;
+        Result<StripRecovery> fresh = StripRecovery::create(broken);
+        ASSERT_TRUE(fresh.is_ok()) << fresh.status().message();
+        EXPECT_TRUE(fresh.value().recover(0).is_ok());
+        const Status status = fresh.value().recover(lod);
+        ASSERT_FALSE(status.is_ok());
+        EXPECT_NE(status.message().find("strip " + std::to_string(s) + " at LoD"),
+                  std::string::npos)
+            << status.message();
+        Result<StripRecovery> coherent = StripRecovery::create(broken);
+        ASSERT_TRUE(coherent.is_ok());
+        ASSERT_TRUE(coherent.value().recover_coherent(0).is_ok());
+        EXPECT_FALSE(coherent.value().recover_coherent(lod).is_ok());
+      }
+    }
+  }
+  EXPECT_TRUE(found) << "no arc of the torus graph breaks only a coarse walk";
+}
+
 TEST(StripsSection, CodecRoundTripsAndRefusesDamage) {
   const TriangleMesh mesh = test_meshes::torus(9, 7);
   Result<TriangleStrips> strips = stripify(mesh);
