@@ -10,14 +10,9 @@
 #include <algorithm>
 #include <string>
 
+#include "lib/simplify/vec_math.h"
+
 namespace lodbake {
-namespace {
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
-
-}  // namespace
 
 Result<SplitSimulator> SplitSimulator::create(const ProgressiveMesh& pm) {
   const size_t n0 = pm.base.positions.size();

@@ -56,29 +56,13 @@
 #include "formats/support/bit_packing.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/quadric.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr uint32_t kNone = 0xffffffffu;
-
-Vec3d to_d(const Vec3f& p) {
-  return {p[0], p[1], p[2]};
-}
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
 
 struct TempNode {
   uint32_t left = kNone;   // surviving child

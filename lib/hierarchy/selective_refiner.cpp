@@ -22,15 +22,9 @@
 #include <algorithm>
 
 #include "formats/sections/vhie.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
-namespace {
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
-
-}  // namespace
 
 Result<SelectiveRefiner> SelectiveRefiner::create(const VertexHierarchy& h) {
   const std::vector<std::string> problems = validate_hierarchy(h);

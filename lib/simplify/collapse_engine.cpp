@@ -47,6 +47,7 @@
 #include <limits>
 
 #include "lib/simplify/quadric.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
 namespace simplify_internal {
@@ -137,26 +138,6 @@ struct alignas(32) AlignedQuadric {
 };
 
 enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther };
-
-Vec3d to_d(const Vec3f& p) {
-  return {p[0], p[1], p[2]};
-}
-
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
 
 // True when corner values a and b of `attr` differ.
 bool values_differ(const MeshAttribute& attr, uint32_t a, uint32_t b) {

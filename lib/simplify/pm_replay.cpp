@@ -13,12 +13,10 @@
 #include <new>
 #include <string>
 
+#include "lib/simplify/vec_math.h"
+
 namespace lodbake {
 namespace {
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
 
 Status check_attribute(const MeshAttribute& attr, const char* name, size_t vertices) {
   if (!attr.present()) return Status::ok();
