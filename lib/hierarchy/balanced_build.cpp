@@ -54,6 +54,7 @@
 
 #include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
+#include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/quadric.h"
 #include "lib/simplify/vec_math.h"
@@ -153,8 +154,7 @@ class Builder {
       const Vec3d p0 = to_d(mesh_.positions[t[0]]);
       const Vec3d p1 = to_d(mesh_.positions[t[1]]);
       const Vec3d p2 = to_d(mesh_.positions[t[2]]);
-      Quadric q = Quadric::from_triangle(p0, p1, p2);
-      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
+      const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t)
         quadric_[v] += q;
       if (!(options_.boundary_weight > 0)) continue;
@@ -163,14 +163,10 @@ class Builder {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
         if (!boundary_[a] || !boundary_[b] || has_half_edge(b, a)) continue;
-        const Vec3d pa = to_d(mesh_.positions[a]);
-        const Vec3d e = sub(to_d(mesh_.positions[b]), pa);
-        Vec3d pn = cross(e, normal);
-        const double len = std::sqrt(dot(pn, pn));
-        if (!(len > 0)) continue;
-        pn = {pn[0] / len, pn[1] / len, pn[2] / len};
-        const Quadric bq =
-            Quadric::from_plane(pn, -dot(pn, pa), options_.boundary_weight * std::sqrt(dot(e, e)));
+        Quadric bq;
+        if (!boundary_edge_quadric(to_d(mesh_.positions[a]), to_d(mesh_.positions[b]), normal,
+                                   options_.boundary_weight, &bq))
+          continue;
         quadric_[a] += bq;
         quadric_[b] += bq;
       }

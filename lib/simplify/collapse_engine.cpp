@@ -46,6 +46,7 @@
 #include <cstring>
 #include <limits>
 
+#include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/quadric.h"
 #include "lib/simplify/vec_math.h"
 
@@ -289,11 +290,7 @@ class Engine {
       const Vec3d p0 = to_d(state_.positions[t[0]]);
       const Vec3d p1 = to_d(state_.positions[t[1]]);
       const Vec3d p2 = to_d(state_.positions[t[2]]);
-      // Weighted by sqrt(area), a length (meshoptimizer's choice): area
-      // weights let a few large faces outvote many small ones in a vertex's
-      // mean error, and a small curved feature then looks flat.
-      Quadric q = Quadric::from_triangle(p0, p1, p2);
-      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
+      const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t)
         quadric_[v].q += q;
       if (!(bw > 0) ||
@@ -304,13 +301,10 @@ class Engine {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
         if (!is_boundary_half_edge(a, b)) continue;
-        const Vec3d pa = to_d(state_.positions[a]);
-        const Vec3d e = sub(to_d(state_.positions[b]), pa);
-        Vec3d pn = cross(e, normal);
-        const double len = std::sqrt(dot(pn, pn));
-        if (!(len > 0)) continue;
-        pn = {pn[0] / len, pn[1] / len, pn[2] / len};
-        const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * std::sqrt(dot(e, e)));
+        Quadric bq;
+        if (!boundary_edge_quadric(to_d(state_.positions[a]), to_d(state_.positions[b]), normal, bw,
+                                   &bq))
+          continue;
         quadric_[a].q += bq;
         quadric_[b].q += bq;
       }
