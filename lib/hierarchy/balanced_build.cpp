@@ -285,15 +285,7 @@ class Builder {
       const Vec3d a = to_d(mesh_.positions[u]);
       const Vec3d b = to_d(mesh_.positions[tri[(k + 1) % 3]]);
       const Vec3d c = to_d(mesh_.positions[tri[(k + 2) % 3]]);
-      const Vec3d eb = sub(b, p);
-      const Vec3d ec = sub(c, p);
-      const Vec3d n_new = cross(eb, ec);
-      const double len_new = dot(n_new, n_new);
-      if (!(len_new > 1e-20 * dot(eb, eb) * dot(ec, ec))) return false;
-      const Vec3d n_old = cross(sub(b, a), sub(c, a));
-      const double len_old = dot(n_old, n_old);
-      if (!(len_old > 0)) continue;
-      if (dot(n_old, n_new) < cos_limit_ * std::sqrt(len_old * len_new)) return false;
+      if (!keeps_orientation(a, b, c, p, cos_limit_)) return false;
     }
     return true;
   }

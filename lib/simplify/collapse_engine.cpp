@@ -667,16 +667,7 @@ class Engine {
       if (corner.next == other || corner.prev == other) continue;
       const Vec3d b = to_d(vinfo_[corner.next].position);
       const Vec3d c = to_d(vinfo_[corner.prev].position);
-      const Vec3d eb = sub(b, pd);
-      const Vec3d ec = sub(c, pd);
-      const Vec3d n_new = cross(eb, ec);
-      const double len_new = dot(n_new, n_new);
-      // Nearly degenerate: the sine of the angle at p below 1e-10.
-      if (!(len_new > 1e-20 * dot(eb, eb) * dot(ec, ec))) return false;
-      const Vec3d n_old = cross(sub(b, a), sub(c, a));
-      const double len_old = dot(n_old, n_old);
-      if (!(len_old > 0)) continue;
-      if (dot(n_old, n_new) < cos_limit_ * std::sqrt(len_old * len_new)) return false;
+      if (!keeps_orientation(a, b, c, pd, cos_limit_)) return false;
     }
     return true;
   }
