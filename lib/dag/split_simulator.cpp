@@ -1,23 +1,19 @@
 // Sequential vertex-split replay for the DAG and vertex-tree builders. The
-// fan walk is PmRefiner's (lib/simplify/pm_replay.cpp): counter-clockwise
-// around vs from the face (vs, vr, .) until (vs, ., vl) or the boundary,
-// then clockwise from (vs, ., vl) to the boundary when vl was not reached.
-// It is repeated here rather than shared because the builders need the face
-// slots that move, which the refiner keeps private; the DAG tests compare
-// both replays on every mesh.
+// record checks and the fan walk are PmRefiner's (collect_moved_faces() in
+// lib/simplify/split_fan.h): counter-clockwise around vs from the face
+// (vs, vr, .) until (vs, ., vl) or the boundary, then clockwise from
+// (vs, ., vl) to the boundary when vl was not reached. The simulator keeps
+// its own face slots because the builders need the slots that move, which
+// the refiner keeps private; the DAG tests compare both replays on every mesh.
 #include "lib/dag/split_simulator.h"
 
 #include <algorithm>
 #include <string>
 
+#include "lib/simplify/split_fan.h"
+#include "lib/simplify/vec_math.h"
+
 namespace lodbake {
-namespace {
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
-
-}  // namespace
 
 Result<SplitSimulator> SplitSimulator::create(const ProgressiveMesh& pm) {
   const size_t n0 = pm.base.positions.size();
@@ -41,81 +37,17 @@ Result<SplitSimulator> SplitSimulator::create(const ProgressiveMesh& pm) {
   return s;
 }
 
-uint32_t SplitSimulator::face_with_next(uint32_t v, uint32_t next) const {
-  for (uint32_t f : faces_of_[v]) {
-    const Triangle& t = faces_[f];
-    if (t[(corner_of(t, v) + 1) % 3] == next) return f;
-  }
-  return kNoVertex;
-}
-
-uint32_t SplitSimulator::face_with_prev(uint32_t v, uint32_t prev) const {
-  for (uint32_t f : faces_of_[v]) {
-    const Triangle& t = faces_[f];
-    if (t[(corner_of(t, v) + 2) % 3] == prev) return f;
-  }
-  return kNoVertex;
-}
-
 Status SplitSimulator::split_next(Effect* effect) {
   effect->moved.clear();
   effect->added.clear();
   if (applied_ >= pm_->splits.size()) return invalid_input("no vertex split left to apply");
   const VertexSplit& s = pm_->splits[applied_];
   const uint32_t vt = static_cast<uint32_t>(faces_of_.size());
-  const std::string where = "vertex split " + std::to_string(applied_) + ": ";
   const uint32_t vs = s.vs;
   const uint32_t vl = s.vl;
   const uint32_t vr = s.vr;
-  if (vs >= vt || (vl != kNoVertex && vl >= vt) || (vr != kNoVertex && vr >= vt)) {
-    return invalid_input(where + "vertex index out of range (" + std::to_string(vt) + " vertices)");
-  }
-  if (vl == kNoVertex && vr == kNoVertex) return invalid_input(where + "both wings are missing");
-  if (vl == vs || vr == vs || vl == vr) return invalid_input(where + "repeated vertex");
-  for (uint32_t w : {vl, vr}) {
-    if (w != kNoVertex && face_with_next(vs, w) == kNoVertex &&
-        face_with_prev(vs, w) == kNoVertex) {
-      return invalid_input(where + "wing vertex " + std::to_string(w) +
-                           " is not adjacent to the split vertex");
-    }
-  }
   std::vector<uint32_t>& moved = effect->moved;
-  const size_t limit = faces_of_[vs].size();
-  bool reached_vl = false;
-  if (vr != kNoVertex) {
-    uint32_t next = vr;
-    for (;;) {
-      const uint32_t f = face_with_next(vs, next);
-      if (f == kNoVertex) break;
-      if (moved.size() >= limit) {
-        moved.clear();
-        return invalid_input(where + "the fan around vertex " + std::to_string(vs) +
-                             " does not end");
-      }
-      moved.push_back(f);
-      const Triangle& t = faces_[f];
-      next = t[(corner_of(t, vs) + 2) % 3];
-      if (next == vl) {
-        reached_vl = true;
-        break;
-      }
-    }
-  }
-  if (vl != kNoVertex && !reached_vl) {
-    uint32_t prev = vl;
-    for (;;) {
-      const uint32_t f = face_with_prev(vs, prev);
-      if (f == kNoVertex) break;
-      if (moved.size() >= limit) {
-        moved.clear();
-        return invalid_input(where + "the fan around vertex " + std::to_string(vs) +
-                             " does not end");
-      }
-      moved.push_back(f);
-      const Triangle& t = faces_[f];
-      prev = t[(corner_of(t, vs) + 1) % 3];
-    }
-  }
+  LODBAKE_RETURN_IF_ERROR(collect_moved_faces(faces_, faces_of_, vt, s, applied_, &moved));
 
   faces_of_.emplace_back();
   std::vector<uint32_t>& vs_faces = faces_of_[vs];

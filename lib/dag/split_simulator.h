@@ -63,8 +63,6 @@ class SplitSimulator {
 
  private:
   explicit SplitSimulator(const ProgressiveMesh& pm) : pm_(&pm) {}
-  uint32_t face_with_next(uint32_t v, uint32_t next) const;
-  uint32_t face_with_prev(uint32_t v, uint32_t prev) const;
 
   const ProgressiveMesh* pm_;
   std::vector<Triangle> faces_;

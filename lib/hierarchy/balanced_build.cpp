@@ -54,31 +54,16 @@
 
 #include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
+#include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/quadric.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr uint32_t kNone = 0xffffffffu;
-
-Vec3d to_d(const Vec3f& p) {
-  return {p[0], p[1], p[2]};
-}
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
 
 struct TempNode {
   uint32_t left = kNone;   // surviving child
@@ -169,8 +154,7 @@ class Builder {
       const Vec3d p0 = to_d(mesh_.positions[t[0]]);
       const Vec3d p1 = to_d(mesh_.positions[t[1]]);
       const Vec3d p2 = to_d(mesh_.positions[t[2]]);
-      Quadric q = Quadric::from_triangle(p0, p1, p2);
-      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
+      const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t)
         quadric_[v] += q;
       if (!(options_.boundary_weight > 0)) continue;
@@ -179,14 +163,10 @@ class Builder {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
         if (!boundary_[a] || !boundary_[b] || has_half_edge(b, a)) continue;
-        const Vec3d pa = to_d(mesh_.positions[a]);
-        const Vec3d e = sub(to_d(mesh_.positions[b]), pa);
-        Vec3d pn = cross(e, normal);
-        const double len = std::sqrt(dot(pn, pn));
-        if (!(len > 0)) continue;
-        pn = {pn[0] / len, pn[1] / len, pn[2] / len};
-        const Quadric bq =
-            Quadric::from_plane(pn, -dot(pn, pa), options_.boundary_weight * std::sqrt(dot(e, e)));
+        Quadric bq;
+        if (!boundary_edge_quadric(to_d(mesh_.positions[a]), to_d(mesh_.positions[b]), normal,
+                                   options_.boundary_weight, &bq))
+          continue;
         quadric_[a] += bq;
         quadric_[b] += bq;
       }
@@ -305,15 +285,7 @@ class Builder {
       const Vec3d a = to_d(mesh_.positions[u]);
       const Vec3d b = to_d(mesh_.positions[tri[(k + 1) % 3]]);
       const Vec3d c = to_d(mesh_.positions[tri[(k + 2) % 3]]);
-      const Vec3d eb = sub(b, p);
-      const Vec3d ec = sub(c, p);
-      const Vec3d n_new = cross(eb, ec);
-      const double len_new = dot(n_new, n_new);
-      if (!(len_new > 1e-20 * dot(eb, eb) * dot(ec, ec))) return false;
-      const Vec3d n_old = cross(sub(b, a), sub(c, a));
-      const double len_old = dot(n_old, n_old);
-      if (!(len_old > 0)) continue;
-      if (dot(n_old, n_new) < cos_limit_ * std::sqrt(len_old * len_new)) return false;
+      if (!keeps_orientation(a, b, c, p, cos_limit_)) return false;
     }
     return true;
   }

@@ -22,15 +22,10 @@
 #include <algorithm>
 
 #include "formats/sections/vhie.h"
+#include "lib/simplify/split_fan.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
-namespace {
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
-
-}  // namespace
 
 Result<SelectiveRefiner> SelectiveRefiner::create(const VertexHierarchy& h) {
   const std::vector<std::string> problems = validate_hierarchy(h);
@@ -91,20 +86,15 @@ HierarchyNodeId SelectiveRefiner::active_ancestor_id(HierarchyNodeId id) const {
   return id;
 }
 
+// The shared lookups answer kNoVertex for "none", which is kNoNode.
+static_assert(kNoVertex == kNoNode, "face lookups use one 'none' value");
+
 uint32_t SelectiveRefiner::face_with_next(uint32_t v, uint32_t next) const {
-  for (uint32_t f : vertex_faces_[v]) {
-    const Triangle& t = faces_[f];
-    if (t[(corner_of(t, v) + 1) % 3] == next) return f;
-  }
-  return kNoNode;
+  return lodbake::face_with_next(faces_, vertex_faces_, v, next);
 }
 
 uint32_t SelectiveRefiner::face_with_prev(uint32_t v, uint32_t prev) const {
-  for (uint32_t f : vertex_faces_[v]) {
-    const Triangle& t = faces_[f];
-    if (t[(corner_of(t, v) + 2) % 3] == prev) return f;
-  }
-  return kNoNode;
+  return lodbake::face_with_prev(faces_, vertex_faces_, v, prev);
 }
 
 void SelectiveRefiner::neighbours(uint32_t v, std::vector<uint32_t>* out) const {

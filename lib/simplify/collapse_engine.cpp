@@ -46,7 +46,9 @@
 #include <cstring>
 #include <limits>
 
+#include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/quadric.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
 namespace simplify_internal {
@@ -137,26 +139,6 @@ struct alignas(32) AlignedQuadric {
 };
 
 enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther };
-
-Vec3d to_d(const Vec3f& p) {
-  return {p[0], p[1], p[2]};
-}
-
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
 
 // True when corner values a and b of `attr` differ.
 bool values_differ(const MeshAttribute& attr, uint32_t a, uint32_t b) {
@@ -308,11 +290,7 @@ class Engine {
       const Vec3d p0 = to_d(state_.positions[t[0]]);
       const Vec3d p1 = to_d(state_.positions[t[1]]);
       const Vec3d p2 = to_d(state_.positions[t[2]]);
-      // Weighted by sqrt(area), a length (meshoptimizer's choice): area
-      // weights let a few large faces outvote many small ones in a vertex's
-      // mean error, and a small curved feature then looks flat.
-      Quadric q = Quadric::from_triangle(p0, p1, p2);
-      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
+      const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t)
         quadric_[v].q += q;
       if (!(bw > 0) ||
@@ -323,13 +301,10 @@ class Engine {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
         if (!is_boundary_half_edge(a, b)) continue;
-        const Vec3d pa = to_d(state_.positions[a]);
-        const Vec3d e = sub(to_d(state_.positions[b]), pa);
-        Vec3d pn = cross(e, normal);
-        const double len = std::sqrt(dot(pn, pn));
-        if (!(len > 0)) continue;
-        pn = {pn[0] / len, pn[1] / len, pn[2] / len};
-        const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * std::sqrt(dot(e, e)));
+        Quadric bq;
+        if (!boundary_edge_quadric(to_d(state_.positions[a]), to_d(state_.positions[b]), normal, bw,
+                                   &bq))
+          continue;
         quadric_[a].q += bq;
         quadric_[b].q += bq;
       }
@@ -692,16 +667,7 @@ class Engine {
       if (corner.next == other || corner.prev == other) continue;
       const Vec3d b = to_d(vinfo_[corner.next].position);
       const Vec3d c = to_d(vinfo_[corner.prev].position);
-      const Vec3d eb = sub(b, pd);
-      const Vec3d ec = sub(c, pd);
-      const Vec3d n_new = cross(eb, ec);
-      const double len_new = dot(n_new, n_new);
-      // Nearly degenerate: the sine of the angle at p below 1e-10.
-      if (!(len_new > 1e-20 * dot(eb, eb) * dot(ec, ec))) return false;
-      const Vec3d n_old = cross(sub(b, a), sub(c, a));
-      const double len_old = dot(n_old, n_old);
-      if (!(len_old > 0)) continue;
-      if (dot(n_old, n_new) < cos_limit_ * std::sqrt(len_old * len_new)) return false;
+      if (!keeps_orientation(a, b, c, pd, cos_limit_)) return false;
     }
     return true;
   }

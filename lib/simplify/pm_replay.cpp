@@ -13,12 +13,11 @@
 #include <new>
 #include <string>
 
+#include "lib/simplify/split_fan.h"
+#include "lib/simplify/vec_math.h"
+
 namespace lodbake {
 namespace {
-
-int corner_of(const Triangle& t, uint32_t v) {
-  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-}
 
 Status check_attribute(const MeshAttribute& attr, const char* name, size_t vertices) {
   if (!attr.present()) return Status::ok();
@@ -89,83 +88,16 @@ void PmRefiner::remove_last_face() {
   mesh_.triangles.pop_back();
 }
 
-uint32_t PmRefiner::face_with_next(uint32_t vs, uint32_t next) const {
-  for (uint32_t f : vertex_faces_[vs]) {
-    const Triangle& t = mesh_.triangles[f];
-    if (t[(corner_of(t, vs) + 1) % 3] == next) return f;
-  }
-  return kNoVertex;
-}
-
-uint32_t PmRefiner::face_with_prev(uint32_t vs, uint32_t prev) const {
-  for (uint32_t f : vertex_faces_[vs]) {
-    const Triangle& t = mesh_.triangles[f];
-    if (t[(corner_of(t, vs) + 2) % 3] == prev) return f;
-  }
-  return kNoVertex;
-}
-
 Status PmRefiner::split_next() {
   if (applied_ >= pm_->splits.size()) return invalid_input("no vertex split left to apply");
   const VertexSplit& s = pm_->splits[applied_];
   const uint32_t vt = static_cast<uint32_t>(mesh_.positions.size());
-  const std::string where = "vertex split " + std::to_string(applied_) + ": ";
   const uint32_t vs = s.vs;
   const uint32_t vl = s.vl;
   const uint32_t vr = s.vr;
-  if (vs >= vt || (vl != kNoVertex && vl >= vt) || (vr != kNoVertex && vr >= vt)) {
-    return invalid_input(where + "vertex index out of range (" + std::to_string(vt) + " vertices)");
-  }
-  if (vl == kNoVertex && vr == kNoVertex) return invalid_input(where + "both wings are missing");
-  if (vl == vs || vr == vs || vl == vr) return invalid_input(where + "repeated vertex");
-
-  // Collect the faces that move to vt.
   const size_t first_moved = moved_faces_.size();
-  const size_t limit = vertex_faces_[vs].size();
-  auto fail = [&](const std::string& why) {
-    moved_faces_.resize(first_moved);
-    return invalid_input(where + why);
-  };
-  for (uint32_t w : {vl, vr}) {
-    if (w != kNoVertex && face_with_next(vs, w) == kNoVertex &&
-        face_with_prev(vs, w) == kNoVertex) {
-      return fail("wing vertex " + std::to_string(w) + " is not adjacent to the split vertex");
-    }
-  }
-  // Counter-clockwise from (vs, vr, .) until (vs, ., vl) or the boundary;
-  // then, when vl is set and was not reached (vt was a boundary vertex on an
-  // interior edge), clockwise from (vs, ., vl) to the boundary.
-  bool reached_vl = false;
-  if (vr != kNoVertex) {
-    uint32_t next = vr;
-    for (;;) {
-      const uint32_t f = face_with_next(vs, next);
-      if (f == kNoVertex) break;
-      if (moved_faces_.size() - first_moved >= limit) {
-        return fail("the fan around vertex " + std::to_string(vs) + " does not end");
-      }
-      moved_faces_.push_back(f);
-      const Triangle& t = mesh_.triangles[f];
-      next = t[(corner_of(t, vs) + 2) % 3];
-      if (next == vl) {
-        reached_vl = true;
-        break;
-      }
-    }
-  }
-  if (vl != kNoVertex && !reached_vl) {
-    uint32_t prev = vl;
-    for (;;) {
-      const uint32_t f = face_with_prev(vs, prev);
-      if (f == kNoVertex) break;
-      if (moved_faces_.size() - first_moved >= limit) {
-        return fail("the fan around vertex " + std::to_string(vs) + " does not end");
-      }
-      moved_faces_.push_back(f);
-      const Triangle& t = mesh_.triangles[f];
-      prev = t[(corner_of(t, vs) + 1) % 3];
-    }
-  }
+  LODBAKE_RETURN_IF_ERROR(
+      collect_moved_faces(mesh_.triangles, vertex_faces_, vt, s, applied_, &moved_faces_));
 
   // Apply.
   Undo undo;

@@ -45,9 +45,6 @@ class PmRefiner {
   explicit PmRefiner(const ProgressiveMesh& pm) : pm_(&pm) {}
   void add_face(uint32_t f);
   void remove_last_face();
-  // The face of vs whose corner after vs is `next` (kNoVertex: none).
-  uint32_t face_with_next(uint32_t vs, uint32_t next) const;
-  uint32_t face_with_prev(uint32_t vs, uint32_t prev) const;
   void copy_attributes(size_t vertex);
 
   struct Undo {

@@ -24,19 +24,13 @@
 #include "lib/meshio/mesh_import.h"
 #include "lib/simplify/simplify.h"
 #include "lib/vtrees/vertex_tree_builder.h"
+#include "tests/bench/bench_support.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
+using lodbake::bench::Clock;
+using lodbake::bench::median;
+using lodbake::bench::seconds_since;
 
 double per(uint64_t bits, uint64_t count) {
   return count == 0 ? 0 : static_cast<double>(bits) / 8.0 / static_cast<double>(count);

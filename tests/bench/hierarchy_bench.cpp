@@ -43,28 +43,15 @@
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/meshio/mesh_writers.h"
+#include "tests/bench/bench_support.h"
 
 namespace {
 
 using lodbake::TriangleMesh;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// CPU seconds of this process (self) or of its waited-for children.
-double cpu_seconds(int who) {
-  rusage usage{};
-  getrusage(who, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
+using lodbake::bench::Clock;
+using lodbake::bench::cpu_seconds;
+using lodbake::bench::median;
+using lodbake::bench::seconds_since;
 
 struct Row {
   bool ok = false;

@@ -46,22 +46,12 @@
 #include "lib/meshio/mesh_import.h"
 #include "lib/pack/pack_containers.h"
 #include "lib/simplify/simplify.h"
+#include "tests/bench/bench_support.h"
 
 namespace {
 
 using namespace lodbake;
-using Clock = std::chrono::steady_clock;
-
-double median_seconds(int runs, const std::function<void()>& body) {
-  std::vector<double> times;
-  for (int i = 0; i < runs; ++i) {
-    const auto start = Clock::now();
-    body();
-    times.push_back(std::chrono::duration<double>(Clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
+using lodbake::bench::median_seconds;
 
 Bytes raw_container(const ProgressiveMesh& pm, int bits) {
   BaseEncodeOptions base_options;

@@ -49,17 +49,15 @@
 #ifdef LODBAKE_BENCH_WITH_SIMPLIFY
 #include "lib/simplify/simplify.h"
 #endif
+#include "tests/bench/bench_support.h"
 
 namespace {
 
 using lodbake::Triangle;
 using lodbake::TriangleMesh;
 using lodbake::Vec3f;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using lodbake::bench::Clock;
+using lodbake::bench::seconds_since;
 
 struct Outcome {
   bool ok = false;
@@ -258,6 +256,9 @@ struct Row {
   double mean = 0;
 };
 
+// The interpolated median (mean of the two middle runs for an even count),
+// unlike bench::median, so that this table's figures stay comparable with
+// the earlier rounds in docs/benchmarks.md.
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();

@@ -4,39 +4,25 @@
 // runtime over a synthetic mesh of the stated counts (every operation on a
 // hostile hierarchy must be refused cleanly or keep the mesh consistent).
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 
 #include "formats/sections/fanh.h"
 #include "lib/fanmerge/fan_runtime.h"
-
-namespace {
-
-void require(bool condition, const char* what) {
-  if (!condition) {
-    std::fprintf(stderr, "fuzz invariant failed: %s\n", what);
-    std::abort();
-  }
-}
-
-}  // namespace
+#include "tests/fuzz/fuzz_section_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace lodbake;
+  using namespace lodbake::fuzz;
   Result<FanhSummary> summary = read_fanh_summary(data, size);
   Result<FanHierarchy> h = decode_fanh(data, size);
   if (!h.is_ok()) {
-    require(h.status().code() == 23 || h.status().kind() == ErrorKind::kRuntime,
-            "FANH decode error without LBK-E023");
+    require_decode_error(h.status(), "FANH decode error without LBK-E023");
     return 0;
   }
   require(summary.is_ok(), "FANH decodes but its summary does not");
   require(validate_fanh_structure(h.value()).empty(), "decoded FANH fails its structure check");
   Result<Bytes> again = encode_fanh(h.value());
   require(again.is_ok(), "decoded FANH does not re-encode");
-  require(again.value().size() == size && std::memcmp(again.value().data(), data, size) == 0,
-          "FANH round trip changed the bytes");
+  require_same_bytes(again.value(), data, size, "FANH round trip changed the bytes");
   (void)fanh_stats(h.value());
   const FanHierarchy& fan = h.value();
   if (fan.vertex_count < 3 || fan.vertex_count > 4096 || fan.triangle_count > 8192) return 0;

@@ -15,6 +15,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace lodbake;
   using lodbake::fuzz::require;
+  using lodbake::fuzz::require_decode_error;
+  using lodbake::fuzz::require_same_bytes;
   if (size < 4) return 0;
   uint32_t n = 0;
   std::memcpy(&n, data, 4);
@@ -28,8 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   Result<VertexHierarchy> h = decode_vhie(data, n, base);
   if (!h.is_ok()) {
-    require(h.status().code() == 23 || h.status().kind() == ErrorKind::kRuntime,
-            "VHIE decode error without LBK-E023");
+    require_decode_error(h.status(), "VHIE decode error without LBK-E023");
     return 0;
   }
   require(summary.is_ok(), "VHIE decodes but its summary does not");
@@ -39,12 +40,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           "VHIE summary disagrees with the decoded hierarchy");
   Result<Bytes> again = encode_vhie(h.value());
   require(again.is_ok(), "decoded VHIE cannot be encoded");
-  require(again.value().size() == n && (n == 0 || std::memcmp(again.value().data(), data, n) == 0),
-          "VHIE round trip is not byte-exact");
+  require_same_bytes(again.value(), data, n, "VHIE round trip is not byte-exact");
   Result<std::vector<NodeRefinement>> rfin = decode_rfin(data + n, size - n, h.value());
   if (!rfin.is_ok()) {
-    require(rfin.status().code() == 23 || rfin.status().kind() == ErrorKind::kRuntime,
-            "RFIN decode error without LBK-E023");
+    require_decode_error(rfin.status(), "RFIN decode error without LBK-E023");
     return 0;
   }
   for (const NodeRefinement& r : rfin.value()) {

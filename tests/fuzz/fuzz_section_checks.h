@@ -1,5 +1,5 @@
-// Checks shared by the container, BASE and VSPL fuzz targets: decode a section
-// payload, validate it, and assert the round-trip invariants of the format.
+// Checks shared by the section fuzz targets: decode a section payload,
+// validate it, and assert the round-trip invariants of the format.
 // A failed invariant aborts, which the fuzzer (or the corpus replay under
 // the sanitizers) reports as a crash.
 #pragma once
@@ -23,6 +23,18 @@ inline void require(bool condition, const char* what) {
   }
 }
 
+// A decoder may refuse a payload only as malformed input (LBK-E023) or, for
+// an allocation it cannot make, as a runtime error.
+inline void require_decode_error(const Status& status, const char* what) {
+  require(status.code() == 23 || status.kind() == ErrorKind::kRuntime, what);
+}
+
+// A canonical format re-encodes what it decoded to the input, byte for byte.
+inline void require_same_bytes(const Bytes& again, const uint8_t* data, size_t size,
+                               const char* what) {
+  require(again.size() == size && (size == 0 || std::memcmp(again.data(), data, size) == 0), what);
+}
+
 // BASE: float32 payloads are canonical, so re-encoding what decoded must
 // give the input back byte for byte; quantized ones must at least re-decode
 // to the same mesh when stored as float32.
@@ -32,8 +44,7 @@ inline void check_base_payload(const uint8_t* data, size_t size) {
   Result<TriangleMesh> mesh = decode_base(data, size, &decoded_summary);
   (void)validate_base_payload(data, size);
   if (!mesh.is_ok()) {
-    require(mesh.status().code() == 23 || mesh.status().kind() == ErrorKind::kRuntime,
-            "BASE decode error without LBK-E023");
+    require_decode_error(mesh.status(), "BASE decode error without LBK-E023");
     return;
   }
   require(summary.is_ok(), "BASE decodes but its summary does not");
@@ -42,9 +53,7 @@ inline void check_base_payload(const uint8_t* data, size_t size) {
   Result<Bytes> again = encode_base(mesh.value(), {});
   require(again.is_ok(), "decoded BASE mesh cannot be encoded");
   if (decoded_summary.position_encoding == PositionEncoding::kFloat32) {
-    require(again.value().size() == size &&
-                (size == 0 || std::memcmp(again.value().data(), data, size) == 0),
-            "float32 BASE is not canonical");
+    require_same_bytes(again.value(), data, size, "float32 BASE is not canonical");
   }
   Result<TriangleMesh> back = decode_base(again.value().data(), again.value().size());
   require(back.is_ok() && back.value() == mesh.value(), "BASE float32 round trip");
@@ -56,8 +65,7 @@ inline void check_meta_payload(const uint8_t* data, size_t size) {
   Result<nlohmann::json> doc = decode_meta_json(data, size);
   require(meta.is_ok() == doc.is_ok(), "decode_meta and decode_meta_json disagree");
   if (!meta.is_ok()) {
-    require(meta.status().code() == 23 || meta.status().kind() == ErrorKind::kRuntime,
-            "META decode error without LBK-E023");
+    require_decode_error(meta.status(), "META decode error without LBK-E023");
     return;
   }
   Result<Bytes> again = encode_meta(meta.value());
@@ -111,8 +119,7 @@ inline void check_vspl_payload(const uint8_t* data, size_t size, const TriangleM
   Result<VsplSection> section = decode_vspl(data, size, base->positions, &decoded_summary);
   (void)validate_vspl_payload(data, size, base->positions);
   if (!section.is_ok()) {
-    require(section.status().code() == 23 || section.status().kind() == ErrorKind::kRuntime,
-            "VSPL decode error without LBK-E023");
+    require_decode_error(section.status(), "VSPL decode error without LBK-E023");
     return;
   }
   require(summary.is_ok(), "VSPL decodes but its summary does not");
@@ -137,9 +144,7 @@ inline void check_vspl_payload(const uint8_t* data, size_t size, const TriangleM
   require(rejoined.is_ok() && rejoined.value() == pm, "VSPL float32 round trip");
   if (decoded_summary.position_encoding == PositionEncoding::kFloat32 &&
       back.value().summary.flags == decoded_summary.flags) {
-    require(again.value().size() == size &&
-                (size == 0 || std::memcmp(again.value().data(), data, size) == 0),
-            "float32 VSPL is not canonical");
+    require_same_bytes(again.value(), data, size, "float32 VSPL is not canonical");
   }
 }
 

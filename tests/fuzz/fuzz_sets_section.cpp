@@ -3,30 +3,18 @@
 // (lib/strips) on any decoded graph fails cleanly or, on a graph that
 // validates, succeeds with coherent recovery equal to fresh recovery.
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 
 #include "formats/sections/sets.h"
 #include "lib/strips/sets_recovery.h"
-
-namespace {
-
-void require(bool condition, const char* what) {
-  if (!condition) {
-    std::fprintf(stderr, "fuzz invariant failed: %s\n", what);
-    std::abort();
-  }
-}
-
-}  // namespace
+#include "tests/fuzz/fuzz_section_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace lodbake;
+  using namespace lodbake::fuzz;
   Result<SetsSummary> summary = read_sets_summary(data, size);
   Result<SetsGraph> graph = decode_sets(data, size);
   if (!graph.is_ok()) {
-    require(graph.status().code() == 23 || graph.status().kind() == ErrorKind::kRuntime,
-            "SETS decode error without LBK-E023");
+    require_decode_error(graph.status(), "SETS decode error without LBK-E023");
     return 0;
   }
   const SetsGraph& g = graph.value();

@@ -1,29 +1,17 @@
 // Fuzz target for a bare STRP payload: summary and decode agree, and what
 // decodes re-encodes to bytes that decode to the same strips.
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 
 #include "formats/sections/strp.h"
-
-namespace {
-
-void require(bool condition, const char* what) {
-  if (!condition) {
-    std::fprintf(stderr, "fuzz invariant failed: %s\n", what);
-    std::abort();
-  }
-}
-
-}  // namespace
+#include "tests/fuzz/fuzz_section_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace lodbake;
+  using namespace lodbake::fuzz;
   Result<StrpSummary> summary = read_strp_summary(data, size);
   Result<TriangleStrips> strips = decode_strp(data, size);
   if (!strips.is_ok()) {
-    require(strips.status().code() == 23 || strips.status().kind() == ErrorKind::kRuntime,
-            "STRP decode error without LBK-E023");
+    require_decode_error(strips.status(), "STRP decode error without LBK-E023");
     return 0;
   }
   require(summary.is_ok(), "STRP decodes but its summary does not");

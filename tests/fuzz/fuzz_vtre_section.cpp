@@ -2,29 +2,17 @@
 // payload that decodes must pass it), and the round trip through the
 // encoder back to the same trees.
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 
 #include "formats/sections/vtre.h"
-
-namespace {
-
-void require(bool condition, const char* what) {
-  if (!condition) {
-    std::fprintf(stderr, "fuzz invariant failed: %s\n", what);
-    std::abort();
-  }
-}
-
-}  // namespace
+#include "tests/fuzz/fuzz_section_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace lodbake;
+  using namespace lodbake::fuzz;
   Result<VtreSummary> summary = read_vtre_summary(data, size);
   Result<VertexTrees> trees = decode_vtre(data, size);
   if (!trees.is_ok()) {
-    require(trees.status().code() == 23 || trees.status().kind() == ErrorKind::kRuntime,
-            "VTRE decode error without LBK-E023");
+    require_decode_error(trees.status(), "VTRE decode error without LBK-E023");
     return 0;
   }
   require(summary.is_ok(), "VTRE decodes but its summary does not");
