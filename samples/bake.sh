@@ -59,9 +59,11 @@ step "9. repack the progressive mesh: compact VSPL, Draco BASE (lodbake-pack)"
 "$bin/lodbake-pack" "$out/elephant-pm.lbk" --draco -o "$out/elephant-pm-packed.lbk"
 "$bin/lodbake-inspect" --validate --quiet "$out/elephant-pm-packed.lbk" > /dev/null
 
-step "10. replay the scan path on the balanced hierarchy, every frame validated (lodbake-replay)"
+step "10. replay the scan path on the balanced hierarchy and its split DAG, every frame validated (lodbake-replay)"
 "$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode vhier --path scan --validate \
   --csv "$out/elephant-replay-scan.csv"
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode dag --path scan --validate \
+  --csv "$out/elephant-replay-dag-scan.csv"
 
 size() { stat -c %s "$1"; }
 step "summary"

@@ -307,7 +307,7 @@ int run(const Tool& tool, const Request& request) {
     std::cout << "front size    mean " << front_sum / n << ", max " << max_front << "\n";
   }
   std::cout << "triangles     mean " << triangle_sum / n << ", max " << max_triangles << "\n";
-  std::cout << (dag ? "traversal ms  " : "adapt time    ") << "mean " << ms_sum / n
+  std::cout << (dag ? "frame time    " : "adapt time    ") << "mean " << ms_sum / n
             << " ms, median " << median(ms) << " ms, max " << ms_max << " ms per frame\n";
   if (pass_limited != 0) {
     std::cout << "pass limit    " << pass_limited << " frames stopped at "
