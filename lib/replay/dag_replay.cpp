@@ -46,7 +46,13 @@ Result<DagReplay> DagReplay::create(const ProgressiveMesh& pm, const VsplitDag& 
     }
     replay.added_.resize(l.split_count());
     for (size_t i = 0; i < l.split_count(); ++i) {
-      replay.added_[i] = l.created_offsets[i + 1] - l.created_offsets[i] - changed[i];
+      const uint32_t created = l.created_offsets[i + 1] - l.created_offsets[i];
+      if (created < changed[i]) {
+        return runtime_error("split " + std::to_string(i) + " changes " +
+                             std::to_string(changed[i]) + " triangles but creates only " +
+                             std::to_string(created));
+      }
+      replay.added_[i] = created - changed[i];
     }
     replay.triangles_ = pm.base.triangle_count();
     return replay;
