@@ -29,7 +29,6 @@ namespace lodbake::cli {
 namespace {
 
 constexpr const char* kReplaySchema = "lodbake.replay/1";
-constexpr int kValidationFailed = 7;
 
 struct Request {
   std::string input;
@@ -215,8 +214,7 @@ int run(const Tool& tool, const Request& request) {
         std::string message = "frame " + std::to_string(i) + ": invalid mesh: " + problems[0];
         for (size_t k = 1; k < problems.size(); ++k)
           message += "; " + problems[k];
-        tool.fail(request.input, invalid_input(message));
-        return kValidationFailed;
+        return tool.fail(request.input, Status(ErrorKind::kValidation, message));
       }
     }
     progress.update(static_cast<double>(i + 1) / path.size());
