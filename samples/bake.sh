@@ -5,7 +5,8 @@
 # progressive mesh whose full refinement is checked again, repack that
 # (compact VSPL, Draco BASE), build the balanced hierarchy with its split DAG
 # and vertex trees, the fan-merge hierarchy, strips and the SETS graph and
-# validate them, then print a summary.
+# validate them, replay the scan camera path on the hierarchy with every
+# frame validated, then print a summary.
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -57,6 +58,12 @@ step "8. triangle strips and the SETS strip graph (lodbake-strips)"
 step "9. repack the progressive mesh: compact VSPL, Draco BASE (lodbake-pack)"
 "$bin/lodbake-pack" "$out/elephant-pm.lbk" --draco -o "$out/elephant-pm-packed.lbk"
 "$bin/lodbake-inspect" --validate --quiet "$out/elephant-pm-packed.lbk" > /dev/null
+
+step "10. replay the scan path on the balanced hierarchy and its split DAG, every frame validated (lodbake-replay)"
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode vhier --path scan --validate \
+  --csv "$out/elephant-replay-scan.csv"
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode dag --path scan --validate \
+  --csv "$out/elephant-replay-dag-scan.csv"
 
 size() { stat -c %s "$1"; }
 step "summary"

@@ -1,0 +1,70 @@
+// Mode vhier of the replay runtime. The refinement itself is
+// lib/hierarchy's (adapt_to_view); this file only turns a camera into view
+// parameters, times the adaptation and checks the result with
+// lib/check's exact index-structure counts. Non-manifold vertices (two fans
+// meeting at a vertex) are not a violation: the hierarchy's input may have
+// them and the refiner keeps them.
+#include "lib/replay/vhier_replay.h"
+
+#include <chrono>
+#include <new>
+
+#include "lib/check/mesh_check.h"
+#include "lib/hierarchy/view_criteria.h"
+
+namespace lodbake {
+
+Result<VhierFrameStats> adapt_vhier_frame(SelectiveRefiner* refiner, const VertexHierarchy& h,
+                                          const std::vector<NodeRefinement>& data,
+                                          const BoundingSphere& sphere, const CameraFrame& frame,
+                                          const VhierReplayOptions& options) {
+  if (data.size() != h.node_count()) {
+    return invalid_input("refinement data has " + std::to_string(data.size()) +
+                         " entries, the hierarchy " + std::to_string(h.node_count()) + " nodes");
+  }
+  try {
+    const ViewParameters view =
+        view_parameters(frame, options.viewport, options.viewport.near_fraction * sphere.radius,
+                        options.tolerance_pixels);
+    const auto start = std::chrono::steady_clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(AdaptStats adapt,
+                             adapt_to_view(refiner, h, data, view, options.max_passes));
+    const auto stop = std::chrono::steady_clock::now();
+    VhierFrameStats stats;
+    stats.splits = adapt.splits;
+    stats.collapses = adapt.collapses;
+    stats.passes = adapt.passes;
+    stats.front_size = refiner->front_size();
+    stats.triangles = refiner->triangle_count();
+    stats.adapt_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+    return stats;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory adapting the vertex hierarchy");
+  }
+}
+
+std::vector<std::string> check_vhier_mesh(const SelectiveRefiner& refiner) {
+  std::vector<std::string> problems;
+  const TriangleMesh mesh = refiner.current_mesh();
+  const MeshCheckReport r = check_mesh(mesh);
+  auto add = [&](uint64_t count, const char* what) {
+    if (count != 0) problems.push_back(std::to_string(count) + " " + what);
+  };
+  add(r.out_of_range_triangles, "triangles with an out-of-range index");
+  add(r.repeated_index_triangles, "triangles with a repeated index");
+  add(r.duplicate_triangles, "duplicate triangles");
+  add(r.non_manifold_edges, "edges with more than two faces");
+  add(r.inconsistent_orientation_edges,
+      "edges walked twice the same way (inconsistent orientation)");
+  if (mesh.vertex_count() != refiner.front_size()) {
+    problems.push_back("front size " + std::to_string(refiner.front_size()) + " but the mesh has " +
+                       std::to_string(mesh.vertex_count()) + " vertices");
+  }
+  if (mesh.triangle_count() != refiner.triangle_count()) {
+    problems.push_back("triangle count " + std::to_string(refiner.triangle_count()) +
+                       " but the mesh has " + std::to_string(mesh.triangle_count()) + " triangles");
+  }
+  return problems;
+}
+
+}  // namespace lodbake
