@@ -62,7 +62,7 @@ step "9. repack the progressive mesh: compact VSPL, Draco BASE (lodbake-pack)"
 step "10. replay the scan path on the balanced hierarchy and its split DAG, every frame validated (lodbake-replay)"
 "$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode vhier --path scan --validate \
   --csv "$out/elephant-replay-scan.csv"
-"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode dag --path scan --validate \
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode dag --traversal all --path scan --validate \
   --csv "$out/elephant-replay-dag-scan.csv"
 
 size() { stat -c %s "$1"; }

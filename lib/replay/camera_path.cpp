@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace lodbake {
@@ -60,6 +61,34 @@ std::array<float, 4> plane(const Vec3d& normal, const Vec3d& point) {
           static_cast<float>(-dot(n, point))};
 }
 
+// The checks every recorded frame passes, whatever its file format: v holds
+// eye xyz, target xyz, up xyz and the fov in degrees; `where` prefixes the
+// message ("line N: ", "frame N: ").
+Status check_frame(const double v[10], const std::string& where, CameraFrame* out) {
+  for (int i = 0; i < 10; ++i) {
+    if (!std::isfinite(v[i])) return invalid_input(where + "a value is not a finite number");
+    if (std::fabs(v[i]) > 1e30) return invalid_input(where + "a value exceeds 1e30 in magnitude");
+  }
+  if (!(v[9] > 0 && v[9] < 180)) {
+    return invalid_input(where + "fov " + std::to_string(v[9]) + " is not in (0, 180) degrees");
+  }
+  const Vec3d forward = sub({v[3], v[4], v[5]}, {v[0], v[1], v[2]});
+  const Vec3d up{v[6], v[7], v[8]};
+  if (dot(forward, forward) == 0) return invalid_input(where + "eye and target coincide");
+  const Vec3d side = cross(normalized(forward), normalized(up));
+  if (dot(up, up) == 0 || dot(side, side) < 1e-12) {
+    return invalid_input(where + "up vector is zero or parallel to the view direction");
+  }
+  for (int i = 0; i < 3; ++i) {
+    out->eye[i] = static_cast<float>(v[i]);
+    out->target[i] = static_cast<float>(v[3 + i]);
+    out->up[i] = static_cast<float>(v[6 + i]);
+  }
+  out->fov_degrees = static_cast<float>(v[9]);
+  if (out->eye == out->target) return invalid_input(where + "eye and target coincide");
+  return Status();
+}
+
 // Fields of one line: trims blanks around each, parses with from_chars (no
 // locale, no allocation beyond the output).
 Status parse_line(const std::string& line, size_t line_number, CameraFrame* out) {
@@ -94,28 +123,143 @@ Status parse_line(const std::string& line, size_t line_number, CameraFrame* out)
     return invalid_input(where + std::to_string(count) +
                          " fields, expected 10 (eye xyz, target xyz, up xyz, fov)");
   }
-  for (double x : v) {
-    if (std::fabs(x) > 1e30) return invalid_input(where + "a value exceeds 1e30 in magnitude");
-  }
-  if (!(v[9] > 0 && v[9] < 180)) {
-    return invalid_input(where + "fov " + std::to_string(v[9]) + " is not in (0, 180) degrees");
-  }
-  const Vec3d forward = sub({v[3], v[4], v[5]}, {v[0], v[1], v[2]});
-  const Vec3d up{v[6], v[7], v[8]};
-  if (dot(forward, forward) == 0) return invalid_input(where + "eye and target coincide");
-  const Vec3d side = cross(normalized(forward), normalized(up));
-  if (dot(up, up) == 0 || dot(side, side) < 1e-12) {
-    return invalid_input(where + "up vector is zero or parallel to the view direction");
-  }
-  for (int i = 0; i < 3; ++i) {
-    out->eye[i] = static_cast<float>(v[i]);
-    out->target[i] = static_cast<float>(v[3 + i]);
-    out->up[i] = static_cast<float>(v[6 + i]);
-  }
-  out->fov_degrees = static_cast<float>(v[9]);
-  if (out->eye == out->target) return invalid_input(where + "eye and target coincide");
-  return Status();
+  return check_frame(v, where, out);
 }
+
+// Builds frames straight from SAX events, so memory stays one frame per
+// frame of input whatever the nesting or size of the document: an array of
+// frames, or an object whose only key "frames" holds one; each frame an
+// object with exactly the keys eye, target, up (arrays of 3 numbers) and fov.
+class PathSax {
+ public:
+  std::vector<CameraFrame> frames;
+  std::string error;
+
+  bool null() { return fail_value("null"); }
+  bool boolean(bool) { return fail_value("a boolean"); }
+  bool number_integer(int64_t v) { return number(static_cast<double>(v)); }
+  bool number_unsigned(uint64_t v) { return number(static_cast<double>(v)); }
+  bool number_float(double v, const std::string&) { return number(v); }
+  bool string(std::string&) { return fail_value("a string"); }
+  bool binary(std::vector<uint8_t>&) { return fail_value("binary data"); }
+  bool start_object(size_t) {
+    if (state_ == kStart) {
+      state_ = kTopObject;
+      return true;
+    }
+    if (state_ == kFrames) {
+      if (frames.size() == kMaxPathFrames) {
+        return fail("more than " + std::to_string(kMaxPathFrames) + " frames");
+      }
+      state_ = kFrame;
+      seen_ = 0;
+      return true;
+    }
+    return fail_value("an object");
+  }
+  bool key(std::string& k) {
+    if (state_ == kTopObject) {
+      if (k != "frames") return fail("unknown key '" + k.substr(0, 64) + "' (expected 'frames')");
+      state_ = kFramesKey;
+      return true;
+    }
+    static const char* const kKeys[4] = {"eye", "target", "up", "fov"};
+    for (int i = 0; i < 4; ++i) {
+      if (k != kKeys[i]) continue;
+      if ((seen_ & (1u << i)) != 0) return fail(where() + "'" + k + "' given twice");
+      seen_ |= 1u << i;
+      field_ = i;
+      state_ = kFrameValue;
+      return true;
+    }
+    return fail(where() + "unknown key '" + k.substr(0, 64) + "' (expected eye, target, up, fov)");
+  }
+  bool end_object() {
+    if (state_ == kTopObject) {
+      state_ = kDone;
+      return true;
+    }
+    // state_ == kFrame: the SAX parser pairs braces.
+    if (seen_ != 15) return fail(where() + "needs eye, target, up and fov");
+    CameraFrame f;
+    const Status checked = check_frame(v_, where(), &f);
+    if (!checked.is_ok()) return fail(checked.message());
+    frames.push_back(f);
+    state_ = kFrames;
+    return true;
+  }
+  bool start_array(size_t) {
+    if (state_ == kStart || state_ == kFramesKey) {
+      wrapped_ = state_ == kFramesKey;
+      state_ = kFrames;
+      return true;
+    }
+    if (state_ == kFrameValue && field_ < 3) {
+      state_ = kVector;
+      count_ = 0;
+      return true;
+    }
+    return fail_value("an array");
+  }
+  bool end_array() {
+    if (state_ == kFrames) {
+      state_ = wrapped_ ? kTopObject : kDone;
+      return true;
+    }
+    // state_ == kVector
+    if (count_ != 3)
+      return fail(where() + "'" + name() + "' has " + std::to_string(count_) +
+                  " numbers, expected 3");
+    state_ = kFrame;
+    return true;
+  }
+  bool parse_error(size_t position, const std::string&, const nlohmann::detail::exception&) {
+    if (error.empty()) error = "byte " + std::to_string(position) + ": not valid JSON";
+    return false;
+  }
+
+ private:
+  enum State { kStart, kTopObject, kFramesKey, kFrames, kFrame, kFrameValue, kVector, kDone };
+
+  std::string where() const { return "frame " + std::to_string(frames.size() + 1) + ": "; }
+  std::string name() const {
+    static const char* const kKeys[4] = {"eye", "target", "up", "fov"};
+    return kKeys[field_];
+  }
+  bool fail(const std::string& message) {
+    if (error.empty()) error = message;
+    return false;
+  }
+  bool fail_value(const char* what) {
+    if (state_ == kFrameValue || state_ == kVector) {
+      return fail(where() + "'" + name() + "' is " + what +
+                  (field_ < 3 ? ", expected an array of 3 numbers" : ", expected a number"));
+    }
+    if (state_ == kFrames) return fail(where() + what + " where a frame object was expected");
+    return fail(std::string(what) +
+                " where an array of frames or {\"frames\": [...]} was expected");
+  }
+  bool number(double value) {
+    if (state_ == kVector && count_ < 3) {
+      v_[3 * field_ + count_++] = value;
+      return true;
+    }
+    if (state_ == kVector) return fail(where() + "'" + name() + "' has more than 3 numbers");
+    if (state_ == kFrameValue && field_ == 3) {
+      v_[9] = value;
+      state_ = kFrame;
+      return true;
+    }
+    return fail_value("a number");
+  }
+
+  State state_ = kStart;
+  bool wrapped_ = false;
+  unsigned seen_ = 0;
+  int field_ = 0;
+  int count_ = 0;
+  double v_[10] = {};
+};
 
 }  // namespace
 
@@ -220,6 +364,28 @@ Result<std::vector<CameraFrame>> parse_camera_path_csv(const uint8_t* data, size
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory reading the camera path");
   }
+}
+
+Result<std::vector<CameraFrame>> parse_camera_path_json(const uint8_t* data, size_t size) {
+  try {
+    PathSax sax;
+    const bool parsed = nlohmann::json::sax_parse(data, data + size, &sax);
+    if (!parsed || !sax.error.empty()) {
+      return invalid_input(sax.error.empty() ? std::string("not valid JSON") : sax.error);
+    }
+    if (sax.frames.empty()) return invalid_input("camera path has no frames");
+    return std::move(sax.frames);
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory reading the camera path");
+  }
+}
+
+Result<std::vector<CameraFrame>> parse_camera_path(const uint8_t* data, size_t size) {
+  size_t i = 0;
+  while (i < size && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n'))
+    ++i;
+  if (i < size && (data[i] == '[' || data[i] == '{')) return parse_camera_path_json(data, size);
+  return parse_camera_path_csv(data, size);
 }
 
 ViewParameters view_parameters(const CameraFrame& f, const Viewport& viewport, float near_distance,

@@ -59,6 +59,18 @@ inline constexpr size_t kMaxPathLineBytes = 4096;
 /// path is rejected too.
 Result<std::vector<CameraFrame>> parse_camera_path_csv(const uint8_t* data, size_t size);
 
+/// A recorded path as JSON: an array of frames, or an object whose only key
+/// "frames" holds one; each frame an object with exactly the keys "eye",
+/// "target", "up" (arrays of 3 numbers) and "fov" (vertical, degrees), e.g.
+/// [{"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 60}].
+/// Frames pass the CSV reader's checks; rejected with "frame N: ..." or
+/// "byte N: not valid JSON". Read by SAX events: memory is one frame per
+/// frame whatever the document's nesting.
+Result<std::vector<CameraFrame>> parse_camera_path_json(const uint8_t* data, size_t size);
+
+/// JSON when the first non-blank byte is '[' or '{', CSV otherwise.
+Result<std::vector<CameraFrame>> parse_camera_path(const uint8_t* data, size_t size);
+
 struct Viewport {
   uint32_t width = 1024;
   uint32_t height = 768;

@@ -1,20 +1,44 @@
 // Mode dag of the replay runtime: MANAGE-TRAVERSAL (Zheng & Chan 2006,
-// sections 4-5) with the priority-oriented traversal in budget mode.
-// Choices where the paper leaves room:
-// - priority of a split = its collapse error (VSPL) projected at the new
-//   vertex's distance, in pixels; 0 when that vertex is outside the frustum
-//   (the DAG carries no bounding spheres or normal cones, so there is no
-//   back-face test here);
-// - per frame, Fs is a max-heap and Fc a min-heap of priorities, rebuilt from
-//   the fronts (entries that left a front are skipped when popped); a node of
-//   Fc under the tolerance is collapsed, the top of Fs over it is split while
-//   the budget allows, and when it does not, the top of Fc is collapsed if
-//   its priority is lower (a swap), unless it is a parent of the node to
-//   split; at most N changes per frame.
+// sections 4-5, Figures 2-5) over the fronts of the DAG of vertex splits.
+// Choices where the paper leaves room (docs/replay.md, "Mode dag"):
+// - ERROR-EVALUATE: the DAG carries no bounding spheres or error bounds,
+//   and a split's own collapse error (VSPL) is neither monotone down the DAG
+//   nor tied to where its descendants lie, so a coarse split whose new vertex
+//   is out of view or far would block the refinement of a visible region
+//   below it. create() therefore derives, once, for every node a bounding
+//   sphere around its new vertex holding its triangles and its descendants'
+//   spheres, and an error bound, the largest collapse error of the node and
+//   its descendants (both in reverse id order: children have larger ids).
+//   A node's error is its bound projected at the distance from the eye to
+//   its sphere (at least the near distance), in pixels; 0 when the sphere is
+//   outside the frustum. Both only shrink down the DAG, so a node that needs
+//   a split never sits under one that does not. No back-face test: there are
+//   no normal cones. NEED-APPLY: split while the error is at least the
+//   tolerance, collapse while it is below, so a node just split is never
+//   collapsed on the same view.
+// - The mode: kAuto is the client's rule of section 4, FREE while
+//   triangles + N * (most triangles one split adds) stays within the budget,
+//   BUDGET otherwise. Splits are not all manifold (a boundary split adds one
+//   triangle), so BUDGET-MODE restricts TRAVERSE-SPLIT by triangles, as the
+//   paper's closing paragraph of section 4 proposes: a split is applied only
+//   while the mesh stays within the budget, i.e. it may add the triangles
+//   TRAVERSE-COLLAPSE deleted plus any room left under the budget (exactly
+//   the deleted ones when the mesh was at the budget), and at most N splits.
+// - A split that is needed but does not fit the budget ends TRAVERSE-SPLIT
+//   in every traversal ("the traversal stops when further refinement
+//   operations would exceed the triangle budget"); the FIFO traversals keep
+//   that node first in their queue for the next frame.
+// - The FIFO queues hold each front node once; nodes that left the front
+//   are dropped when popped and count as no visit. Linear traversal stops
+//   when a whole front was visited without a change (Figure 4, line 11);
+//   constant-time traversal visits exactly N live nodes per traversal, as
+//   Figure 5 has it, even when that means visiting a small front twice.
 #include "lib/replay/dag_replay.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <new>
 #include <queue>
 
@@ -25,7 +49,26 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The triangle with its smallest corner first, cyclic order kept.
+Triangle canonical(const Triangle& t) {
+  if (t[1] < t[0] && t[1] < t[2]) return {t[1], t[2], t[0]};
+  if (t[2] < t[0] && t[2] < t[1]) return {t[2], t[0], t[1]};
+  return t;
+}
+
 }  // namespace
+
+const char* dag_traversal_name(DagTraversal traversal) {
+  switch (traversal) {
+    case DagTraversal::kPriority:
+      return "priority";
+    case DagTraversal::kLinear:
+      return "linear";
+    case DagTraversal::kConstantTime:
+      return "constant";
+  }
+  return "?";
+}
 
 Result<DagReplay> DagReplay::create(const ProgressiveMesh& pm, const VsplitDag& dag) {
   if (dag.node_count() != pm.splits.size() || dag.base_vertex_count != pm.base.vertex_count()) {
@@ -53,96 +96,205 @@ Result<DagReplay> DagReplay::create(const ProgressiveMesh& pm, const VsplitDag& 
                              std::to_string(created));
       }
       replay.added_[i] = created - changed[i];
+      replay.max_added_ = std::max(replay.max_added_, replay.added_[i]);
     }
+    replay.derive_bounds();
     replay.triangles_ = pm.base.triangle_count();
+    const size_t nodes = dag.node_count();
+    replay.split_queue_.queued.assign(nodes, 0);
+    replay.collapse_queue_.queued.assign(nodes, 0);
+    std::vector<uint32_t> roots = replay.fronts_.split_front();
+    std::sort(roots.begin(), roots.end());
+    for (uint32_t n : roots)
+      replay.split_queue_.push(n);
     return replay;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory preparing the DAG replay");
   }
 }
 
-bool DagReplay::is_parent(uint32_t parent, uint32_t node) const {
-  for (uint32_t k = dag_->parent_offsets[node]; k < dag_->parent_offsets[node + 1]; ++k) {
-    if (dag_->parents[k] == parent) return true;
+void DagReplay::derive_bounds() {
+  const size_t nodes = pm_->splits.size();
+  const size_t base_vertices = pm_->base.vertex_count();
+  auto position = [&](uint32_t v) -> const Vec3f& {
+    return v < base_vertices ? pm_->base.positions[v] : pm_->splits[v - base_vertices].vt_position;
+  };
+  auto distance = [](const Vec3f& a, const Vec3f& b) {
+    double d2 = 0;
+    for (int i = 0; i < 3; ++i)
+      d2 += (double{a[i]} - b[i]) * (double{a[i]} - b[i]);
+    return std::sqrt(d2);
+  };
+  radius_.assign(nodes, 0);
+  error_bound_.assign(nodes, 0);
+  for (size_t k = nodes; k-- > 0;) {
+    const uint32_t n = static_cast<uint32_t>(k);
+    const Vec3f& centre = pm_->splits[n].vt_position;
+    double r = 0;
+    float e = std::max(pm_->splits[n].error, 0.f);
+    for (uint32_t t = lineage_.created_offsets[n]; t < lineage_.created_offsets[n + 1]; ++t) {
+      for (uint32_t v : lineage_.triangles[t])
+        r = std::max(r, distance(centre, position(v)));
+    }
+    for (const uint32_t* c = fronts_.children_begin(n); c != fronts_.children_end(n); ++c) {
+      r = std::max(r, distance(centre, pm_->splits[*c].vt_position) + radius_[*c]);
+      e = std::max(e, error_bound_[*c]);
+    }
+    // Rounded up so that float storage keeps every child inside.
+    radius_[n] = static_cast<float>(r * (1 + 1e-6)) + 1e-30f;
+    error_bound_[n] = e;
   }
-  return false;
 }
 
 float DagReplay::priority(uint32_t node) const {
-  const VertexSplit& s = pm_->splits[node];
-  const Vec3f& p = s.vt_position;
+  const Vec3f& p = pm_->splits[node].vt_position;
+  const double r = radius_[node];
   for (const std::array<float, 4>& q : view_.frustum) {
-    if (q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] < 0) return 0;
+    if (double{q[0]} * p[0] + double{q[1]} * p[1] + double{q[2]} * p[2] + q[3] < -r) return 0;
   }
   double d2 = 0;
   for (int i = 0; i < 3; ++i)
     d2 += (double{p[i]} - view_.eye[i]) * (double{p[i]} - view_.eye[i]);
-  const double d = std::max(std::sqrt(d2), 1e-12);
-  return static_cast<float>(double{s.error} / d * pixels_per_unit_at_1_);
+  const double d = std::max({std::sqrt(d2) - r, near_distance_, 1e-12});
+  return static_cast<float>(double{error_bound_[node]} / d * pixels_per_unit_at_1_);
+}
+
+Status DagReplay::apply(Side side, uint32_t node, std::vector<uint32_t>* entered) {
+  auto enter = [&](FrontQueue* queue, uint32_t n) {
+    queue->push(n);
+    if (entered != nullptr) entered->push_back(n);
+  };
+  if (side == Side::kSplit) {
+    LODBAKE_RETURN_IF_ERROR(fronts_.split(node));
+    triangles_ += added_[node];
+    if (fronts_.can_collapse(node)) enter(&collapse_queue_, node);
+    for (const uint32_t* c = fronts_.children_begin(node); c != fronts_.children_end(node); ++c) {
+      if (fronts_.can_split(*c)) enter(&split_queue_, *c);
+    }
+  } else {
+    LODBAKE_RETURN_IF_ERROR(fronts_.collapse(node));
+    triangles_ -= added_[node];
+    if (fronts_.can_split(node)) enter(&split_queue_, node);
+    for (uint32_t k = dag_->parent_offsets[node]; k < dag_->parent_offsets[node + 1]; ++k) {
+      const uint32_t p = dag_->parents[k];
+      if (fronts_.can_collapse(p)) enter(&collapse_queue_, p);
+    }
+  }
+  return Status::ok();
+}
+
+Status DagReplay::traverse(Side side, DagTraversal traversal, size_t limit, size_t triangle_cap,
+                           float tolerance, DagFrameStats* stats) {
+  switch (traversal) {
+    case DagTraversal::kPriority:
+      return traverse_priority(side, limit, triangle_cap, tolerance, stats);
+    case DagTraversal::kLinear:
+      return traverse_fifo(side, false, limit, triangle_cap, tolerance, stats);
+    case DagTraversal::kConstantTime:
+      return traverse_fifo(side, true, limit, triangle_cap, tolerance, stats);
+  }
+  return Status::ok();
+}
+
+// Figure 3. Fs pops its largest error first, Fc its smallest; ties go to
+// the larger node id (a fixed order).
+Status DagReplay::traverse_priority(Side side, size_t limit, size_t triangle_cap, float tolerance,
+                                    DagFrameStats* stats) {
+  using Entry = std::pair<float, uint32_t>;
+  const bool split = side == Side::kSplit;
+  auto before = [split](const Entry& a, const Entry& b) { return split ? a < b : b < a; };
+  std::vector<Entry> heap;
+  const std::vector<uint32_t>& front = split ? fronts_.split_front() : fronts_.collapse_front();
+  heap.reserve(front.size());
+  for (uint32_t n : front)
+    heap.push_back({priority(n), n});
+  stats->visited += heap.size();
+  std::make_heap(heap.begin(), heap.end(), before);
+  std::vector<uint32_t> entered;
+  size_t changes = 0;
+  while (!heap.empty() && changes < limit) {
+    std::pop_heap(heap.begin(), heap.end(), before);
+    const Entry top = heap.back();
+    heap.pop_back();
+    if (!in_front(side, top.second)) continue;
+    if (!needs(side, top.first, tolerance)) break;
+    if (split && triangles_ + added_[top.second] > triangle_cap) break;
+    entered.clear();
+    LODBAKE_RETURN_IF_ERROR(apply(side, top.second, &entered));
+    ++changes;
+    for (uint32_t n : entered) {
+      if (!in_front(side, n)) continue;
+      heap.push_back({priority(n), n});
+      std::push_heap(heap.begin(), heap.end(), before);
+      ++stats->visited;
+    }
+  }
+  (split ? stats->splits : stats->collapses) += changes;
+  return Status::ok();
+}
+
+// Figures 4 (count_visits false: N changes) and 5 (true: N visits).
+Status DagReplay::traverse_fifo(Side side, bool count_visits, size_t limit, size_t triangle_cap,
+                                float tolerance, DagFrameStats* stats) {
+  const bool split = side == Side::kSplit;
+  FrontQueue& queue = split ? split_queue_ : collapse_queue_;
+  size_t count = 0, changes = 0, idle = 0;
+  while (!queue.nodes.empty() && count < limit) {
+    const uint32_t n = queue.nodes.front();
+    queue.nodes.pop_front();
+    queue.queued[n] = 0;
+    if (!in_front(side, n)) continue;
+    if (count_visits) ++count;
+    ++stats->visited;
+    if (needs(side, priority(n), tolerance)) {
+      if (split && triangles_ + added_[n] > triangle_cap) {
+        queue.queued[n] = 1;
+        queue.nodes.push_front(n);
+        break;
+      }
+      LODBAKE_RETURN_IF_ERROR(apply(side, n, nullptr));
+      ++changes;
+      if (!count_visits) ++count;
+      idle = 0;
+    } else {
+      queue.push(n);
+      if (!count_visits && ++idle >= front_size(side)) break;
+    }
+  }
+  (split ? stats->splits : stats->collapses) += changes;
+  return Status::ok();
 }
 
 Result<DagFrameStats> DagReplay::adapt(const BoundingSphere& sphere, const CameraFrame& frame,
                                        const DagReplayOptions& options) {
   try {
     const auto start = std::chrono::steady_clock::now();
-    view_ = view_parameters(frame, options.viewport, options.viewport.near_fraction * sphere.radius,
+    near_distance_ = double{options.viewport.near_fraction} * sphere.radius;
+    view_ = view_parameters(frame, options.viewport, static_cast<float>(near_distance_),
                             options.tolerance_pixels);
     pixels_per_unit_at_1_ =
         options.viewport.height / (2 * std::tan(double{frame.fov_degrees} * kPi / 360));
-    using Entry = std::pair<float, uint32_t>;
-    std::priority_queue<Entry> fs;                                           // max first
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> fc;  // min first
-    for (uint32_t n : fronts_.split_front())
-      fs.push({priority(n), n});
-    for (uint32_t n : fronts_.collapse_front())
-      fc.push({priority(n), n});
-    const float tol = options.tolerance_pixels;
     DagFrameStats stats;
-    auto after_split = [&](uint32_t n) {
-      fc.push({priority(n), n});
-      for (const uint32_t* c = fronts_.children_begin(n); c != fronts_.children_end(n); ++c) {
-        if (fronts_.can_split(*c)) fs.push({priority(*c), *c});
-      }
-    };
-    auto after_collapse = [&](uint32_t n) {
-      fs.push({priority(n), n});
-      for (uint32_t k = dag_->parent_offsets[n]; k < dag_->parent_offsets[n + 1]; ++k) {
-        const uint32_t p = dag_->parents[k];
-        if (fronts_.can_collapse(p)) fc.push({priority(p), p});
-      }
-    };
-    while (stats.splits + stats.collapses < options.max_changes) {
-      while (!fs.empty() && !fronts_.can_split(fs.top().second))
-        fs.pop();
-      while (!fc.empty() && !fronts_.can_collapse(fc.top().second))
-        fc.pop();
-      if (!fc.empty() && fc.top().first < tol) {
-        const uint32_t c = fc.top().second;
-        fc.pop();
-        LODBAKE_RETURN_IF_ERROR(fronts_.collapse(c));
-        triangles_ -= added_[c];
-        ++stats.collapses;
-        after_collapse(c);
-        continue;
-      }
-      if (fs.empty() || fs.top().first < tol) break;
-      const uint32_t s = fs.top().second;
-      if (triangles_ + added_[s] <= options.triangle_budget) {
-        fs.pop();
-        LODBAKE_RETURN_IF_ERROR(fronts_.split(s));
-        triangles_ += added_[s];
-        ++stats.splits;
-        after_split(s);
-        continue;
-      }
-      if (fc.empty() || !(fc.top().first < fs.top().first) || is_parent(fc.top().second, s)) break;
-      const uint32_t c = fc.top().second;
-      fc.pop();
-      LODBAKE_RETURN_IF_ERROR(fronts_.collapse(c));
-      triangles_ -= added_[c];
-      ++stats.collapses;
-      after_collapse(c);
+    const size_t n = options.max_changes;
+    switch (options.budget_mode) {
+      case DagBudgetMode::kBudget:
+        stats.budget_mode = true;
+        break;
+      case DagBudgetMode::kFree:
+        stats.budget_mode = false;
+        break;
+      case DagBudgetMode::kAuto:
+        // Overflow-safe form of triangles + N * max_added > budget.
+        stats.budget_mode =
+            options.triangle_budget < triangles_ ||
+            (max_added_ != 0 && n > (options.triangle_budget - triangles_) / max_added_);
+        break;
     }
+    const size_t cap =
+        stats.budget_mode ? options.triangle_budget : std::numeric_limits<size_t>::max();
+    const float tol = options.tolerance_pixels;
+    LODBAKE_RETURN_IF_ERROR(traverse(Side::kCollapse, options.traversal, n, cap, tol, &stats));
+    LODBAKE_RETURN_IF_ERROR(traverse(Side::kSplit, options.traversal, n, cap, tol, &stats));
     stats.split_front = fronts_.split_front().size();
     stats.collapse_front = fronts_.collapse_front().size();
     stats.triangles = triangles_;
@@ -158,7 +310,7 @@ std::vector<std::string> DagReplay::check() const {
   std::vector<std::string> problems = fronts_.check_counters();
   TriangleMesh mesh;
   mesh.positions.assign(pm_->base.vertex_count() + pm_->splits.size(), Vec3f{0, 0, 0});
-  mesh.triangles = dag_cut_triangles(lineage_, fronts_);
+  mesh.triangles = cut_triangles();
   const MeshCheckReport r = check_mesh(mesh);
   auto add = [&](uint64_t count, const char* what) {
     if (count != 0) problems.push_back(std::to_string(count) + " " + what);
@@ -173,7 +325,33 @@ std::vector<std::string> DagReplay::check() const {
     problems.push_back("triangle count " + std::to_string(triangles_) + " but the cut has " +
                        std::to_string(mesh.triangle_count()) + " triangles");
   }
+  size_t unqueued = 0;
+  for (uint32_t n : fronts_.split_front())
+    unqueued += split_queue_.queued[n] == 0;
+  for (uint32_t n : fronts_.collapse_front())
+    unqueued += collapse_queue_.queued[n] == 0;
+  add(unqueued, "front nodes missing from their traversal queue");
   return problems;
+}
+
+double cut_accuracy(const std::vector<Triangle>& reference, const std::vector<Triangle>& other) {
+  if (reference.empty()) return 1;
+  std::vector<Triangle> a(reference.size()), b(other.size());
+  std::transform(reference.begin(), reference.end(), a.begin(), canonical);
+  std::transform(other.begin(), other.end(), b.begin(), canonical);
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  size_t shared = 0;
+  for (size_t i = 0, j = 0; i < a.size() && j < b.size();) {
+    if (a[i] < b[j]) {
+      ++i;
+    } else if (b[j] < a[i]) {
+      ++j;
+    } else {
+      ++shared, ++i, ++j;
+    }
+  }
+  return static_cast<double>(shared) / static_cast<double>(a.size());
 }
 
 }  // namespace lodbake

@@ -1,11 +1,13 @@
 // Replaying a camera path on the DAG of vertex splits (issue 8, mode dag):
-// Zheng and Chan's MANAGE-TRAVERSAL with the priority-oriented traversal in
-// budget mode over DagFronts (lib/dag), a mesh-change limit per frame and a
-// triangle budget.
+// Zheng and Chan's MANAGE-TRAVERSAL over DagFronts (lib/dag) with each of the
+// paper's three traversals (priority-oriented, linear, constant-time), in
+// BUDGET or FREE mode, with a mesh-change limit per frame and a triangle
+// budget, and the accuracy measure of the paper's Figure 7.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -18,62 +20,146 @@
 
 namespace lodbake {
 
+/// The three traversals of the paper's section 5.
+enum class DagTraversal {
+  kPriority,      ///< Figure 3: every front node evaluated, best first
+  kLinear,        ///< Figure 4: FIFO fronts kept across frames, N changes
+  kConstantTime,  ///< Figure 5: FIFO fronts kept across frames, N nodes visited
+};
+
+/// "priority", "linear", "constant".
+const char* dag_traversal_name(DagTraversal traversal);
+
+/// How MANAGE-TRAVERSAL's mode is chosen each frame.
+enum class DagBudgetMode {
+  /// The client's rule of section 4: FREE while N changes cannot reach the
+  /// budget, BUDGET once they could.
+  kAuto,
+  kBudget,  ///< always BUDGET-MODE
+  kFree,    ///< always FREE-MODE: no triangle budget at all
+};
+
 struct DagReplayOptions {
   Viewport viewport;
   /// A split is wanted while its projected error exceeds this many pixels.
   float tolerance_pixels = 1.0f;
-  /// N: at most this many splits + collapses per frame (the paper: 300).
+  /// N: at most this many splits and this many collapses per frame (the
+  /// paper: 300); for the constant-time traversal, the nodes each of
+  /// TRAVERSE-COLLAPSE and TRAVERSE-SPLIT visits.
   size_t max_changes = 300;
   /// The triangle budget (the paper: 60000).
   size_t triangle_budget = 60000;
+  DagTraversal traversal = DagTraversal::kPriority;
+  DagBudgetMode budget_mode = DagBudgetMode::kAuto;
 };
 
 struct DagFrameStats {
   size_t splits = 0;
   size_t collapses = 0;
+  size_t visited = 0;         ///< front nodes evaluated (ERROR-EVALUATE calls)
+  bool budget_mode = false;   ///< the frame ran in BUDGET-MODE
   size_t split_front = 0;     ///< |Fs| after the frame
   size_t collapse_front = 0;  ///< |Fc| after the frame
   size_t triangles = 0;
-  double traversal_ms = 0;  ///< wall time of the frame's traversal
+  double traversal_ms = 0;  ///< wall time of the frame's MANAGE-TRAVERSAL
 };
 
-/// The DAG, the PM it was built from, and the triangle lineage of the PM.
+/// The DAG, the PM it was built from, the triangle lineage of the PM, the
+/// fronts, and the FIFO queues the linear and constant-time traversals keep
+/// from one frame to the next.
 class DagReplay {
  public:
   /// Fails when `dag` is not the PM's (node count, base vertex count) or the
   /// lineage cannot be built. `pm` and `dag` must outlive the replay.
   static Result<DagReplay> create(const ProgressiveMesh& pm, const VsplitDag& dag);
 
-  /// One frame of MANAGE-TRAVERSAL for `frame`.
+  /// One frame of MANAGE-TRAVERSAL for `frame` with options.traversal.
   Result<DagFrameStats> adapt(const BoundingSphere& sphere, const CameraFrame& frame,
                               const DagReplayOptions& options);
 
   size_t triangle_count() const { return triangles_; }
   const DagFronts& fronts() const { return fronts_; }
-  /// Projected error of split `node` in pixels for the view (0 outside the
-  /// frustum); exposed for tests.
+  /// ERROR-EVALUATE: the error bound of split `node` (the largest collapse
+  /// error of it and its descendants) projected at the distance of its
+  /// bounding sphere, in pixels, for the last frame's view; 0 when the
+  /// sphere is outside the frustum. Never larger for a child than for its
+  /// parents. Exposed for tests.
   float priority(uint32_t node) const;
+  /// Radius of the sphere around split `node`'s new vertex that holds its
+  /// triangles and its descendants' spheres.
+  float bound_radius(uint32_t node) const { return radius_[node]; }
+  /// The current cut's triangles (vertex ids of the PM: base vertices, then
+  /// split i's new vertex as base_vertex_count + i).
+  std::vector<Triangle> cut_triangles() const { return dag_cut_triangles(lineage_, fronts_); }
 
   /// Problems of the current cut, empty when its triangles form an
   /// edge-manifold, consistently oriented triangulation without repeated
-  /// indices or duplicates, the front counters are consistent and the
-  /// tracked triangle count is the cut's.
+  /// indices or duplicates, the front counters are consistent, the tracked
+  /// triangle count is the cut's and every front node is in its queue.
   std::vector<std::string> check() const;
 
  private:
+  // A FIFO over one front that outlives the frame. A node is queued at most
+  // once; entries whose node has left the front are dropped when popped.
+  struct FrontQueue {
+    std::deque<uint32_t> nodes;
+    std::vector<uint8_t> queued;
+    void push(uint32_t node) {
+      if (queued[node] == 0) {
+        queued[node] = 1;
+        nodes.push_back(node);
+      }
+    }
+  };
+  enum class Side { kCollapse, kSplit };
+
   DagReplay(const ProgressiveMesh& pm, const VsplitDag& dag, DagFronts fronts)
       : pm_(&pm), dag_(&dag), fronts_(std::move(fronts)) {}
-  bool is_parent(uint32_t parent, uint32_t node) const;
+  void derive_bounds();
+  bool in_front(Side side, uint32_t node) const {
+    return side == Side::kSplit ? fronts_.can_split(node) : fronts_.can_collapse(node);
+  }
+  size_t front_size(Side side) const {
+    return side == Side::kSplit ? fronts_.split_front().size() : fronts_.collapse_front().size();
+  }
+  // NEED-APPLY: a collapse while under the tolerance, a split while not.
+  bool needs(Side side, float priority, float tolerance) const {
+    return side == Side::kSplit ? !(priority < tolerance) : priority < tolerance;
+  }
+  // APPLY-OP and ADJUST-FRONTS: applies the operation and queues the nodes
+  // that entered a front; `entered` (may be null) receives them too.
+  Status apply(Side side, uint32_t node, std::vector<uint32_t>* entered);
+  // TRAVERSE-COLLAPSE / TRAVERSE-SPLIT with the chosen traversal; at most
+  // `limit` changes (priority, linear) or visits (constant-time); a split
+  // must keep the triangle count within `triangle_cap`.
+  Status traverse(Side side, DagTraversal traversal, size_t limit, size_t triangle_cap,
+                  float tolerance, DagFrameStats* stats);
+  Status traverse_priority(Side side, size_t limit, size_t triangle_cap, float tolerance,
+                           DagFrameStats* stats);
+  Status traverse_fifo(Side side, bool count_visits, size_t limit, size_t triangle_cap,
+                       float tolerance, DagFrameStats* stats);
 
   const ProgressiveMesh* pm_;
   const VsplitDag* dag_;
   DagFronts fronts_;
   SplitLineage lineage_;
   std::vector<uint32_t> added_;  // net triangles a split adds
+  uint32_t max_added_ = 0;
+  std::vector<float> radius_;       // per node, see bound_radius()
+  std::vector<float> error_bound_;  // per node, see priority()
   size_t triangles_ = 0;
+  FrontQueue split_queue_;
+  FrontQueue collapse_queue_;
   // The current frame's view (set by adapt()).
   ViewParameters view_;
   double pixels_per_unit_at_1_ = 0;  // height / (2 tan(fov/2))
+  double near_distance_ = 0;
 };
+
+/// The share of `reference`'s triangles that `other` also has, in [0, 1]
+/// (1 when `reference` has none): the paper's accuracy of a traversal
+/// against the priority-oriented one. A triangle is the same when it has
+/// the same corners in the same cyclic order.
+double cut_accuracy(const std::vector<Triangle>& reference, const std::vector<Triangle>& other);
 
 }  // namespace lodbake

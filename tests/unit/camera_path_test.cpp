@@ -29,6 +29,10 @@ Result<std::vector<CameraFrame>> parse(const std::string& text) {
   return parse_camera_path_csv(reinterpret_cast<const uint8_t*>(text.data()), text.size());
 }
 
+Result<std::vector<CameraFrame>> parse_any(const std::string& text) {
+  return parse_camera_path(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+}
+
 TEST(CameraPath, BoundingSphereHoldsEveryPoint) {
   const std::vector<Vec3f> points = {{0, 0, 0}, {2, 0, 0}, {0, 4, 0}, {1, 1, -2}};
   const BoundingSphere s = bounding_sphere(points);
@@ -116,6 +120,67 @@ TEST(CameraPath, CsvRejectsMalformedRowsWithLineNumbers) {
   };
   for (const auto& [text, expected] : cases) {
     Result<std::vector<CameraFrame>> path = parse(text);
+    ASSERT_FALSE(path.is_ok()) << expected;
+    EXPECT_EQ(path.status().kind(), ErrorKind::kInvalidInput);
+    EXPECT_NE(path.status().message().find(expected), std::string::npos)
+        << path.status().message() << " / expected " << expected;
+  }
+}
+
+// The JSON form gives the same frames as the CSV form of the same path,
+// bare or wrapped in {"frames": ...}, and parse_camera_path tells them apart.
+TEST(CameraPath, JsonReadsTheSameFramesAsCsv) {
+  const std::string csv = "0,0,5,0,0,0,0,1,0,60\n1,2,3,0,0,0,0,0,1,45.5\n";
+  const std::string frames =
+      R"([{"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 60},
+          {"fov": 45.5, "up": [0, 0, 1], "target": [0, 0.0, 0], "eye": [1, 2, 3e0]}])";
+  Result<std::vector<CameraFrame>> expected = parse(csv);
+  ASSERT_TRUE(expected.is_ok());
+  for (const std::string& text : {frames, "{\"frames\": " + frames + "}", "\n  " + frames}) {
+    Result<std::vector<CameraFrame>> path = parse_any(text);
+    ASSERT_TRUE(path.is_ok()) << path.status().message();
+    ASSERT_EQ(path.value().size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(path.value()[i].eye, expected.value()[i].eye);
+      EXPECT_EQ(path.value()[i].target, expected.value()[i].target);
+      EXPECT_EQ(path.value()[i].up, expected.value()[i].up);
+      EXPECT_EQ(path.value()[i].fov_degrees, expected.value()[i].fov_degrees);
+    }
+  }
+  EXPECT_TRUE(parse_any(csv).is_ok());
+}
+
+TEST(CameraPath, JsonRejectsMalformedFramesWithFrameNumbers) {
+  const std::string ok = R"({"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 60})";
+  const std::pair<std::string, std::string> cases[] = {
+      {"[" + ok + ", {\"eye\": [0, 0, 5], \"target\": [0, 0, 0], \"up\": [0, 1, 0]}]",
+       "frame 2: needs eye, target, up and fov"},
+      {R"([{"eye": [0, 0], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 60}])",
+       "frame 1: 'eye' has 2 numbers, expected 3"},
+      {R"([{"eye": [0, 0, 5, 1], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 60}])",
+       "frame 1: 'eye' has more than 3 numbers"},
+      {R"([{"eye": "here", "target": [0, 0, 0], "up": [0, 1, 0], "fov": 60}])",
+       "frame 1: 'eye' is a string, expected an array of 3 numbers"},
+      {R"([{"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": [60]}])",
+       "frame 1: 'fov' is an array, expected a number"},
+      {R"([{"eye": [0, 0, 5], "eye": [0, 0, 5]}])", "frame 1: 'eye' given twice"},
+      {R"([{"eye": [0, 0, 5], "zoom": 2}])", "frame 1: unknown key 'zoom'"},
+      {R"([{"eye": [0, 0, 5], "target": [0, 0, 5], "up": [0, 1, 0], "fov": 60}])",
+       "frame 1: eye and target coincide"},
+      {R"([{"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 1e400}])",
+       "not valid JSON"},  // out of double range
+      {R"([{"eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 200}])",
+       "frame 1: fov 200"},
+      {"[" + ok + ", 3]", "frame 2: a number where a frame object was expected"},
+      {"[[" + ok + "]]", "frame 1: an array where a frame object was expected"},
+      {R"({"path": []})", "unknown key 'path' (expected 'frames')"},
+      {"[" + ok, "not valid JSON"},
+      {"[]", "camera path has no frames"},
+      {"{}", "camera path has no frames"},
+      {std::string(100000, '['), "where a frame object was expected"},
+  };
+  for (const auto& [text, expected] : cases) {
+    Result<std::vector<CameraFrame>> path = parse_any(text);
     ASSERT_FALSE(path.is_ok()) << expected;
     EXPECT_EQ(path.status().kind(), ErrorKind::kInvalidInput);
     EXPECT_NE(path.status().message().find(expected), std::string::npos)

@@ -1,9 +1,11 @@
 // lodbake-replay: replays a camera path on a container's view-dependent
 // structure and measures it (issue 8). Mode vhier: BASE + VHIE + RFIN, the
 // SelectiveRefiner adapted per frame (lib/replay/vhier_replay.h); mode dag:
-// BASE + VSPL + DAGE, MANAGE-TRAVERSAL (lib/replay/dag_replay.h). Thin:
-// decoding lives in formats/, the runtime in lib/replay.
+// BASE + VSPL + DAGE, MANAGE-TRAVERSAL with one or all three traversals and
+// their accuracy against the priority-oriented one (lib/replay/dag_replay.h).
+// Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -35,30 +37,40 @@ struct Request {
   std::string mode = "vhier";
   std::string path = "scan";
   std::string csv;
+  std::string tolerance = "1";
+  std::string traversal = "priority";
+  std::string budget_mode = "auto";
   float fov_degrees = 60;
   bool validate = false;
   VhierReplayOptions options;
   DagReplayOptions dag;
+  std::vector<DagTraversal> traversals;  // dag: the lanes replayed
 };
 
-// One frame's measures in either mode: `front` is the vertex front (vhier)
-// or |Fs| (dag), `collapse_front` |Fc| (dag only).
+// One frame's measures of one lane (the vhier refiner, or one DAG
+// traversal): `front` is the vertex front (vhier) or |Fs| (dag),
+// `collapse_front` |Fc| (dag only), `accuracy` the share of the
+// priority-oriented traversal's triangles (dag, when measured; else < 0).
 struct Row {
   size_t splits = 0;
   size_t collapses = 0;
   size_t passes = 0;
+  size_t visited = 0;
+  bool budget_mode = false;
   size_t front = 0;
   size_t collapse_front = 0;
   size_t triangles = 0;
   double ms = 0;
+  double accuracy = -1;
 };
 
-// A loaded structure, stepped one camera at a time.
+// A loaded structure, stepped one camera at a time; one Row per lane.
 struct Session {
   BoundingSphere sphere;
   nlohmann::json structure;
   std::string structure_text;
-  std::function<Result<Row>(const CameraFrame&)> step;
+  std::vector<std::string> lanes;
+  std::function<Result<std::vector<Row>>(const CameraFrame&)> step;
   std::function<std::vector<std::string>()> check;
 };
 
@@ -68,10 +80,13 @@ struct VhierState {
   std::optional<SelectiveRefiner> refiner;
 };
 
+// The DAG's lanes, and the priority-oriented reference their accuracy is
+// measured against when no lane is priority-oriented.
 struct DagState {
   ProgressiveMesh pm;
   VsplitDag dag;
-  std::optional<DagReplay> replay;
+  std::vector<DagReplay> lanes;
+  std::optional<DagReplay> reference;
 };
 
 Result<Session> load_vhier(const Container& container, const Section& base,
@@ -100,7 +115,8 @@ Result<Session> load_vhier(const Container& container, const Section& base,
                            std::to_string(h.base.triangle_count()) + " base triangles";
   const VhierReplayOptions options = request.options;
   const BoundingSphere sphere = session.sphere;
-  session.step = [state, options, sphere](const CameraFrame& frame) -> Result<Row> {
+  session.lanes = {"vhier"};
+  session.step = [state, options, sphere](const CameraFrame& frame) -> Result<std::vector<Row>> {
     LODBAKE_ASSIGN_OR_RETURN(
         VhierFrameStats f,
         adapt_vhier_frame(&*state->refiner, state->h, state->data, sphere, frame, options));
@@ -111,7 +127,7 @@ Result<Session> load_vhier(const Container& container, const Section& base,
     row.front = f.front_size;
     row.triangles = f.triangles;
     row.ms = f.adapt_ms;
-    return row;
+    return std::vector<Row>{row};
   };
   session.check = [state] { return check_vhier_mesh(*state->refiner); };
   return session;
@@ -129,8 +145,17 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
   LODBAKE_ASSIGN_OR_RETURN(state->pm,
                            decode_progressive_mesh(base.data, base.size, vspl->data, vspl->size));
   LODBAKE_ASSIGN_OR_RETURN(state->dag, decode_dage(dage->data, dage->size));
-  LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(state->pm, state->dag));
-  state->replay.emplace(std::move(replay));
+  const std::vector<DagTraversal>& traversals = request.traversals;
+  for (size_t i = 0; i < traversals.size(); ++i) {
+    LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(state->pm, state->dag));
+    state->lanes.push_back(std::move(replay));
+  }
+  const bool has_priority =
+      std::find(traversals.begin(), traversals.end(), DagTraversal::kPriority) != traversals.end();
+  if (!has_priority) {
+    LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(state->pm, state->dag));
+    state->reference.emplace(std::move(replay));
+  }
   std::vector<Vec3f> points = state->pm.base.positions;
   for (const VertexSplit& split : state->pm.splits)
     points.push_back(split.vt_position);
@@ -142,20 +167,53 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
   session.structure_text = std::to_string(state->dag.node_count()) + " nodes, " +
                            std::to_string(state->dag.edge_count()) + " edges, " +
                            std::to_string(state->pm.base.triangle_count()) + " base triangles";
+  for (DagTraversal t : traversals)
+    session.lanes.push_back(dag_traversal_name(t));
   const DagReplayOptions options = request.dag;
   const BoundingSphere sphere = session.sphere;
-  session.step = [state, options, sphere](const CameraFrame& frame) -> Result<Row> {
-    LODBAKE_ASSIGN_OR_RETURN(DagFrameStats f, state->replay->adapt(sphere, frame, options));
-    Row row;
-    row.splits = f.splits;
-    row.collapses = f.collapses;
-    row.front = f.split_front;
-    row.collapse_front = f.collapse_front;
-    row.triangles = f.triangles;
-    row.ms = f.traversal_ms;
-    return row;
+  session.step = [state, options, sphere,
+                  traversals](const CameraFrame& frame) -> Result<std::vector<Row>> {
+    std::vector<Row> rows;
+    const DagReplay* reference = nullptr;
+    for (size_t i = 0; i < traversals.size(); ++i) {
+      DagReplayOptions lane = options;
+      lane.traversal = traversals[i];
+      LODBAKE_ASSIGN_OR_RETURN(DagFrameStats f, state->lanes[i].adapt(sphere, frame, lane));
+      if (traversals[i] == DagTraversal::kPriority && reference == nullptr)
+        reference = &state->lanes[i];
+      Row row;
+      row.splits = f.splits;
+      row.collapses = f.collapses;
+      row.visited = f.visited;
+      row.budget_mode = f.budget_mode;
+      row.front = f.split_front;
+      row.collapse_front = f.collapse_front;
+      row.triangles = f.triangles;
+      row.ms = f.traversal_ms;
+      rows.push_back(row);
+    }
+    if (state->reference) {
+      DagReplayOptions lane = options;
+      lane.traversal = DagTraversal::kPriority;
+      LODBAKE_RETURN_IF_ERROR(state->reference->adapt(sphere, frame, lane).status());
+      reference = &*state->reference;
+    }
+    std::vector<Triangle> expected;
+    for (size_t i = 0; i < traversals.size(); ++i) {
+      if (traversals[i] == DagTraversal::kPriority) continue;
+      if (expected.empty()) expected = reference->cut_triangles();
+      rows[i].accuracy = cut_accuracy(expected, state->lanes[i].cut_triangles());
+    }
+    return rows;
   };
-  session.check = [state] { return state->replay->check(); };
+  session.check = [state, traversals] {
+    std::vector<std::string> problems;
+    for (size_t i = 0; i < traversals.size(); ++i) {
+      for (const std::string& p : state->lanes[i].check())
+        problems.push_back(std::string(dag_traversal_name(traversals[i])) + " traversal: " + p);
+    }
+    return problems;
+  };
   return session;
 }
 
@@ -177,6 +235,71 @@ double median(std::vector<double> v) {
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// One lane's figures over the whole path.
+struct LaneSummary {
+  size_t splits = 0, collapses = 0, visited = 0, budget_frames = 0, pass_limited = 0;
+  size_t max_front = 0, max_fc = 0, max_triangles = 0;
+  double front_mean = 0, fc_mean = 0, triangle_mean = 0, fronts_per_triangle = 0;
+  double ms_mean = 0, ms_median = 0, ms_max = 0;
+  size_t accuracy_frames = 0;
+  double accuracy_mean = 0, accuracy_min = 1;
+};
+
+LaneSummary summarize(const std::vector<std::vector<Row>>& frames, size_t lane, size_t max_passes) {
+  LaneSummary s;
+  std::vector<double> ms;
+  double ratio_sum = 0;
+  for (const std::vector<Row>& rows : frames) {
+    const Row& f = rows[lane];
+    s.splits += f.splits;
+    s.collapses += f.collapses;
+    s.visited += f.visited;
+    s.budget_frames += f.budget_mode;
+    s.max_front = std::max(s.max_front, f.front);
+    s.max_fc = std::max(s.max_fc, f.collapse_front);
+    s.max_triangles = std::max(s.max_triangles, f.triangles);
+    s.front_mean += static_cast<double>(f.front);
+    s.fc_mean += static_cast<double>(f.collapse_front);
+    s.triangle_mean += static_cast<double>(f.triangles);
+    if (f.triangles != 0)
+      ratio_sum +=
+          static_cast<double>(f.front + f.collapse_front) / static_cast<double>(f.triangles);
+    s.ms_mean += f.ms;
+    s.ms_max = std::max(s.ms_max, f.ms);
+    ms.push_back(f.ms);
+    if (f.passes >= max_passes) ++s.pass_limited;
+    if (f.accuracy >= 0) {
+      ++s.accuracy_frames;
+      s.accuracy_mean += f.accuracy;
+      s.accuracy_min = std::min(s.accuracy_min, f.accuracy);
+    }
+  }
+  const double n = static_cast<double>(std::max<size_t>(frames.size(), 1));
+  s.front_mean /= n;
+  s.fc_mean /= n;
+  s.triangle_mean /= n;
+  s.fronts_per_triangle = ratio_sum / n;
+  s.ms_mean /= n;
+  s.ms_median = median(ms);
+  if (s.accuracy_frames != 0) s.accuracy_mean /= static_cast<double>(s.accuracy_frames);
+  return s;
+}
+
+std::string traversal_text(const std::string& lane) {
+  if (lane == "priority") return "priority-oriented";
+  if (lane == "constant") return "constant-time";
+  return lane;
+}
+
+Result<std::vector<CameraFrame>> read_path(const Request& request, const Session& session,
+                                           std::string* failed_file) {
+  if (request.path == "scan" || request.path == "orbit")
+    return builtin_path(request.path, session.sphere, request.fov_degrees);
+  *failed_file = request.path;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, read_file(request.path, uint64_t{1} << 30));
+  return parse_camera_path(bytes.data(), bytes.size());
+}
+
 int run(const Tool& tool, const Request& request) {
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
@@ -185,29 +308,22 @@ int run(const Tool& tool, const Request& request) {
   const Session& session = loaded.value();
   const bool dag = request.mode == "dag";
 
-  std::vector<CameraFrame> path;
-  if (request.path == "scan" || request.path == "orbit") {
-    path = builtin_path(request.path, session.sphere, request.fov_degrees).value();
-  } else {
-    Result<Bytes> path_bytes = read_file(request.path, uint64_t{1} << 30);
-    if (!path_bytes.is_ok()) return tool.fail(request.path, path_bytes.status());
-    Result<std::vector<CameraFrame>> parsed =
-        parse_camera_path_csv(path_bytes.value().data(), path_bytes.value().size());
-    if (!parsed.is_ok()) return tool.fail(request.path, parsed.status());
-    path = std::move(parsed).value();
-  }
+  std::string path_file;
+  Result<std::vector<CameraFrame>> read = read_path(request, session, &path_file);
+  if (!read.is_ok()) return tool.fail(path_file, read.status());
+  const std::vector<CameraFrame> path = std::move(read).value();
 
-  std::vector<Row> frames;
+  std::vector<std::vector<Row>> frames;
   frames.reserve(path.size());
   Progress progress(tool, "replaying");
   for (size_t i = 0; i < path.size(); ++i) {
-    Result<Row> row = session.step(path[i]);
-    if (!row.is_ok()) {
+    Result<std::vector<Row>> rows = session.step(path[i]);
+    if (!rows.is_ok()) {
       return tool.fail(request.input,
-                       Status(row.status().kind(),
-                              "frame " + std::to_string(i) + ": " + row.status().message()));
+                       Status(rows.status().kind(),
+                              "frame " + std::to_string(i) + ": " + rows.status().message()));
     }
-    frames.push_back(row.value());
+    frames.push_back(std::move(rows).value());
     if (request.validate) {
       const std::vector<std::string> problems = session.check();
       if (!problems.empty()) {
@@ -222,36 +338,31 @@ int run(const Tool& tool, const Request& request) {
 
   if (!request.csv.empty()) {
     std::ostringstream csv;
-    csv << (dag ? "frame,splits,collapses,fs,fc,triangles,traversal_ms\n"
+    csv << (dag ? "frame,traversal,splits,collapses,visited,budget_mode,fs,fc,triangles,"
+                  "traversal_ms,accuracy\n"
                 : "frame,splits,collapses,passes,front,triangles,adapt_ms\n");
     for (size_t i = 0; i < frames.size(); ++i) {
-      const Row& f = frames[i];
-      csv << i << ',' << f.splits << ',' << f.collapses << ',' << (dag ? f.front : f.passes) << ','
-          << (dag ? f.collapse_front : f.front) << ',' << f.triangles << ',' << f.ms << '\n';
+      for (size_t lane = 0; lane < session.lanes.size(); ++lane) {
+        const Row& f = frames[i][lane];
+        if (dag) {
+          csv << i << ',' << session.lanes[lane] << ',' << f.splits << ',' << f.collapses << ','
+              << f.visited << ',' << (f.budget_mode ? 1 : 0) << ',' << f.front << ','
+              << f.collapse_front << ',' << f.triangles << ',' << f.ms << ',';
+          if (f.accuracy >= 0) csv << f.accuracy;
+          csv << '\n';
+        } else {
+          csv << i << ',' << f.splits << ',' << f.collapses << ',' << f.passes << ',' << f.front
+              << ',' << f.triangles << ',' << f.ms << '\n';
+        }
+      }
     }
     Status written = write_file_atomic(request.csv, csv.str());
     if (!written.is_ok()) return tool.fail(request.csv, written);
   }
 
-  size_t splits = 0, collapses = 0, max_front = 0, max_fc = 0, max_triangles = 0;
-  size_t pass_limited = 0;
-  double front_sum = 0, fc_sum = 0, triangle_sum = 0, ms_sum = 0, ms_max = 0;
-  std::vector<double> ms;
-  for (const Row& f : frames) {
-    splits += f.splits;
-    collapses += f.collapses;
-    max_front = std::max(max_front, f.front);
-    max_fc = std::max(max_fc, f.collapse_front);
-    max_triangles = std::max(max_triangles, f.triangles);
-    front_sum += static_cast<double>(f.front);
-    fc_sum += static_cast<double>(f.collapse_front);
-    triangle_sum += static_cast<double>(f.triangles);
-    ms_sum += f.ms;
-    ms_max = std::max(ms_max, f.ms);
-    ms.push_back(f.ms);
-    if (!dag && f.passes >= request.options.max_passes) ++pass_limited;
-  }
-  const double n = static_cast<double>(frames.size());
+  std::vector<LaneSummary> lanes;
+  for (size_t lane = 0; lane < session.lanes.size(); ++lane)
+    lanes.push_back(summarize(frames, lane, request.options.max_passes));
   nlohmann::json report = {{"schema", kReplaySchema},
                            {"input", request.input},
                            {"mode", request.mode},
@@ -263,24 +374,43 @@ int run(const Tool& tool, const Request& request) {
                              {"height", request.options.viewport.height},
                              {"fov_degrees", request.fov_degrees},
                              {"near_fraction", request.options.viewport.near_fraction}}},
+                           {"tolerance", request.tolerance},
                            {"tolerance_pixels", request.options.tolerance_pixels},
-                           {dag ? "dag" : "hierarchy", session.structure},
-                           {"splits", splits},
-                           {"collapses", collapses},
-                           {"triangles", {{"mean", triangle_sum / n}, {"max", max_triangles}}}};
-  const nlohmann::json timing = {{"mean", ms_sum / n}, {"median", median(ms)}, {"max", ms_max}};
+                           {dag ? "dag" : "hierarchy", session.structure}};
+  auto timing = [](const LaneSummary& l) {
+    return nlohmann::json{{"mean", l.ms_mean}, {"median", l.ms_median}, {"max", l.ms_max}};
+  };
   if (dag) {
-    report["traversal"] = "priority-oriented";
-    report["budget_mode"] = true;
+    report["budget_mode"] = request.budget_mode;
     report["max_changes"] = request.dag.max_changes;
     report["triangle_budget"] = request.dag.triangle_budget;
-    report["split_front"] = {{"mean", front_sum / n}, {"max", max_front}};
-    report["collapse_front"] = {{"mean", fc_sum / n}, {"max", max_fc}};
-    report["traversal_ms"] = timing;
+    nlohmann::json list = nlohmann::json::array();
+    for (size_t lane = 0; lane < lanes.size(); ++lane) {
+      const LaneSummary& l = lanes[lane];
+      nlohmann::json t = {{"traversal", session.lanes[lane]},
+                          {"splits", l.splits},
+                          {"collapses", l.collapses},
+                          {"visited", l.visited},
+                          {"budget_mode_frames", l.budget_frames},
+                          {"split_front", {{"mean", l.front_mean}, {"max", l.max_front}}},
+                          {"collapse_front", {{"mean", l.fc_mean}, {"max", l.max_fc}}},
+                          {"fronts_per_triangle", l.fronts_per_triangle},
+                          {"triangles", {{"mean", l.triangle_mean}, {"max", l.max_triangles}}},
+                          {"traversal_ms", timing(l)}};
+      t["accuracy"] = l.accuracy_frames == 0
+                          ? nlohmann::json(nullptr)
+                          : nlohmann::json{{"mean", l.accuracy_mean}, {"min", l.accuracy_min}};
+      list.push_back(t);
+    }
+    report["traversals"] = list;
   } else {
-    report["front_size"] = {{"mean", front_sum / n}, {"max", max_front}};
-    report["adapt_ms"] = timing;
-    report["frames_at_pass_limit"] = pass_limited;
+    const LaneSummary& l = lanes[0];
+    report["splits"] = l.splits;
+    report["collapses"] = l.collapses;
+    report["triangles"] = {{"mean", l.triangle_mean}, {"max", l.max_triangles}};
+    report["front_size"] = {{"mean", l.front_mean}, {"max", l.max_front}};
+    report["adapt_ms"] = timing(l);
+    report["frames_at_pass_limit"] = l.pass_limited;
   }
   if (tool.json()) {
     tool.print_json(report);
@@ -292,26 +422,66 @@ int run(const Tool& tool, const Request& request) {
   std::cout << (dag ? "dag           " : "hierarchy     ") << session.structure_text << "\n";
   std::cout << "view          " << request.options.viewport.width << "x"
             << request.options.viewport.height << ", fov " << request.fov_degrees
-            << " deg, tolerance " << request.options.tolerance_pixels << " px\n";
-  if (dag) {
-    std::cout << "traversal     priority-oriented, budget " << request.dag.triangle_budget
-              << " triangles, at most " << request.dag.max_changes << " changes per frame\n";
+            << " deg, tolerance " << request.options.tolerance_pixels << " px";
+  if (request.tolerance.back() == '%') std::cout << " (" << request.tolerance << " of the height)";
+  std::cout << "\n";
+  if (!dag) {
+    const LaneSummary& l = lanes[0];
+    std::cout << "operations    " << l.splits << " splits, " << l.collapses << " collapses\n";
+    std::cout << "front size    mean " << l.front_mean << ", max " << l.max_front << "\n";
+    std::cout << "triangles     mean " << l.triangle_mean << ", max " << l.max_triangles << "\n";
+    std::cout << "adapt time    mean " << l.ms_mean << " ms, median " << l.ms_median << " ms, max "
+              << l.ms_max << " ms per frame\n";
+    if (l.pass_limited != 0) {
+      std::cout << "pass limit    " << l.pass_limited << " frames stopped at "
+                << request.options.max_passes << " passes\n";
+    }
+    return 0;
   }
-  std::cout << "operations    " << splits << " splits, " << collapses << " collapses\n";
-  if (dag) {
-    std::cout << "fronts        |Fs| mean " << front_sum / n << ", max " << max_front
-              << "; |Fc| mean " << fc_sum / n << ", max " << max_fc << "\n";
-  } else {
-    std::cout << "front size    mean " << front_sum / n << ", max " << max_front << "\n";
-  }
-  std::cout << "triangles     mean " << triangle_sum / n << ", max " << max_triangles << "\n";
-  std::cout << (dag ? "frame time    " : "adapt time    ") << "mean " << ms_sum / n
-            << " ms, median " << median(ms) << " ms, max " << ms_max << " ms per frame\n";
-  if (pass_limited != 0) {
-    std::cout << "pass limit    " << pass_limited << " frames stopped at "
-              << request.options.max_passes << " passes\n";
+  for (size_t lane = 0; lane < lanes.size(); ++lane) {
+    const LaneSummary& l = lanes[lane];
+    const bool constant = session.lanes[lane] == "constant";
+    std::cout << "traversal     " << traversal_text(session.lanes[lane]) << ", ";
+    if (request.budget_mode == "free") {
+      std::cout << "FREE-MODE (no budget)";
+    } else {
+      std::cout << "budget " << request.dag.triangle_budget << " triangles (BUDGET-MODE in "
+                << l.budget_frames << " of " << frames.size() << " frames)";
+    }
+    std::cout << ", at most " << request.dag.max_changes
+              << (constant ? " nodes visited per traversal\n" : " changes per traversal\n");
+    std::cout << "operations    " << l.splits << " splits, " << l.collapses << " collapses, "
+              << l.visited << " nodes evaluated\n";
+    std::cout << "fronts        |Fs| mean " << l.front_mean << ", max " << l.max_front
+              << "; |Fc| mean " << l.fc_mean << ", max " << l.max_fc
+              << "; (|Fs| + |Fc|) / triangles mean " << l.fronts_per_triangle << "\n";
+    std::cout << "triangles     mean " << l.triangle_mean << ", max " << l.max_triangles << "\n";
+    std::cout << "frame time    mean " << l.ms_mean << " ms, median " << l.ms_median << " ms, max "
+              << l.ms_max << " ms per frame\n";
+    if (l.accuracy_frames != 0) {
+      std::cout << "accuracy      mean " << 100 * l.accuracy_mean << "%, min "
+                << 100 * l.accuracy_min << "% of the priority-oriented traversal's triangles\n";
+    }
   }
   return 0;
+}
+
+// "1.5" pixels or "0.1%" of the viewport height; nothing when malformed or
+// not > 0.
+std::optional<float> tolerance_pixels(const std::string& text, uint32_t height) {
+  const bool percent = !text.empty() && text.back() == '%';
+  const std::string number = percent ? text.substr(0, text.size() - 1) : text;
+  float value = 0;
+  const auto parsed = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (number.empty() || parsed.ec != std::errc() || parsed.ptr != number.data() + number.size() ||
+      !(value > 0) || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  if (percent) {
+    if (value > 100) return std::nullopt;
+    value = value / 100 * static_cast<float>(height);
+  }
+  return value;
 }
 
 }  // namespace
@@ -328,22 +498,28 @@ int main(int argc, char** argv) {
             "normal cone is not entirely back-facing and its deviation projects to more than\n"
             "--tolerance pixels, and coarsened where none holds (Hoppe 1997).\n"
             "Mode dag: BASE + VSPL + DAGE from lodbake-hierarchy; MANAGE-TRAVERSAL (Zheng &\n"
-            "Chan 2006) with the priority-oriented traversal in budget mode: splits by\n"
-            "projected error over --tolerance within --budget triangles, at most --changes\n"
-            "splits + collapses per frame.\n"
+            "Chan 2006): collapses of Fc whose projected error is under --tolerance, then\n"
+            "splits of Fs over it, at most --changes of each per frame, within --budget\n"
+            "triangles in BUDGET-MODE; with the priority-oriented, linear (FIFO kept across\n"
+            "frames) or constant-time (--changes nodes visited) traversal, or all three side\n"
+            "by side; the linear and constant-time ones report their accuracy, the share of\n"
+            "the priority-oriented traversal's triangles they also have.\n"
             "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
             "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
-            "relative to the bounding sphere, or a CSV FILE with one row per frame:\n"
-            "eye x,y,z, target x,y,z, up x,y,z, vertical fov in degrees ('#' comments).");
+            "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
+            "x,y,z, target x,y,z, up x,y,z, vertical fov in degrees; '#' comments) or JSON\n"
+            "(an array of {\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z], \"fov\": deg},\n"
+            "bare or as {\"frames\": [...]}).");
   Request request;
   uint32_t width = 1024, height = 768;
   float near_fraction = 0.01f;
   tool.options().add_options()("mode", po::value<std::string>(&request.mode)->value_name("M"),
                                "the structure replayed: vhier (default) or dag")(
       "path", po::value<std::string>(&request.path)->value_name("P"),
-      "scan (default), orbit, or a CSV camera path FILE")(
-      "tolerance", po::value<float>(&request.options.tolerance_pixels)->value_name("PIXELS"),
-      "screen-space error tolerance in pixels of the viewport height (default 1)")(
+      "scan (default), orbit, or a CSV or JSON camera path FILE")(
+      "tolerance", po::value<std::string>(&request.tolerance)->value_name("T"),
+      "screen-space error tolerance: pixels of the viewport height (default 1),\n"
+      "or a percentage of it such as 0.1% (the DAG paper's setting)")(
       "width", po::value<uint32_t>(&width)->value_name("W"), "viewport width (default 1024)")(
       "height", po::value<uint32_t>(&height)->value_name("H"), "viewport height (default 768)")(
       "fov", po::value<float>(&request.fov_degrees)->value_name("DEG"),
@@ -354,13 +530,21 @@ int main(int argc, char** argv) {
       "after every frame, check that the mesh is an edge-manifold, consistently oriented\n"
       "triangulation without duplicate triangles and the counters agree (exit 7 naming\n"
       "the frame otherwise)")("csv", po::value<std::string>(&request.csv)->value_name("FILE"),
-                              "write per-frame rows (frame, splits, collapses, passes, front,\n"
-                              "triangles, adapt_ms) to FILE");
-  tool.options().add_options()("budget",
-                               po::value<size_t>(&request.dag.triangle_budget)->value_name("T"),
-                               "dag: triangle budget (default 60000)")(
+                              "write per-frame rows to FILE (vhier: frame, splits, collapses,\n"
+                              "passes, front, triangles, adapt_ms; dag: one row per frame and\n"
+                              "traversal: frame, traversal, splits, collapses, visited,\n"
+                              "budget_mode, fs, fc, triangles, traversal_ms, accuracy)");
+  tool.options().add_options()(
+      "traversal", po::value<std::string>(&request.traversal)->value_name("T"),
+      "dag: priority (default), linear, constant, or all (the three side by side)")(
+      "budget-mode", po::value<std::string>(&request.budget_mode)->value_name("M"),
+      "dag: auto (default: FREE-MODE while --changes splits cannot reach the budget,\n"
+      "BUDGET-MODE once they could), budget, or free (no triangle budget)")(
+      "budget", po::value<size_t>(&request.dag.triangle_budget)->value_name("T"),
+      "dag: triangle budget (default 60000)")(
       "changes", po::value<size_t>(&request.dag.max_changes)->value_name("N"),
-      "dag: at most N splits + collapses per frame (default 300)");
+      "dag: at most N collapses and N splits per frame; constant-time: N nodes visited\n"
+      "by each (default 300)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "FILE.lbk", &request.input))
@@ -369,14 +553,49 @@ int main(int argc, char** argv) {
     return tool.usage_error("--mode '" + request.mode + "' is not available (modes: vhier, dag)");
   }
   if (request.dag.max_changes == 0) return tool.usage_error("--changes takes N >= 1");
-  if (!(request.options.tolerance_pixels > 0 && std::isfinite(request.options.tolerance_pixels)))
-    return tool.usage_error("--tolerance takes pixels > 0");
   if (width == 0 || height == 0 || width > 65536 || height > 65536)
     return tool.usage_error("--width and --height take 1 .. 65536 pixels");
+  const std::optional<float> tolerance = tolerance_pixels(request.tolerance, height);
+  if (!tolerance) {
+    return tool.usage_error(
+        "--tolerance takes pixels > 0 or a percentage in (0, 100] such as "
+        "0.1%, not '" +
+        request.tolerance + "'");
+  }
+  request.options.tolerance_pixels = *tolerance;
   if (!(request.fov_degrees > 0 && request.fov_degrees < 180))
     return tool.usage_error("--fov takes degrees in (0, 180)");
   if (!(near_fraction > 0 && near_fraction < 1))
     return tool.usage_error("--near takes a fraction in (0, 1)");
+  if (request.traversal == "all") {
+    request.traversals = {DagTraversal::kPriority, DagTraversal::kLinear,
+                          DagTraversal::kConstantTime};
+  } else if (request.traversal == "priority") {
+    request.traversals = {DagTraversal::kPriority};
+  } else if (request.traversal == "linear") {
+    request.traversals = {DagTraversal::kLinear};
+  } else if (request.traversal == "constant") {
+    request.traversals = {DagTraversal::kConstantTime};
+  } else {
+    return tool.usage_error("--traversal '" + request.traversal +
+                            "' is not one of priority, linear, constant, all");
+  }
+  if (request.budget_mode == "auto") {
+    request.dag.budget_mode = DagBudgetMode::kAuto;
+  } else if (request.budget_mode == "budget") {
+    request.dag.budget_mode = DagBudgetMode::kBudget;
+  } else if (request.budget_mode == "free") {
+    request.dag.budget_mode = DagBudgetMode::kFree;
+  } else {
+    return tool.usage_error("--budget-mode '" + request.budget_mode +
+                            "' is not one of auto, budget, free");
+  }
+  if (request.mode != "dag") {
+    for (const char* option : {"traversal", "budget-mode", "budget", "changes"}) {
+      if (tool.has(option))
+        return tool.usage_error(std::string("--") + option + " applies to --mode dag only");
+    }
+  }
   request.options.viewport.width = width;
   request.options.viewport.height = height;
   request.options.viewport.near_fraction = near_fraction;
