@@ -1,7 +1,9 @@
 // lodbake-replay: replays a camera path on a container's view-dependent
 // structure and measures it (issue 8). Mode vhier: BASE + VHIE + RFIN, the
 // SelectiveRefiner adapted per frame (lib/replay/vhier_replay.h); mode dag:
-// BASE + VSPL + DAGE, MANAGE-TRAVERSAL (lib/replay/dag_replay.h). Thin:
+// BASE + VSPL + DAGE, MANAGE-TRAVERSAL (lib/replay/dag_replay.h); mode fan:
+// BASE + FANH, the fan hierarchy's dual-path adapt (lib/replay/fan_replay.h).
+// Thin:
 // decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <cmath>
@@ -16,12 +18,14 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
+#include "formats/sections/fanh.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/replay/camera_path.h"
 #include "lib/replay/dag_replay.h"
+#include "lib/replay/fan_replay.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
 
@@ -39,13 +43,18 @@ struct Request {
   bool validate = false;
   VhierReplayOptions options;
   DagReplayOptions dag;
+  FanReplayOptions fan;
 };
 
-// One frame's measures in either mode: `front` is the vertex front (vhier)
-// or |Fs| (dag), `collapse_front` |Fc| (dag only).
+// One frame's measures in any mode: `front` is the vertex front (vhier),
+// |Fs| (dag) or the active nodes (fan), `collapse_front` |Fc| (dag only);
+// for fan, `splits` / `collapses` are the fine path's steps.
 struct Row {
   size_t splits = 0;
   size_t collapses = 0;
+  size_t fan_merges = 0;
+  size_t fan_splits = 0;
+  size_t refused = 0;
   size_t passes = 0;
   size_t front = 0;
   size_t collapse_front = 0;
@@ -72,6 +81,10 @@ struct DagState {
   ProgressiveMesh pm;
   VsplitDag dag;
   std::optional<DagReplay> replay;
+};
+
+struct FanState {
+  std::optional<FanReplay> replay;
 };
 
 Result<Session> load_vhier(const Container& container, const Section& base,
@@ -159,11 +172,56 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
   return session;
 }
 
+Result<Session> load_fan(const Container& container, const Section& base, const Request& request) {
+  const Section* fanh = container.find(kFanhTag);
+  if (fanh == nullptr) {
+    return invalid_input("container has no FANH section; mode fan needs BASE + FANH (lodbake-fan)");
+  }
+  auto state = std::make_shared<FanState>();
+  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh input, decode_base(base.data, base.size));
+  LODBAKE_ASSIGN_OR_RETURN(FanHierarchy h, decode_fanh(fanh->data, fanh->size));
+  LODBAKE_ASSIGN_OR_RETURN(FanReplay replay, FanReplay::create(input, h));
+  state->replay.emplace(std::move(replay));
+  const FanhStats stats = fanh_stats(h);
+  const FanRuntime& rt = state->replay->runtime();
+  Session session;
+  session.sphere = bounding_sphere(input.positions);
+  session.structure = {{"nodes", h.node_count()},
+                       {"internal_nodes", stats.internal_nodes},
+                       {"roots", stats.roots},
+                       {"depth", stats.depth},
+                       {"input_triangles", h.triangle_count},
+                       {"coarsest_triangles", rt.triangle_count()}};
+  session.structure_text = std::to_string(h.node_count()) + " nodes (" +
+                           std::to_string(stats.internal_nodes) + " fan-merges), " +
+                           std::to_string(stats.roots) + " roots, " +
+                           std::to_string(h.triangle_count) + " input triangles, coarsest " +
+                           std::to_string(rt.triangle_count());
+  const FanReplayOptions options = request.fan;
+  const BoundingSphere sphere = session.sphere;
+  session.step = [state, options, sphere](const CameraFrame& frame) -> Result<Row> {
+    LODBAKE_ASSIGN_OR_RETURN(FanFrameStats f, state->replay->adapt(sphere, frame, options));
+    Row row;
+    row.fan_merges = f.fan_merges;
+    row.fan_splits = f.fan_splits;
+    row.collapses = f.collapses;
+    row.splits = f.splits;
+    row.refused = f.refused;
+    row.front = f.active;
+    row.triangles = f.triangles;
+    row.ms = f.adapt_ms;
+    return row;
+  };
+  session.check = [state] { return state->replay->check(); };
+  return session;
+}
+
 Result<Session> load(const Bytes& bytes, const Request& request) {
   LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
   LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
   try {
     if (request.mode == "dag") return load_dag(container, *base, request);
+    if (request.mode == "fan") return load_fan(container, *base, request);
     return load_vhier(container, *base, request);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory loading the container");
@@ -184,6 +242,7 @@ int run(const Tool& tool, const Request& request) {
   if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
   const Session& session = loaded.value();
   const bool dag = request.mode == "dag";
+  const bool fan = request.mode == "fan";
 
   std::vector<CameraFrame> path;
   if (request.path == "scan" || request.path == "orbit") {
@@ -222,10 +281,16 @@ int run(const Tool& tool, const Request& request) {
 
   if (!request.csv.empty()) {
     std::ostringstream csv;
-    csv << (dag ? "frame,splits,collapses,fs,fc,triangles,traversal_ms\n"
-                : "frame,splits,collapses,passes,front,triangles,adapt_ms\n");
+    csv << (dag   ? "frame,splits,collapses,fs,fc,triangles,traversal_ms\n"
+            : fan ? "frame,fan_merges,fan_splits,collapses,splits,active,triangles,adapt_ms\n"
+                  : "frame,splits,collapses,passes,front,triangles,adapt_ms\n");
     for (size_t i = 0; i < frames.size(); ++i) {
       const Row& f = frames[i];
+      if (fan) {
+        csv << i << ',' << f.fan_merges << ',' << f.fan_splits << ',' << f.collapses << ','
+            << f.splits << ',' << f.front << ',' << f.triangles << ',' << f.ms << '\n';
+        continue;
+      }
       csv << i << ',' << f.splits << ',' << f.collapses << ',' << (dag ? f.front : f.passes) << ','
           << (dag ? f.collapse_front : f.front) << ',' << f.triangles << ',' << f.ms << '\n';
     }
@@ -234,12 +299,16 @@ int run(const Tool& tool, const Request& request) {
   }
 
   size_t splits = 0, collapses = 0, max_front = 0, max_fc = 0, max_triangles = 0;
+  size_t fan_merges = 0, fan_splits = 0, refused = 0;
   size_t pass_limited = 0;
   double front_sum = 0, fc_sum = 0, triangle_sum = 0, ms_sum = 0, ms_max = 0;
   std::vector<double> ms;
   for (const Row& f : frames) {
     splits += f.splits;
     collapses += f.collapses;
+    fan_merges += f.fan_merges;
+    fan_splits += f.fan_splits;
+    refused += f.refused;
     max_front = std::max(max_front, f.front);
     max_fc = std::max(max_fc, f.collapse_front);
     max_triangles = std::max(max_triangles, f.triangles);
@@ -249,7 +318,7 @@ int run(const Tool& tool, const Request& request) {
     ms_sum += f.ms;
     ms_max = std::max(ms_max, f.ms);
     ms.push_back(f.ms);
-    if (!dag && f.passes >= request.options.max_passes) ++pass_limited;
+    if (!dag && !fan && f.passes >= request.options.max_passes) ++pass_limited;
   }
   const double n = static_cast<double>(frames.size());
   nlohmann::json report = {{"schema", kReplaySchema},
@@ -264,7 +333,10 @@ int run(const Tool& tool, const Request& request) {
                              {"fov_degrees", request.fov_degrees},
                              {"near_fraction", request.options.viewport.near_fraction}}},
                            {"tolerance_pixels", request.options.tolerance_pixels},
-                           {dag ? "dag" : "hierarchy", session.structure},
+                           {dag   ? "dag"
+                            : fan ? "fan_hierarchy"
+                                  : "hierarchy",
+                            session.structure},
                            {"splits", splits},
                            {"collapses", collapses},
                            {"triangles", {{"mean", triangle_sum / n}, {"max", max_triangles}}}};
@@ -277,6 +349,16 @@ int run(const Tool& tool, const Request& request) {
     report["split_front"] = {{"mean", front_sum / n}, {"max", max_front}};
     report["collapse_front"] = {{"mean", fc_sum / n}, {"max", max_fc}};
     report["traversal_ms"] = timing;
+  } else if (fan) {
+    const size_t operations = fan_merges + fan_splits + collapses + splits;
+    report["fan_merges"] = fan_merges;
+    report["fan_splits"] = fan_splits;
+    report["adapt_operations"] = {{"total", operations},
+                                  {"per_frame", static_cast<double>(operations) / n}};
+    report["refused"] = refused;
+    report["coarse_fraction"] = request.fan.coarse_fraction;
+    report["active_nodes"] = {{"mean", front_sum / n}, {"max", max_front}};
+    report["adapt_ms"] = timing;
   } else {
     report["front_size"] = {{"mean", front_sum / n}, {"max", max_front}};
     report["adapt_ms"] = timing;
@@ -289,7 +371,10 @@ int run(const Tool& tool, const Request& request) {
   std::cout << "replay        " << request.input << ": mode " << request.mode << ", path "
             << request.path << ", " << frames.size() << " frames"
             << (request.validate ? ", every frame validated" : "") << "\n";
-  std::cout << (dag ? "dag           " : "hierarchy     ") << session.structure_text << "\n";
+  std::cout << (dag   ? "dag           "
+                : fan ? "fan hierarchy "
+                      : "hierarchy     ")
+            << session.structure_text << "\n";
   std::cout << "view          " << request.options.viewport.width << "x"
             << request.options.viewport.height << ", fov " << request.fov_degrees
             << " deg, tolerance " << request.options.tolerance_pixels << " px\n";
@@ -297,8 +382,22 @@ int run(const Tool& tool, const Request& request) {
     std::cout << "traversal     priority-oriented, budget " << request.dag.triangle_budget
               << " triangles, at most " << request.dag.max_changes << " changes per frame\n";
   }
-  std::cout << "operations    " << splits << " splits, " << collapses << " collapses\n";
-  if (dag) {
+  if (fan) {
+    std::cout << "dual path     fan-merge / fan-split when the target is an end of the fine "
+                 "path at least "
+              << request.fan.coarse_fraction << " x children away, else merge-pointer steps\n";
+    std::cout << "operations    " << fan_merges << " fan-merges, " << fan_splits << " fan-splits, "
+              << collapses << " edge collapses, " << splits << " vertex splits ("
+              << (fan_merges + fan_splits + collapses + splits) / n << " per frame)\n";
+    if (refused != 0) {
+      std::cout << "refused       " << refused << " nodes left short of their target\n";
+    }
+  } else {
+    std::cout << "operations    " << splits << " splits, " << collapses << " collapses\n";
+  }
+  if (fan) {
+    std::cout << "active nodes  mean " << front_sum / n << ", max " << max_front << "\n";
+  } else if (dag) {
     std::cout << "fronts        |Fs| mean " << front_sum / n << ", max " << max_front
               << "; |Fc| mean " << fc_sum / n << ", max " << max_fc << "\n";
   } else {
@@ -320,7 +419,7 @@ int run(const Tool& tool, const Request& request) {
 int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
-  Tool tool("lodbake-replay", "FILE.lbk [--mode vhier|dag] [--path scan|orbit|FILE] [options]",
+  Tool tool("lodbake-replay", "FILE.lbk [--mode vhier|dag|fan] [--path scan|orbit|FILE] [options]",
             "Replays a camera path on a container's view-dependent structure and reports,\n"
             "per frame, the refinement operations, fronts, triangles and adapt time.\n"
             "Mode vhier (default): BASE + VHIE + RFIN from lodbake-hierarchy; the vertex\n"
@@ -331,6 +430,12 @@ int main(int argc, char** argv) {
             "Chan 2006) with the priority-oriented traversal in budget mode: splits by\n"
             "projected error over --tolerance within --budget triangles, at most --changes\n"
             "splits + collapses per frame.\n"
+            "Mode fan: BASE + FANH from lodbake-fan; from the coarsest mesh, the active\n"
+            "nodes are scanned each frame and each fan moves toward its target merge\n"
+            "pointer (error projected at its vertex against --tolerance, all merged out of\n"
+            "view) by one fan-merge / fan-split when the target is an end of its fine path\n"
+            "at least --coarse x its children away, else by edge collapses / vertex splits\n"
+            "(Livny, Sokolovsky & El-Sana 2007).\n"
             "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
             "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
             "relative to the bounding sphere, or a CSV FILE with one row per frame:\n"
@@ -339,7 +444,7 @@ int main(int argc, char** argv) {
   uint32_t width = 1024, height = 768;
   float near_fraction = 0.01f;
   tool.options().add_options()("mode", po::value<std::string>(&request.mode)->value_name("M"),
-                               "the structure replayed: vhier (default) or dag")(
+                               "the structure replayed: vhier (default), dag or fan")(
       "path", po::value<std::string>(&request.path)->value_name("P"),
       "scan (default), orbit, or a CSV camera path FILE")(
       "tolerance", po::value<float>(&request.options.tolerance_pixels)->value_name("PIXELS"),
@@ -353,21 +458,30 @@ int main(int argc, char** argv) {
       "validate", po::bool_switch(&request.validate),
       "after every frame, check that the mesh is an edge-manifold, consistently oriented\n"
       "triangulation without duplicate triangles and the counters agree (exit 7 naming\n"
-      "the frame otherwise)")("csv", po::value<std::string>(&request.csv)->value_name("FILE"),
-                              "write per-frame rows (frame, splits, collapses, passes, front,\n"
-                              "triangles, adapt_ms) to FILE");
+      "the frame otherwise)")(
+      "csv", po::value<std::string>(&request.csv)->value_name("FILE"),
+      "write per-frame rows to FILE (vhier: frame, splits, collapses, passes, front, "
+      "triangles, adapt_ms; dag: frame, splits, collapses, fs, fc, triangles, traversal_ms; "
+      "fan: frame, fan_merges, fan_splits, collapses, splits, active, triangles, adapt_ms)");
   tool.options().add_options()("budget",
                                po::value<size_t>(&request.dag.triangle_budget)->value_name("T"),
                                "dag: triangle budget (default 60000)")(
       "changes", po::value<size_t>(&request.dag.max_changes)->value_name("N"),
-      "dag: at most N splits + collapses per frame (default 300)");
+      "dag: at most N splits + collapses per frame (default 300)")(
+      "coarse", po::value<float>(&request.fan.coarse_fraction)->value_name("F"),
+      "fan: one fan-merge / fan-split when the target is an end of the fine path at "
+      "least max(1, ceil(F x children)) steps away, else merge-pointer steps (default "
+      "0.5; 0: always, > 1: never)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "FILE.lbk", &request.input))
     return *code;
-  if (request.mode != "vhier" && request.mode != "dag") {
-    return tool.usage_error("--mode '" + request.mode + "' is not available (modes: vhier, dag)");
+  if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan") {
+    return tool.usage_error("--mode '" + request.mode +
+                            "' is not available (modes: vhier, dag, fan)");
   }
+  if (!(request.fan.coarse_fraction >= 0 && std::isfinite(request.fan.coarse_fraction)))
+    return tool.usage_error("--coarse takes a fraction >= 0");
   if (request.dag.max_changes == 0) return tool.usage_error("--changes takes N >= 1");
   if (!(request.options.tolerance_pixels > 0 && std::isfinite(request.options.tolerance_pixels)))
     return tool.usage_error("--tolerance takes pixels > 0");
@@ -382,6 +496,8 @@ int main(int argc, char** argv) {
   request.options.viewport.near_fraction = near_fraction;
   request.dag.viewport = request.options.viewport;
   request.dag.tolerance_pixels = request.options.tolerance_pixels;
+  request.fan.viewport = request.options.viewport;
+  request.fan.tolerance_pixels = request.options.tolerance_pixels;
   if (!request.csv.empty() && same_file(request.input, request.csv))
     return tool.usage_error("the --csv output '" + request.csv + "' is the input itself");
   return tool.run([&] { return run(tool, request); });
