@@ -10,6 +10,11 @@
 // - a node's centre child and the child being collapsed must be fully
 //   merged, and a node is frozen while its parent holds it, so the forest
 //   cut stays a cut;
+// - optionally (FanRuntimeOptions::construction_dependencies, what the
+//   replay uses) the paper's implicit dependencies as exact neighbourhoods:
+//   a step also needs every triangle it names to have the corners it had
+//   at that step of the construction, recorded by replaying the
+//   construction once in create();
 // - the active list is a vector of 256-entry blocks (the paper: a linked
 //   list of them); the active nodes are the nodes standing for the current
 //   vertices: a node with a nonzero pointer replaces its centre child.
@@ -55,7 +60,8 @@ std::vector<uint32_t> ActiveNodeList::nodes() const {
   return out;
 }
 
-Result<FanRuntime> FanRuntime::create(const TriangleMesh& input, const FanHierarchy& hierarchy) {
+Result<FanRuntime> FanRuntime::create(const TriangleMesh& input, const FanHierarchy& hierarchy,
+                                      const FanRuntimeOptions& options) {
   std::vector<std::string> findings = validate_fanh_structure(hierarchy);
   if (!findings.empty()) return invalid_input("fan hierarchy: " + findings.front());
   if (input.vertex_count() != hierarchy.vertex_count ||
@@ -96,6 +102,35 @@ Result<FanRuntime> FanRuntime::create(const TriangleMesh& input, const FanHierar
     r.active_.reset(nodes);
     for (uint32_t v = 0; v < hierarchy.vertex_count; ++v)
       if (r.state_.present(v)) r.active_.add(v);
+    if (options.construction_dependencies) {
+      // Replay the construction on a copy of the state, recording the
+      // corners each step sees; the lists' own checks (can_collapse) run
+      // without dependencies, which are not recorded yet.
+      r.removed_before_.resize(hierarchy.removed.size());
+      r.modified_before_.resize(hierarchy.modified.size());
+      const fan_internal::FanMeshState initial = r.state_;
+      for (size_t i = 0; i < hierarchy.internal_count(); ++i) {
+        const uint32_t id = static_cast<uint32_t>(hierarchy.vertex_count + i);
+        for (uint32_t k = 1; k <= r.collapsible_children(id); ++k) {
+          if (!r.can_collapse(id, k)) {
+            return invalid_input("fan hierarchy: node " + std::to_string(id) + " child " +
+                                 std::to_string(k) + " does not replay over the mesh");
+          }
+          const Lists l = r.lists(id, k);
+          const uint32_t ro = r.removed_offset(id, k), mo = r.modified_offset(id, k);
+          for (size_t j = 0; j < l.removed_count; ++j)
+            r.removed_before_[ro + j] = r.state_.corners(l.removed[j]);
+          for (size_t j = 0; j < l.modified_count; ++j)
+            r.modified_before_[mo + j] = r.state_.corners(l.modified[j]);
+          r.state_.collapse(r.vertex_[r.child(id, k)], r.vertex_[id], l.removed, l.removed_count,
+                            l.modified, l.modified_count);
+          r.pointer_[i] = k;
+        }
+      }
+      r.state_ = initial;
+      r.pointer_.assign(hierarchy.internal_count(), 0);
+      r.dependencies_ = true;
+    }
     return r;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while loading the fan hierarchy");
@@ -127,6 +162,14 @@ FanRuntime::Lists FanRuntime::lists(uint32_t node, uint32_t k) const {
           h_.modified_start[j + 1] - h_.modified_start[j]};
 }
 
+uint32_t FanRuntime::removed_offset(uint32_t node, uint32_t k) const {
+  return h_.removed_start[h_.child_start[node - h_.vertex_count] + k];
+}
+
+uint32_t FanRuntime::modified_offset(uint32_t node, uint32_t k) const {
+  return h_.modified_start[h_.child_start[node - h_.vertex_count] + k];
+}
+
 bool FanRuntime::can_collapse(uint32_t node, uint32_t k) const {
   const uint32_t v = vertex_[node];
   const uint32_t c = vertex_[child(node, k)];
@@ -143,6 +186,13 @@ bool FanRuntime::can_collapse(uint32_t node, uint32_t k) const {
     const uint32_t t = l.modified[i];
     if (!state_.alive(t) || !has_corner(state_.corners(t), c) || has_corner(state_.corners(t), v))
       return false;
+  }
+  if (dependencies_) {
+    const uint32_t ro = removed_offset(node, k), mo = modified_offset(node, k);
+    for (size_t i = 0; i < l.removed_count; ++i)
+      if (state_.corners(l.removed[i]) != removed_before_[ro + i]) return false;
+    for (size_t i = 0; i < l.modified_count; ++i)
+      if (state_.corners(l.modified[i]) != modified_before_[mo + i]) return false;
   }
   return true;
 }
@@ -165,6 +215,19 @@ bool FanRuntime::can_split(uint32_t node, uint32_t k) const {
     if (!has_corner(tri, c) || !has_corner(tri, v)) return false;
     for (uint32_t x : tri)
       if (x != c && !state_.present(x)) return false;
+  }
+  if (dependencies_) {
+    // After the step: removed triangles died with their corners, modified
+    // ones hold v where they held c.
+    const uint32_t ro = removed_offset(node, k), mo = modified_offset(node, k);
+    for (size_t i = 0; i < l.removed_count; ++i)
+      if (state_.corners(l.removed[i]) != removed_before_[ro + i]) return false;
+    for (size_t i = 0; i < l.modified_count; ++i) {
+      Triangle after = modified_before_[mo + i];
+      for (uint32_t& x : after)
+        if (x == c) x = v;
+      if (state_.corners(l.modified[i]) != after) return false;
+    }
   }
   return true;
 }

@@ -50,6 +50,21 @@ class ActiveNodeList {
   size_t size_ = 0;
 };
 
+struct FanRuntimeOptions {
+  /// Implicit dependencies (the paper's section 3.4, after El-Sana and
+  /// Varshney): a step is also refused unless every triangle its lists name
+  /// has exactly the corners it had at that step of the construction (for a
+  /// collapse: before it, for a split: after it). The local checks alone
+  /// let a fan take a neighbour's triangle out of construction order, after
+  /// which the neighbour can never merge again; with this, the current mesh
+  /// is always a mesh the construction's steps give in some order that
+  /// respects their overlaps, so the earliest unmerged step and the latest
+  /// merged one stay legal (no dead end) and no fold-over the construction
+  /// refused can appear. create() then replays the construction once to
+  /// record the corners (12 bytes per list entry).
+  bool construction_dependencies = false;
+};
+
 /// A fan-hierarchy over its input mesh, starting fully refined (every merge
 /// pointer 0). Operations return false and change nothing when they are not
 /// legal in the current state:
@@ -71,8 +86,11 @@ class FanRuntime {
   /// ids, list offsets: the checks of formats/sections/fanh.h's
   /// validate_fanh_structure()) and starts fully refined. `input` and
   /// `hierarchy` are copied as needed; neither must outlive the call.
+  /// With options.construction_dependencies, also kInvalidInput when a
+  /// step of the construction does not replay over `input`.
   /// \return kInvalidInput naming the first problem; kRuntime on out of memory.
-  static Result<FanRuntime> create(const TriangleMesh& input, const FanHierarchy& hierarchy);
+  static Result<FanRuntime> create(const TriangleMesh& input, const FanHierarchy& hierarchy,
+                                   const FanRuntimeOptions& options = {});
 
   uint64_t node_count() const { return parent_.size(); }
   uint32_t leaf_count() const { return h_.vertex_count; }
@@ -130,6 +148,9 @@ class FanRuntime {
     size_t modified_count;
   };
   Lists lists(uint32_t node, uint32_t k) const;
+  // The step's offsets into h_.removed and h_.modified.
+  uint32_t removed_offset(uint32_t node, uint32_t k) const;
+  uint32_t modified_offset(uint32_t node, uint32_t k) const;
   bool can_collapse(uint32_t node, uint32_t k) const;
   bool can_split(uint32_t node, uint32_t k) const;
   void apply_collapse(uint32_t node, uint32_t k);
@@ -150,6 +171,11 @@ class FanRuntime {
   std::vector<uint32_t> pointer_;  // per internal node
   ActiveNodeList active_;
   std::vector<uint32_t> touched_;
+  // With construction dependencies: per entry of h_.removed / h_.modified,
+  // the triangle's corners before its step in the construction.
+  bool dependencies_ = false;
+  std::vector<Triangle> removed_before_;
+  std::vector<Triangle> modified_before_;
 };
 
 }  // namespace lodbake

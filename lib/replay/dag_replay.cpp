@@ -43,6 +43,7 @@
 #include <queue>
 
 #include "lib/check/mesh_check.h"
+#include "lib/replay/replay_check.h"
 
 namespace lodbake {
 namespace {
@@ -311,16 +312,8 @@ std::vector<std::string> DagReplay::check() const {
   TriangleMesh mesh;
   mesh.positions.assign(pm_->base.vertex_count() + pm_->splits.size(), Vec3f{0, 0, 0});
   mesh.triangles = cut_triangles();
-  const MeshCheckReport r = check_mesh(mesh);
-  auto add = [&](uint64_t count, const char* what) {
-    if (count != 0) problems.push_back(std::to_string(count) + " " + what);
-  };
-  add(r.out_of_range_triangles, "triangles with an out-of-range index");
-  add(r.repeated_index_triangles, "triangles with a repeated index");
-  add(r.duplicate_triangles, "duplicate triangles");
-  add(r.non_manifold_edges, "edges with more than two faces");
-  add(r.inconsistent_orientation_edges,
-      "edges walked twice the same way (inconsistent orientation)");
+  for (std::string& p : triangulation_problems(check_mesh(mesh)))
+    problems.push_back(std::move(p));
   if (mesh.triangle_count() != triangles_) {
     problems.push_back("triangle count " + std::to_string(triangles_) + " but the cut has " +
                        std::to_string(mesh.triangle_count()) + " triangles");
@@ -330,7 +323,9 @@ std::vector<std::string> DagReplay::check() const {
     unqueued += split_queue_.queued[n] == 0;
   for (uint32_t n : fronts_.collapse_front())
     unqueued += collapse_queue_.queued[n] == 0;
-  add(unqueued, "front nodes missing from their traversal queue");
+  if (unqueued != 0)
+    problems.push_back(std::to_string(unqueued) +
+                       " front nodes missing from their traversal queue");
   return problems;
 }
 

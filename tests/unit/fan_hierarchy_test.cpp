@@ -267,6 +267,58 @@ TEST(FanRuntime, AnyMixOfPartialFinePathsIsAValidTriangulation) {
   }
 }
 
+// With the construction dependencies (what the replay uses), random
+// operations still find legal ones, every state is valid, and from any
+// state reached, fan-splitting in reverse construction order gives the input
+// exactly and fan-merging in construction order the coarsest mesh: there is
+// no dead end.
+TEST(FanRuntime, ConstructionDependenciesLeaveNoDeadEnd) {
+  std::vector<Case> cases = small_cases();
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    FanBuildResult r = build(c.mesh);
+    FanRuntimeOptions options;
+    options.construction_dependencies = true;
+    Result<FanRuntime> created = FanRuntime::create(c.mesh, r.hierarchy, options);
+    ASSERT_TRUE(created.is_ok()) << created.status().message();
+    FanRuntime rt = std::move(created).value();
+    std::mt19937 rng(777);
+    uint64_t accepted = 0;
+    for (int start = 0; start < 2; ++start) {
+      if (start == 1) {
+        ASSERT_TRUE(rt.merge_all());
+      }
+      for (int op = 0; op < 3000; ++op) {
+        const std::vector<uint32_t> active = rt.active().nodes();
+        const uint32_t picked = active[rng() % active.size()];
+        const uint32_t parent = rt.parent(picked);
+        switch (rng() % 4) {
+          case 0:
+            accepted += parent != kNoNode && rt.advance(parent);
+            break;
+          case 1:
+            accepted += rt.retreat(picked);
+            break;
+          case 2:
+            accepted += parent != kNoNode && rt.fan_merge(parent);
+            break;
+          default:
+            accepted += rt.fan_split(picked);
+            break;
+        }
+      }
+      ASSERT_TRUE(valid_triangulation(rt.mesh()));
+      expect_active_list_matches(rt);
+      ASSERT_TRUE(rt.split_all());
+      EXPECT_EQ(rt.mesh().triangles, c.mesh.triangles);
+      ASSERT_TRUE(rt.merge_all());
+      EXPECT_EQ(rt.mesh().triangles, r.coarsest.triangles);
+      ASSERT_TRUE(rt.split_all());
+    }
+    EXPECT_GT(accepted, 100u);
+  }
+}
+
 TEST(ActiveNodeList, BlocksOf256AndSwapWithLastOnRemoval) {
   ActiveNodeList list;
   list.reset(1000);

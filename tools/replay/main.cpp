@@ -2,7 +2,9 @@
 // structure and measures it (issue 8). Mode vhier: BASE + VHIE + RFIN, the
 // SelectiveRefiner adapted per frame (lib/replay/vhier_replay.h); mode dag:
 // BASE + VSPL + DAGE, MANAGE-TRAVERSAL with one or all three traversals and
-// their accuracy against the priority-oriented one (lib/replay/dag_replay.h).
+// their accuracy against the priority-oriented one (lib/replay/dag_replay.h);
+// mode fan: BASE + FANH, the fan hierarchy's dual-path adapt
+// (lib/replay/fan_replay.h).
 // Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <charconv>
@@ -18,12 +20,14 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
+#include "formats/sections/fanh.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/replay/camera_path.h"
 #include "lib/replay/dag_replay.h"
+#include "lib/replay/fan_replay.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
 
@@ -45,15 +49,20 @@ struct Request {
   VhierReplayOptions options;
   DagReplayOptions dag;
   std::vector<DagTraversal> traversals;  // dag: the lanes replayed
+  FanReplayOptions fan;
 };
 
-// One frame's measures of one lane (the vhier refiner, or one DAG
-// traversal): `front` is the vertex front (vhier) or |Fs| (dag),
-// `collapse_front` |Fc| (dag only), `accuracy` the share of the
-// priority-oriented traversal's triangles (dag, when measured; else < 0).
+// One frame's measures of one lane (the vhier refiner, one DAG traversal,
+// or the fan hierarchy): `front` is the vertex front (vhier), |Fs| (dag) or
+// the active nodes (fan), `collapse_front` |Fc| (dag only), `accuracy` the
+// share of the priority-oriented traversal's triangles (dag, when measured;
+// else < 0); for fan, `splits` / `collapses` are the fine path's steps.
 struct Row {
   size_t splits = 0;
   size_t collapses = 0;
+  size_t fan_merges = 0;
+  size_t fan_splits = 0;
+  size_t refused = 0;
   size_t passes = 0;
   size_t visited = 0;
   bool budget_mode = false;
@@ -87,6 +96,10 @@ struct DagState {
   VsplitDag dag;
   std::vector<DagReplay> lanes;
   std::optional<DagReplay> reference;
+};
+
+struct FanState {
+  std::optional<FanReplay> replay;
 };
 
 Result<Session> load_vhier(const Container& container, const Section& base,
@@ -217,11 +230,57 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
   return session;
 }
 
+Result<Session> load_fan(const Container& container, const Section& base, const Request& request) {
+  const Section* fanh = container.find(kFanhTag);
+  if (fanh == nullptr) {
+    return invalid_input("container has no FANH section; mode fan needs BASE + FANH (lodbake-fan)");
+  }
+  auto state = std::make_shared<FanState>();
+  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh input, decode_base(base.data, base.size));
+  LODBAKE_ASSIGN_OR_RETURN(FanHierarchy h, decode_fanh(fanh->data, fanh->size));
+  LODBAKE_ASSIGN_OR_RETURN(FanReplay replay, FanReplay::create(input, h));
+  state->replay.emplace(std::move(replay));
+  const FanhStats stats = fanh_stats(h);
+  const FanRuntime& rt = state->replay->runtime();
+  Session session;
+  session.sphere = bounding_sphere(input.positions);
+  session.structure = {{"nodes", h.node_count()},
+                       {"internal_nodes", stats.internal_nodes},
+                       {"roots", stats.roots},
+                       {"depth", stats.depth},
+                       {"input_triangles", h.triangle_count},
+                       {"coarsest_triangles", rt.triangle_count()}};
+  session.structure_text = std::to_string(h.node_count()) + " nodes (" +
+                           std::to_string(stats.internal_nodes) + " fan-merges), " +
+                           std::to_string(stats.roots) + " roots, " +
+                           std::to_string(h.triangle_count) + " input triangles, coarsest " +
+                           std::to_string(rt.triangle_count());
+  session.lanes = {"fan"};
+  const FanReplayOptions options = request.fan;
+  const BoundingSphere sphere = session.sphere;
+  session.step = [state, options, sphere](const CameraFrame& frame) -> Result<std::vector<Row>> {
+    LODBAKE_ASSIGN_OR_RETURN(FanFrameStats f, state->replay->adapt(sphere, frame, options));
+    Row row;
+    row.fan_merges = f.fan_merges;
+    row.fan_splits = f.fan_splits;
+    row.collapses = f.collapses;
+    row.splits = f.splits;
+    row.refused = f.refused;
+    row.front = f.active;
+    row.triangles = f.triangles;
+    row.ms = f.adapt_ms;
+    return std::vector<Row>{row};
+  };
+  session.check = [state] { return state->replay->check(); };
+  return session;
+}
+
 Result<Session> load(const Bytes& bytes, const Request& request) {
   LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
   LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
   try {
     if (request.mode == "dag") return load_dag(container, *base, request);
+    if (request.mode == "fan") return load_fan(container, *base, request);
     return load_vhier(container, *base, request);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory loading the container");
@@ -238,6 +297,7 @@ double median(std::vector<double> v) {
 // One lane's figures over the whole path.
 struct LaneSummary {
   size_t splits = 0, collapses = 0, visited = 0, budget_frames = 0, pass_limited = 0;
+  size_t fan_merges = 0, fan_splits = 0, refused = 0;
   size_t max_front = 0, max_fc = 0, max_triangles = 0;
   double front_mean = 0, fc_mean = 0, triangle_mean = 0, fronts_per_triangle = 0;
   double ms_mean = 0, ms_median = 0, ms_max = 0;
@@ -253,6 +313,9 @@ LaneSummary summarize(const std::vector<std::vector<Row>>& frames, size_t lane, 
     const Row& f = rows[lane];
     s.splits += f.splits;
     s.collapses += f.collapses;
+    s.fan_merges += f.fan_merges;
+    s.fan_splits += f.fan_splits;
+    s.refused += f.refused;
     s.visited += f.visited;
     s.budget_frames += f.budget_mode;
     s.max_front = std::max(s.max_front, f.front);
@@ -307,6 +370,7 @@ int run(const Tool& tool, const Request& request) {
   if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
   const Session& session = loaded.value();
   const bool dag = request.mode == "dag";
+  const bool fan = request.mode == "fan";
 
   std::string path_file;
   Result<std::vector<CameraFrame>> read = read_path(request, session, &path_file);
@@ -338,9 +402,10 @@ int run(const Tool& tool, const Request& request) {
 
   if (!request.csv.empty()) {
     std::ostringstream csv;
-    csv << (dag ? "frame,traversal,splits,collapses,visited,budget_mode,fs,fc,triangles,"
-                  "traversal_ms,accuracy\n"
-                : "frame,splits,collapses,passes,front,triangles,adapt_ms\n");
+    csv << (dag   ? "frame,traversal,splits,collapses,visited,budget_mode,fs,fc,triangles,"
+                    "traversal_ms,accuracy\n"
+            : fan ? "frame,fan_merges,fan_splits,collapses,splits,active,triangles,adapt_ms\n"
+                  : "frame,splits,collapses,passes,front,triangles,adapt_ms\n");
     for (size_t i = 0; i < frames.size(); ++i) {
       for (size_t lane = 0; lane < session.lanes.size(); ++lane) {
         const Row& f = frames[i][lane];
@@ -350,6 +415,9 @@ int run(const Tool& tool, const Request& request) {
               << f.collapse_front << ',' << f.triangles << ',' << f.ms << ',';
           if (f.accuracy >= 0) csv << f.accuracy;
           csv << '\n';
+        } else if (fan) {
+          csv << i << ',' << f.fan_merges << ',' << f.fan_splits << ',' << f.collapses << ','
+              << f.splits << ',' << f.front << ',' << f.triangles << ',' << f.ms << '\n';
         } else {
           csv << i << ',' << f.splits << ',' << f.collapses << ',' << f.passes << ',' << f.front
               << ',' << f.triangles << ',' << f.ms << '\n';
@@ -376,7 +444,10 @@ int run(const Tool& tool, const Request& request) {
                              {"near_fraction", request.options.viewport.near_fraction}}},
                            {"tolerance", request.tolerance},
                            {"tolerance_pixels", request.options.tolerance_pixels},
-                           {dag ? "dag" : "hierarchy", session.structure}};
+                           {dag   ? "dag"
+                            : fan ? "fan_hierarchy"
+                                  : "hierarchy",
+                            session.structure}};
   auto timing = [](const LaneSummary& l) {
     return nlohmann::json{{"mean", l.ms_mean}, {"median", l.ms_median}, {"max", l.ms_max}};
   };
@@ -403,6 +474,21 @@ int run(const Tool& tool, const Request& request) {
       list.push_back(t);
     }
     report["traversals"] = list;
+  } else if (fan) {
+    const LaneSummary& l = lanes[0];
+    const size_t operations = l.fan_merges + l.fan_splits + l.collapses + l.splits;
+    report["splits"] = l.splits;
+    report["collapses"] = l.collapses;
+    report["fan_merges"] = l.fan_merges;
+    report["fan_splits"] = l.fan_splits;
+    report["adapt_operations"] = {
+        {"total", operations},
+        {"per_frame", static_cast<double>(operations) / static_cast<double>(frames.size())}};
+    report["refused"] = l.refused;
+    report["coarse_fraction"] = request.fan.coarse_fraction;
+    report["triangles"] = {{"mean", l.triangle_mean}, {"max", l.max_triangles}};
+    report["active_nodes"] = {{"mean", l.front_mean}, {"max", l.max_front}};
+    report["adapt_ms"] = timing(l);
   } else {
     const LaneSummary& l = lanes[0];
     report["splits"] = l.splits;
@@ -419,12 +505,35 @@ int run(const Tool& tool, const Request& request) {
   std::cout << "replay        " << request.input << ": mode " << request.mode << ", path "
             << request.path << ", " << frames.size() << " frames"
             << (request.validate ? ", every frame validated" : "") << "\n";
-  std::cout << (dag ? "dag           " : "hierarchy     ") << session.structure_text << "\n";
+  std::cout << (dag   ? "dag           "
+                : fan ? "fan hierarchy "
+                      : "hierarchy     ")
+            << session.structure_text << "\n";
   std::cout << "view          " << request.options.viewport.width << "x"
             << request.options.viewport.height << ", fov " << request.fov_degrees
             << " deg, tolerance " << request.options.tolerance_pixels << " px";
   if (request.tolerance.back() == '%') std::cout << " (" << request.tolerance << " of the height)";
   std::cout << "\n";
+  if (fan) {
+    const LaneSummary& l = lanes[0];
+    const size_t operations = l.fan_merges + l.fan_splits + l.collapses + l.splits;
+    std::cout << "dual path     fan-merge / fan-split when the target is an end of the fine "
+                 "path at least "
+              << request.fan.coarse_fraction << " x children away, else merge-pointer steps\n";
+    std::cout << "operations    " << l.fan_merges << " fan-merges, " << l.fan_splits
+              << " fan-splits, " << l.collapses << " edge collapses, " << l.splits
+              << " vertex splits ("
+              << static_cast<double>(operations) / static_cast<double>(frames.size())
+              << " per frame)\n";
+    if (l.refused != 0) {
+      std::cout << "refused       " << l.refused << " nodes left short of their target\n";
+    }
+    std::cout << "active nodes  mean " << l.front_mean << ", max " << l.max_front << "\n";
+    std::cout << "triangles     mean " << l.triangle_mean << ", max " << l.max_triangles << "\n";
+    std::cout << "adapt time    mean " << l.ms_mean << " ms, median " << l.ms_median << " ms, max "
+              << l.ms_max << " ms per frame\n";
+    return 0;
+  }
   if (!dag) {
     const LaneSummary& l = lanes[0];
     std::cout << "operations    " << l.splits << " splits, " << l.collapses << " collapses\n";
@@ -490,7 +599,7 @@ std::optional<float> tolerance_pixels(const std::string& text, uint32_t height) 
 int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
-  Tool tool("lodbake-replay", "FILE.lbk [--mode vhier|dag] [--path scan|orbit|FILE] [options]",
+  Tool tool("lodbake-replay", "FILE.lbk [--mode vhier|dag|fan] [--path scan|orbit|FILE] [options]",
             "Replays a camera path on a container's view-dependent structure and reports,\n"
             "per frame, the refinement operations, fronts, triangles and adapt time.\n"
             "Mode vhier (default): BASE + VHIE + RFIN from lodbake-hierarchy; the vertex\n"
@@ -504,6 +613,12 @@ int main(int argc, char** argv) {
             "frames) or constant-time (--changes nodes visited) traversal, or all three side\n"
             "by side; the linear and constant-time ones report their accuracy, the share of\n"
             "the priority-oriented traversal's triangles they also have.\n"
+            "Mode fan: BASE + FANH from lodbake-fan; from the coarsest mesh, the active\n"
+            "nodes are scanned each frame and each fan moves toward its target merge\n"
+            "pointer (error projected at its vertex against --tolerance, all merged out of\n"
+            "view) by one fan-merge / fan-split when the target is an end of its fine path\n"
+            "at least --coarse x its children away, else by edge collapses / vertex splits\n"
+            "(Livny, Sokolovsky & El-Sana 2007).\n"
             "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
             "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
             "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
@@ -514,7 +629,7 @@ int main(int argc, char** argv) {
   uint32_t width = 1024, height = 768;
   float near_fraction = 0.01f;
   tool.options().add_options()("mode", po::value<std::string>(&request.mode)->value_name("M"),
-                               "the structure replayed: vhier (default) or dag")(
+                               "the structure replayed: vhier (default), dag or fan")(
       "path", po::value<std::string>(&request.path)->value_name("P"),
       "scan (default), orbit, or a CSV or JSON camera path FILE")(
       "tolerance", po::value<std::string>(&request.tolerance)->value_name("T"),
@@ -533,7 +648,9 @@ int main(int argc, char** argv) {
                               "write per-frame rows to FILE (vhier: frame, splits, collapses,\n"
                               "passes, front, triangles, adapt_ms; dag: one row per frame and\n"
                               "traversal: frame, traversal, splits, collapses, visited,\n"
-                              "budget_mode, fs, fc, triangles, traversal_ms, accuracy)");
+                              "budget_mode, fs, fc, triangles, traversal_ms, accuracy; fan:\n"
+                              "frame, fan_merges, fan_splits, collapses, splits, active,\n"
+                              "triangles, adapt_ms)");
   tool.options().add_options()(
       "traversal", po::value<std::string>(&request.traversal)->value_name("T"),
       "dag: priority (default), linear, constant, or all (the three side by side)")(
@@ -544,14 +661,21 @@ int main(int argc, char** argv) {
       "dag: triangle budget (default 60000)")(
       "changes", po::value<size_t>(&request.dag.max_changes)->value_name("N"),
       "dag: at most N collapses and N splits per frame; constant-time: N nodes visited\n"
-      "by each (default 300)");
+      "by each (default 300)")(
+      "coarse", po::value<float>(&request.fan.coarse_fraction)->value_name("F"),
+      "fan: one fan-merge / fan-split when the target is an end of the fine path at\n"
+      "least max(1, ceil(F x children)) steps away, else merge-pointer steps (default\n"
+      "0.5; 0: always, > 1: never)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "FILE.lbk", &request.input))
     return *code;
-  if (request.mode != "vhier" && request.mode != "dag") {
-    return tool.usage_error("--mode '" + request.mode + "' is not available (modes: vhier, dag)");
+  if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan") {
+    return tool.usage_error("--mode '" + request.mode +
+                            "' is not available (modes: vhier, dag, fan)");
   }
+  if (!(request.fan.coarse_fraction >= 0 && std::isfinite(request.fan.coarse_fraction)))
+    return tool.usage_error("--coarse takes a fraction >= 0");
   if (request.dag.max_changes == 0) return tool.usage_error("--changes takes N >= 1");
   if (width == 0 || height == 0 || width > 65536 || height > 65536)
     return tool.usage_error("--width and --height take 1 .. 65536 pixels");
@@ -596,11 +720,15 @@ int main(int argc, char** argv) {
         return tool.usage_error(std::string("--") + option + " applies to --mode dag only");
     }
   }
+  if (request.mode != "fan" && tool.has("coarse"))
+    return tool.usage_error("--coarse applies to --mode fan only");
   request.options.viewport.width = width;
   request.options.viewport.height = height;
   request.options.viewport.near_fraction = near_fraction;
   request.dag.viewport = request.options.viewport;
   request.dag.tolerance_pixels = request.options.tolerance_pixels;
+  request.fan.viewport = request.options.viewport;
+  request.fan.tolerance_pixels = request.options.tolerance_pixels;
   if (!request.csv.empty() && same_file(request.input, request.csv))
     return tool.usage_error("the --csv output '" + request.csv + "' is the input itself");
   return tool.run([&] { return run(tool, request); });

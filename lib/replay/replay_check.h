@@ -1,0 +1,20 @@
+// What --validate asks of the current mesh in every replay mode, as lines:
+// the index-structure counts of lib/check (exact, no geometry), shared so
+// that every mode names a violation the same way.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lib/check/mesh_check.h"
+
+namespace lodbake {
+
+/// One line per kind of problem that makes `report`'s mesh other than an
+/// edge-manifold (at most two faces per edge), consistently oriented
+/// triangulation without out-of-range or repeated indices or duplicate
+/// triangles, each with its count; empty when there is none. Non-manifold
+/// vertices and boundaries are not problems (an input may have them).
+std::vector<std::string> triangulation_problems(const MeshCheckReport& report);
+
+}  // namespace lodbake
