@@ -17,8 +17,9 @@
 #include <cmath>
 #include <new>
 #include <queue>
+#include <utility>
 
-#include "lib/check/mesh_check.h"
+#include "lib/replay/mesh_validity.h"
 
 namespace lodbake {
 namespace {
@@ -159,16 +160,8 @@ std::vector<std::string> DagReplay::check() const {
   TriangleMesh mesh;
   mesh.positions.assign(pm_->base.vertex_count() + pm_->splits.size(), Vec3f{0, 0, 0});
   mesh.triangles = dag_cut_triangles(lineage_, fronts_);
-  const MeshCheckReport r = check_mesh(mesh);
-  auto add = [&](uint64_t count, const char* what) {
-    if (count != 0) problems.push_back(std::to_string(count) + " " + what);
-  };
-  add(r.out_of_range_triangles, "triangles with an out-of-range index");
-  add(r.repeated_index_triangles, "triangles with a repeated index");
-  add(r.duplicate_triangles, "duplicate triangles");
-  add(r.non_manifold_edges, "edges with more than two faces");
-  add(r.inconsistent_orientation_edges,
-      "edges walked twice the same way (inconsistent orientation)");
+  for (std::string& problem : triangulation_problems(mesh))
+    problems.push_back(std::move(problem));
   if (mesh.triangle_count() != triangles_) {
     problems.push_back("triangle count " + std::to_string(triangles_) + " but the cut has " +
                        std::to_string(mesh.triangle_count()) + " triangles");

@@ -9,8 +9,8 @@
 #include <chrono>
 #include <new>
 
-#include "lib/check/mesh_check.h"
 #include "lib/hierarchy/view_criteria.h"
+#include "lib/replay/mesh_validity.h"
 
 namespace lodbake {
 
@@ -44,18 +44,8 @@ Result<VhierFrameStats> adapt_vhier_frame(SelectiveRefiner* refiner, const Verte
 }
 
 std::vector<std::string> check_vhier_mesh(const SelectiveRefiner& refiner) {
-  std::vector<std::string> problems;
   const TriangleMesh mesh = refiner.current_mesh();
-  const MeshCheckReport r = check_mesh(mesh);
-  auto add = [&](uint64_t count, const char* what) {
-    if (count != 0) problems.push_back(std::to_string(count) + " " + what);
-  };
-  add(r.out_of_range_triangles, "triangles with an out-of-range index");
-  add(r.repeated_index_triangles, "triangles with a repeated index");
-  add(r.duplicate_triangles, "duplicate triangles");
-  add(r.non_manifold_edges, "edges with more than two faces");
-  add(r.inconsistent_orientation_edges,
-      "edges walked twice the same way (inconsistent orientation)");
+  std::vector<std::string> problems = triangulation_problems(mesh);
   if (mesh.vertex_count() != refiner.front_size()) {
     problems.push_back("front size " + std::to_string(refiner.front_size()) + " but the mesh has " +
                        std::to_string(mesh.vertex_count()) + " vertices");
