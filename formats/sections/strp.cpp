@@ -170,13 +170,10 @@ Result<TriangleStrips> decode_strp(const uint8_t* data, size_t size, StrpSummary
   }
 }
 
-std::vector<std::string> validate_strp(const TriangleStrips& strips, const TriangleMesh& mesh) {
+std::vector<std::string> compare_strip_triangles(const TriangleStrips& strips,
+                                                 const std::vector<Triangle>& triangles,
+                                                 const char* what) {
   std::vector<std::string> findings;
-  if (strips.vertex_count != mesh.vertex_count()) {
-    findings.push_back(string_printf("strips index %u vertices, BASE has %zu", strips.vertex_count,
-                                     mesh.vertex_count()));
-    return findings;
-  }
   // Compare canonical (smallest vertex first, order kept) sorted lists.
   auto canonical = [](Triangle t) {
     while (t[0] > t[1] || t[0] > t[2])
@@ -185,7 +182,7 @@ std::vector<std::string> validate_strp(const TriangleStrips& strips, const Trian
   };
   std::vector<Triangle> from_strips = strip_triangles(strips);
   std::vector<Triangle> from_mesh;
-  for (const Triangle& t : mesh.triangles)
+  for (const Triangle& t : triangles)
     if (is_real_triangle(t[0], t[1], t[2])) from_mesh.push_back(canonical(t));
   for (Triangle& t : from_strips)
     t = canonical(t);
@@ -198,13 +195,21 @@ std::vector<std::string> validate_strp(const TriangleStrips& strips, const Trian
                       std::back_inserter(missing));
   if (!extra.empty())
     findings.push_back(string_printf(
-        "%zu strip triangles are not BASE triangles (or repeat one), first (%u, %u, %u)",
-        extra.size(), extra[0][0], extra[0][1], extra[0][2]));
+        "%zu strip triangles are not %s triangles (or repeat one), first (%u, %u, %u)",
+        extra.size(), what, extra[0][0], extra[0][1], extra[0][2]));
   if (!missing.empty())
     findings.push_back(
-        string_printf("%zu BASE triangles are missing from the strips, first (%u, %u, %u)",
-                      missing.size(), missing[0][0], missing[0][1], missing[0][2]));
+        string_printf("%zu %s triangles are missing from the strips, first (%u, %u, %u)",
+                      missing.size(), what, missing[0][0], missing[0][1], missing[0][2]));
   return findings;
+}
+
+std::vector<std::string> validate_strp(const TriangleStrips& strips, const TriangleMesh& mesh) {
+  if (strips.vertex_count != mesh.vertex_count()) {
+    return {string_printf("strips index %u vertices, BASE has %zu", strips.vertex_count,
+                          mesh.vertex_count())};
+  }
+  return compare_strip_triangles(strips, mesh.triangles, "BASE");
 }
 
 std::vector<std::string> validate_strp_payload(const uint8_t* data, size_t size, bool has_base,

@@ -74,11 +74,24 @@ Result<TriangleStrips> decode_strp(const uint8_t* data, size_t size,
 /// The fixed fields, with the payload size they imply checked: O(1).
 Result<StrpSummary> read_strp_summary(const uint8_t* data, size_t size);
 
+/// The strips' non-degenerate triangles against the non-degenerate ones of
+/// `triangles`, each with its orientation (a triangle may start at any
+/// corner), as multisets: what validate_strp() checks against BASE and
+/// lib/strips checks a recovered LoD with against its progressive mesh.
+/// `what` names the triangles' source in the findings ("BASE", "PM").
+/// \return one line per kind of difference (strip triangles that are not
+///         in `triangles` or repeat one; triangles missing from the strips),
+///         each with its count and first instance; empty when they agree.
+std::vector<std::string> compare_strip_triangles(const TriangleStrips& strips,
+                                                 const std::vector<Triangle>& triangles,
+                                                 const char* what);
+
 /// Deep check (for `lodbake-inspect --validate`) of decoded strips against
 /// the mesh they index: the vertex counts agree, and each non-degenerate
 /// triangle of the strips is a triangle of `mesh` with its orientation, each
-/// of the mesh's non-degenerate triangles described exactly once. One line
-/// per kind of problem; empty when all is well.
+/// of the mesh's non-degenerate triangles described exactly once
+/// (compare_strip_triangles()). One line per kind of problem; empty when all
+/// is well.
 std::vector<std::string> validate_strp(const TriangleStrips& strips, const TriangleMesh& mesh);
 
 /// decode_strp() then validate_strp() against BASE's mesh: a decode error

@@ -41,6 +41,7 @@
 #include <limits>
 #include <new>
 #include <queue>
+#include <utility>
 
 #include "lib/check/mesh_check.h"
 #include "lib/replay/replay_check.h"

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <new>
 
-#include "lib/check/mesh_check.h"
 #include "lib/hierarchy/view_criteria.h"
 #include "lib/replay/replay_check.h"
 

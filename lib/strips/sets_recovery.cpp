@@ -317,4 +317,27 @@ TriangleStrips StripRecovery::to_strips() const {
   return strips;
 }
 
+std::vector<std::string> check_recovered_triangles(const StripRecovery& recovery,
+                                                   const std::vector<Triangle>& lod_triangles) {
+  return compare_strip_triangles(recovery.to_strips(), lod_triangles, "PM");
+}
+
+std::string compare_recoveries(const StripRecovery& a, const StripRecovery& b) {
+  if (a.strip_count() != b.strip_count()) {
+    return "recoveries of " + std::to_string(a.strip_count()) + " and " +
+           std::to_string(b.strip_count()) + " strips";
+  }
+  size_t differing = 0, first = 0;
+  for (size_t s = 0; s < a.strip_count(); ++s) {
+    const uint32_t* pa = a.indices().data() + a.first(s);
+    const uint32_t* pb = b.indices().data() + b.first(s);
+    if (a.count(s) == b.count(s) && std::equal(pa, pa + a.count(s), pb)) continue;
+    if (differing++ == 0) first = s;
+  }
+  if (differing == 0) return std::string();
+  return std::to_string(differing) + " strips differ, first strip " + std::to_string(first) + " (" +
+         std::to_string(a.count(first)) + " against " + std::to_string(b.count(first)) +
+         " indices)";
+}
+
 }  // namespace lodbake

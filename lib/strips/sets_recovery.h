@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "formats/sections/sets.h"
@@ -98,5 +99,20 @@ class StripRecovery {
   uint64_t walked_strips_ = 0;
   uint64_t walked_indices_ = 0;
 };
+
+/// The checks of a recovered LoD (lodbake-replay --mode sets --validate and
+/// the strips tests): the non-degenerate triangles `recovery`'s strips
+/// describe must be the non-degenerate `lod_triangles` (the progressive
+/// mesh's triangles at the LoD recovered) with their orientation, each once
+/// (compare_strip_triangles() with "PM"). One line per kind of difference;
+/// empty when they agree.
+std::vector<std::string> check_recovered_triangles(const StripRecovery& recovery,
+                                                   const std::vector<Triangle>& lod_triangles);
+
+/// Where two recoveries of the same graph (a coherent and a fresh one at
+/// the same LoD) hold different strips: empty when every strip has the same
+/// indices, else one line with the number of differing strips and the
+/// first one.
+std::string compare_recoveries(const StripRecovery& a, const StripRecovery& b);
 
 }  // namespace lodbake

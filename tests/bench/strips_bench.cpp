@@ -9,7 +9,8 @@
 //   3. the paper's recovery tests (section 4, after Ribelles et al. 1999):
 //      recover 1, 3, 6, 10, 15 and 20% of all LoDs, spaced linearly or
 //      exponentially (dense near the full mesh), from the finest LoD to the
-//      coarsest and back; average time per recovered LoD in microseconds,
+//      coarsest and back (the sequences of lib/replay/sets_replay.h, which
+//      lodbake-replay --mode sets runs too); average time per recovered LoD in microseconds,
 //      recovery only (no rendering), for coherent recovery (the paper's) and
 //      for fresh recovery of every strip (on at most 100 of the test's LoDs,
 //      evenly picked); and the walk throughput in strip indices per second
@@ -23,7 +24,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -33,6 +33,7 @@
 #include "formats/sections/sets.h"
 #include "formats/sections/strp.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/replay/sets_replay.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
 #include "lib/strips/sets_build.h"
@@ -135,25 +136,6 @@ std::vector<StripRow> compare_stripifiers(const TriangleMesh& mesh, int runs) {
   return rows;
 }
 
-// The LoDs of one recovery test: `percent` of the lod_count LoDs, linear or
-// exponential (lod = lod_count^(i/(n-1)) - 1: dense near LoD 0, the full
-// mesh), fine to coarse and back.
-std::vector<uint32_t> test_lods(uint32_t lod_count, double percent, bool exponential) {
-  const uint32_t n = std::max<uint32_t>(2, static_cast<uint32_t>(lod_count * percent / 100.0));
-  std::vector<uint32_t> down;
-  for (uint32_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / (n - 1);
-    const double lod =
-        exponential ? std::pow(static_cast<double>(lod_count), t) - 1 : t * (lod_count - 1);
-    const uint32_t l = std::min<uint32_t>(lod_count - 1, static_cast<uint32_t>(std::lround(lod)));
-    if (down.empty() || l != down.back()) down.push_back(l);
-  }
-  std::vector<uint32_t> lods = down;
-  for (size_t i = down.size() - 1; i-- > 0;)
-    lods.push_back(down[i]);
-  return lods;
-}
-
 struct RecoveryRow {
   double coherent_us = 0;  // per recovered LoD
   double fresh_us = 0;
@@ -250,12 +232,12 @@ int bench_file(const std::string& path, int runs) {
       "| LoDs | spacing | recovered | coherent us/LoD | fresh us/LoD | fresh walk M indices/s | "
       "coherent output M indices/s |\n");
   std::printf("|---:|---|---:|---:|---:|---:|---:|\n");
-  for (bool exponential : {false, true}) {
-    for (double percent : {1.0, 3.0, 6.0, 10.0, 15.0, 20.0}) {
-      const std::vector<uint32_t> lods = test_lods(graph.lod_count, percent, exponential);
+  for (LodSpacing spacing : {LodSpacing::kLinear, LodSpacing::kExponential}) {
+    for (double percent : paper_recovery_percents()) {
+      const std::vector<uint32_t> lods = recovery_test_lods(graph.lod_count, percent, spacing);
       const RecoveryRow row = run_test(graph, lods, runs);
       std::printf("| %.0f%% | %s | %zu | %.1f | %.1f | %.0f | %.0f |\n", percent,
-                  exponential ? "exponential" : "linear", row.lods, row.coherent_us, row.fresh_us,
+                  spacing_name(spacing), row.lods, row.coherent_us, row.fresh_us,
                   row.walk_rate / 1e6, row.output_rate / 1e6);
     }
   }

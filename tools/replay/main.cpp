@@ -4,11 +4,16 @@
 // BASE + VSPL + DAGE, MANAGE-TRAVERSAL with one or all three traversals and
 // their accuracy against the priority-oriented one (lib/replay/dag_replay.h);
 // mode fan: BASE + FANH, the fan hierarchy's dual-path adapt
-// (lib/replay/fan_replay.h).
+// (lib/replay/fan_replay.h). Mode sets is not camera-driven: BASE + VSPL +
+// SETS, the strip paper's LoD-recovery tests (lib/replay/sets_replay.h), one
+// step per LoD recovered; it runs through run_sets(), the camera modes
+// through run_camera_path().
 // Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -22,12 +27,14 @@
 #include "formats/sections/dage.h"
 #include "formats/sections/fanh.h"
 #include "formats/sections/rfin.h"
+#include "formats/sections/sets.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/replay/camera_path.h"
 #include "lib/replay/dag_replay.h"
 #include "lib/replay/fan_replay.h"
+#include "lib/replay/sets_replay.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
 
@@ -50,6 +57,9 @@ struct Request {
   DagReplayOptions dag;
   std::vector<DagTraversal> traversals;  // dag: the lanes replayed
   FanReplayOptions fan;
+  // Mode sets.
+  std::vector<double> percents = paper_recovery_percents();
+  std::string spacing = "both";
 };
 
 // One frame's measures of one lane (the vhier refiner, one DAG traversal,
@@ -363,10 +373,8 @@ Result<std::vector<CameraFrame>> read_path(const Request& request, const Session
   return parse_camera_path(bytes.data(), bytes.size());
 }
 
-int run(const Tool& tool, const Request& request) {
-  Result<Bytes> bytes = read_file(request.input);
-  if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
-  Result<Session> loaded = load(bytes.value(), request);
+int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes) {
+  Result<Session> loaded = load(bytes, request);
   if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
   const Session& session = loaded.value();
   const bool dag = request.mode == "dag";
@@ -575,6 +583,162 @@ int run(const Tool& tool, const Request& request) {
   return 0;
 }
 
+// Mode sets: the progressive mesh and its SETS graph.
+struct SetsData {
+  ProgressiveMesh pm;
+  SetsGraph graph;
+};
+
+Result<SetsData> load_sets(const Bytes& bytes) {
+  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
+  LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
+  const Section* vspl = container.find(kVsplTag);
+  const Section* sets = container.find(kSetsTag);
+  if (vspl == nullptr || sets == nullptr) {
+    return invalid_input(std::string("container has no ") + (vspl == nullptr ? "VSPL" : "SETS") +
+                         " section; mode sets needs BASE + VSPL + SETS (lodbake-strips)");
+  }
+  try {
+    SetsData data;
+    LODBAKE_ASSIGN_OR_RETURN(
+        data.pm, decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size));
+    LODBAKE_ASSIGN_OR_RETURN(data.graph, decode_sets(sets->data, sets->size));
+    return data;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory loading the container");
+  }
+}
+
+std::string percent_text(double percent) {
+  std::ostringstream out;
+  out << percent;
+  return out.str();
+}
+
+// The recovery tests: every (spacing, percent), linear first, each from LoD
+// 0 to the coarsest LoD and back.
+int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
+  Result<SetsData> loaded = load_sets(bytes);
+  if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
+  const SetsData& data = loaded.value();
+  Result<SetsReplay> created = SetsReplay::create(data.pm, data.graph);
+  if (!created.is_ok()) return tool.fail(request.input, created.status());
+  SetsReplay& replay = created.value();
+
+  std::vector<LodSpacing> spacings;
+  if (request.spacing != "exponential") spacings.push_back(LodSpacing::kLinear);
+  if (request.spacing != "linear") spacings.push_back(LodSpacing::kExponential);
+  std::vector<SetsTestSummary> summaries;
+  std::ostringstream csv;
+  csv << "spacing,percent,step,lod,strips,indices,triangles,fresh_us,coherent_us\n";
+  size_t recovered = 0;
+  Progress progress(tool, "recovering");
+  const size_t tests = spacings.size() * request.percents.size();
+  for (LodSpacing spacing : spacings) {
+    for (double percent : request.percents) {
+      const std::vector<uint32_t> lods = recovery_test_lods(replay.lod_count(), percent, spacing);
+      Result<std::vector<SetsStep>> steps = run_sets_test(&replay, lods, request.validate);
+      if (!steps.is_ok()) {
+        return tool.fail(request.input,
+                         Status(steps.status().kind(), std::string(spacing_name(spacing)) + " " +
+                                                           percent_text(percent) + "%, " +
+                                                           steps.status().message()));
+      }
+      summaries.push_back(summarize_sets_test(spacing, percent, steps.value()));
+      recovered += steps.value().size();
+      if (!request.csv.empty()) {
+        for (size_t k = 0; k < steps.value().size(); ++k) {
+          const SetsStep& step = steps.value()[k];
+          csv << spacing_name(spacing) << ',' << percent << ',' << k << ',' << step.lod << ','
+              << step.strips << ',' << step.indices << ',' << step.triangles << ',' << step.fresh_us
+              << ',' << step.coherent_us << '\n';
+        }
+      }
+      progress.update(static_cast<double>(summaries.size()) / tests);
+    }
+  }
+  if (!request.csv.empty()) {
+    Status written = write_file_atomic(request.csv, csv.str());
+    if (!written.is_ok()) return tool.fail(request.csv, written);
+  }
+
+  const SetsGraph& graph = data.graph;
+  if (tool.json()) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const SetsTestSummary& t : summaries) {
+      rows.push_back({{"spacing", spacing_name(t.spacing)},
+                      {"percent", t.percent},
+                      {"lods", t.lods},
+                      {"indices", t.indices},
+                      {"fresh_us_per_lod", t.fresh_us_per_lod},
+                      {"coherent_us_per_lod", t.coherent_us_per_lod},
+                      {"fresh_mindices_per_s", t.fresh_mindices_per_s},
+                      {"coherent_mindices_per_s", t.coherent_mindices_per_s}});
+    }
+    tool.print_json({{"schema", kReplaySchema},
+                     {"input", request.input},
+                     {"mode", request.mode},
+                     {"validated", request.validate},
+                     {"sets",
+                      {{"strips", graph.strip_count()},
+                       {"nodes", graph.node_count()},
+                       {"lods", graph.lod_count},
+                       {"base_triangles", data.pm.base.triangle_count()}}},
+                     {"spacing", request.spacing},
+                     {"percents", request.percents},
+                     {"lods_recovered", recovered},
+                     {"timing", "steady_clock, recovery alone"},
+                     {"tests", rows}});
+    return 0;
+  }
+  std::cout << "replay        " << request.input << ": mode sets, " << summaries.size()
+            << " recovery tests, " << recovered << " LoDs recovered"
+            << (request.validate ? ", every LoD validated" : "") << "\n";
+  std::cout << "sets          " << graph.strip_count() << " strips, " << graph.node_count()
+            << " nodes over " << graph.lod_count << " LoDs, " << data.pm.base.triangle_count()
+            << " base triangles\n";
+  std::cout
+      << "tests         LoD 0 to the coarsest and back; recovery alone (steady_clock): fresh\n"
+         "              recover() and coherent recover_coherent() at every LoD\n\n";
+  char line[160];
+  std::snprintf(line, sizeof line, "%-12s %7s %7s %14s %17s %15s %18s\n", "spacing", "percent",
+                "LoDs", "fresh us/LoD", "coherent us/LoD", "fresh M idx/s", "coherent M idx/s");
+  std::cout << line;
+  for (const SetsTestSummary& t : summaries) {
+    std::snprintf(line, sizeof line, "%-12s %6s%% %7zu %14.1f %17.1f %15.1f %18.1f\n",
+                  spacing_name(t.spacing), percent_text(t.percent).c_str(), t.lods,
+                  t.fresh_us_per_lod, t.coherent_us_per_lod, t.fresh_mindices_per_s,
+                  t.coherent_mindices_per_s);
+    std::cout << line;
+  }
+  return 0;
+}
+
+int run(const Tool& tool, const Request& request) {
+  Result<Bytes> bytes = read_file(request.input);
+  if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
+  if (request.mode == "sets") return run_sets(tool, request, bytes.value());
+  return run_camera_path(tool, request, bytes.value());
+}
+
+// "1,3,6" -> {1, 3, 6}: percentages in (0, 100].
+Result<std::vector<double>> parse_percents(const std::string& text) {
+  std::vector<double> percents;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double p = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == nullptr || *end != '\0' || !(p > 0 && p <= 100))
+      return Status(
+          ErrorKind::kUsage,
+          "--percent takes percentages in (0, 100] separated by commas, not '" + item + "'");
+    percents.push_back(p);
+  }
+  if (percents.empty()) return Status(ErrorKind::kUsage, "--percent needs at least one percentage");
+  return percents;
+}
+
 // "1.5" pixels or "0.1%" of the viewport height; nothing when malformed or
 // not > 0.
 std::optional<float> tolerance_pixels(const std::string& text, uint32_t height) {
@@ -599,9 +763,11 @@ std::optional<float> tolerance_pixels(const std::string& text, uint32_t height) 
 int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
-  Tool tool("lodbake-replay", "FILE.lbk [--mode vhier|dag|fan] [--path scan|orbit|FILE] [options]",
+  Tool tool("lodbake-replay",
+            "FILE.lbk [--mode vhier|dag|fan|sets] [--path scan|orbit|FILE] [options]",
             "Replays a camera path on a container's view-dependent structure and reports,\n"
-            "per frame, the refinement operations, fronts, triangles and adapt time.\n"
+            "per frame, the refinement operations, fronts, triangles and adapt time; or\n"
+            "(mode sets) runs the SETS strip paper's LoD-recovery tests.\n"
             "Mode vhier (default): BASE + VHIE + RFIN from lodbake-hierarchy; the vertex\n"
             "front is refined while a node's bounding sphere meets the view frustum, its\n"
             "normal cone is not entirely back-facing and its deviation projects to more than\n"
@@ -619,6 +785,10 @@ int main(int argc, char** argv) {
             "view) by one fan-merge / fan-split when the target is an end of its fine path\n"
             "at least --coarse x its children away, else by edge collapses / vertex splits\n"
             "(Livny, Sokolovsky & El-Sana 2007).\n"
+            "Mode sets: BASE + VSPL + SETS from lodbake-strips; not camera-driven (no --path\n"
+            "or view options): each test recovers --percent of all LoDs, spaced linearly or\n"
+            "exponentially (--spacing), from LoD 0 (the full mesh) to the coarsest and back,\n"
+            "each LoD with a fresh and a coherent recovery timed alone (Belmonte et al. 2006).\n"
             "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
             "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
             "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
@@ -629,11 +799,11 @@ int main(int argc, char** argv) {
   uint32_t width = 1024, height = 768;
   float near_fraction = 0.01f;
   tool.options().add_options()("mode", po::value<std::string>(&request.mode)->value_name("M"),
-                               "the structure replayed: vhier (default), dag or fan")(
+                               "the structure replayed: vhier (default), dag, fan or sets")(
       "path", po::value<std::string>(&request.path)->value_name("P"),
       "scan (default), orbit, or a CSV or JSON camera path FILE")(
       "tolerance", po::value<std::string>(&request.tolerance)->value_name("T"),
-      "screen-space error tolerance: pixels of the viewport height (default 1),\n"
+      "screen-space error tolerance: pixels of the viewport height (default 1), "
       "or a percentage of it such as 0.1% (the DAG paper's setting)")(
       "width", po::value<uint32_t>(&width)->value_name("W"), "viewport width (default 1024)")(
       "height", po::value<uint32_t>(&height)->value_name("H"), "viewport height (default 768)")(
@@ -642,38 +812,70 @@ int main(int argc, char** argv) {
       "near", po::value<float>(&near_fraction)->value_name("F"),
       "near plane at F times the bounding-sphere radius (default 0.01)")(
       "validate", po::bool_switch(&request.validate),
-      "after every frame, check that the mesh is an edge-manifold, consistently oriented\n"
-      "triangulation without duplicate triangles and the counters agree (exit 7 naming\n"
-      "the frame otherwise)")("csv", po::value<std::string>(&request.csv)->value_name("FILE"),
-                              "write per-frame rows to FILE (vhier: frame, splits, collapses,\n"
-                              "passes, front, triangles, adapt_ms; dag: one row per frame and\n"
-                              "traversal: frame, traversal, splits, collapses, visited,\n"
-                              "budget_mode, fs, fc, triangles, traversal_ms, accuracy; fan:\n"
-                              "frame, fan_merges, fan_splits, collapses, splits, active,\n"
-                              "triangles, adapt_ms)");
+      "after every frame, check that the mesh is an edge-manifold, consistently oriented "
+      "triangulation without duplicate triangles and the counters agree (exit 7 naming "
+      "the frame otherwise); sets: after every LoD, that the strips' triangles are the "
+      "progressive mesh's at that LoD with their orientation, form such a triangulation "
+      "and coherent recovery equals fresh recovery (exit 7 naming the LoD)")(
+      "csv", po::value<std::string>(&request.csv)->value_name("FILE"),
+      "write per-frame rows to FILE (vhier: frame, splits, collapses, "
+      "passes, front, triangles, adapt_ms; dag: one row per frame and "
+      "traversal: frame, traversal, splits, collapses, visited, "
+      "budget_mode, fs, fc, triangles, traversal_ms, accuracy; fan: "
+      "frame, fan_merges, fan_splits, collapses, splits, active, "
+      "triangles, adapt_ms; sets: one row per LoD: spacing, "
+      "percent, step, lod, strips, indices, triangles, fresh_us, "
+      "coherent_us)");
   tool.options().add_options()(
       "traversal", po::value<std::string>(&request.traversal)->value_name("T"),
       "dag: priority (default), linear, constant, or all (the three side by side)")(
       "budget-mode", po::value<std::string>(&request.budget_mode)->value_name("M"),
-      "dag: auto (default: FREE-MODE while --changes splits cannot reach the budget,\n"
+      "dag: auto (default: FREE-MODE while --changes splits cannot reach the budget, "
       "BUDGET-MODE once they could), budget, or free (no triangle budget)")(
       "budget", po::value<size_t>(&request.dag.triangle_budget)->value_name("T"),
       "dag: triangle budget (default 60000)")(
       "changes", po::value<size_t>(&request.dag.max_changes)->value_name("N"),
-      "dag: at most N collapses and N splits per frame; constant-time: N nodes visited\n"
+      "dag: at most N collapses and N splits per frame; constant-time: N nodes visited "
       "by each (default 300)")(
       "coarse", po::value<float>(&request.fan.coarse_fraction)->value_name("F"),
-      "fan: one fan-merge / fan-split when the target is an end of the fine path at\n"
-      "least max(1, ceil(F x children)) steps away, else merge-pointer steps (default\n"
+      "fan: one fan-merge / fan-split when the target is an end of the fine path at "
+      "least max(1, ceil(F x children)) steps away, else merge-pointer steps (default "
       "0.5; 0: always, > 1: never)");
+  std::string percents;
+  tool.options().add_options()("percent", po::value<std::string>(&percents)->value_name("LIST"),
+                               "sets: percentages of all LoDs each test recovers (default "
+                               "1,3,6,10,15,20, the paper's)")(
+      "spacing", po::value<std::string>(&request.spacing)->value_name("S"),
+      "sets: linear, exponential or both (default)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "FILE.lbk", &request.input))
     return *code;
-  if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan") {
+  if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan" &&
+      request.mode != "sets") {
     return tool.usage_error("--mode '" + request.mode +
-                            "' is not available (modes: vhier, dag, fan)");
+                            "' is not available (modes: vhier, dag, fan, sets)");
   }
+  // Each option belongs to the camera modes or to mode sets; one given to
+  // the other kind is refused rather than silently ignored.
+  const bool sets = request.mode == "sets";
+  for (const char* option : {"path", "tolerance", "width", "height", "fov", "near", "traversal",
+                             "budget-mode", "budget", "changes", "coarse", "percent", "spacing"}) {
+    const bool sets_option = std::string(option) == "percent" || std::string(option) == "spacing";
+    if (tool.has(option) && sets_option != sets) {
+      return tool.usage_error("--" + std::string(option) + " does not apply to --mode " +
+                              request.mode +
+                              (sets ? " (its steps are LoDs, not camera frames)" : ""));
+    }
+  }
+  if (tool.has("percent")) {
+    Result<std::vector<double>> parsed = parse_percents(percents);
+    if (!parsed.is_ok()) return tool.usage_error(parsed.status().message());
+    request.percents = parsed.value();
+  }
+  if (request.spacing != "linear" && request.spacing != "exponential" && request.spacing != "both")
+    return tool.usage_error("--spacing takes linear, exponential or both, not '" + request.spacing +
+                            "'");
   if (!(request.fan.coarse_fraction >= 0 && std::isfinite(request.fan.coarse_fraction)))
     return tool.usage_error("--coarse takes a fraction >= 0");
   if (request.dag.max_changes == 0) return tool.usage_error("--changes takes N >= 1");
