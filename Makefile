@@ -10,7 +10,7 @@ SHARED_DATA ?= $(abspath ../shared/data)
 DEBIAN_PACKAGES := cmake make g++ pkg-config ccache xz-utils \
   libcgal-dev libeigen3-dev libopenmesh-dev libdraco-dev libboost-program-options-dev \
   nlohmann-json3-dev libssl-dev zlib1g-dev \
-  libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev gnuplot-nox
 FUZZ_PACKAGES := clang libclang-rt-14-dev
 
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)

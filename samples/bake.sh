@@ -5,8 +5,10 @@
 # progressive mesh whose full refinement is checked again, repack that
 # (compact VSPL, Draco BASE), build the balanced hierarchy with its split DAG
 # and vertex trees, the fan-merge hierarchy, strips and the SETS graph and
-# validate them, replay the scan camera path on the hierarchy with every
-# frame validated, then print a summary.
+# validate them, print a summary of the sizes, and end by replaying the scan
+# camera path on the hierarchy, the split DAG (all three traversals) and the
+# fan hierarchy and the LoD-recovery tests on the SETS graph, every frame
+# validated, each printing its summary and drawing its charts.
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -59,12 +61,6 @@ step "9. repack the progressive mesh: compact VSPL, Draco BASE (lodbake-pack)"
 "$bin/lodbake-pack" "$out/elephant-pm.lbk" --draco -o "$out/elephant-pm-packed.lbk"
 "$bin/lodbake-inspect" --validate --quiet "$out/elephant-pm-packed.lbk" > /dev/null
 
-step "10. replay the scan path on the balanced hierarchy and its split DAG, every frame validated (lodbake-replay)"
-"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode vhier --path scan --validate \
-  --csv "$out/elephant-replay-scan.csv"
-"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode dag --traversal all --path scan --validate \
-  --csv "$out/elephant-replay-dag-scan.csv"
-
 size() { stat -c %s "$1"; }
 step "summary"
 printf '%-28s %10s bytes\n' "input elephant.off" "$(size "$mesh")"
@@ -77,4 +73,13 @@ printf '%-28s %10s bytes\n' "elephant-10.obj (10%)" "$(size "$out/elephant-10.ob
 printf '%-28s %10s bytes\n' "elephant-hierarchy.lbk" "$(size "$out/elephant-hierarchy.lbk")"
 printf '%-28s %10s bytes\n' "elephant-fan.lbk (FANH)" "$(size "$out/elephant-fan.lbk")"
 printf '%-28s %10s bytes\n' "elephant-sets.lbk (SETS)" "$(size "$out/elephant-sets.lbk")"
-echo "all steps passed; outputs in $out"
+step "10. replay the baked structures (lodbake-replay, every frame validated, charts drawn with gnuplot)"
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode vhier --path scan --validate \
+  --csv "$out/elephant-replay-scan.csv" --plot "$out/plots-vhier"
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode dag --traversal all --path scan --validate \
+  --csv "$out/elephant-replay-dag-scan.csv" --plot "$out/plots-dag"
+"$bin/lodbake-replay" "$out/elephant-fan.lbk" --mode fan --path scan --validate --plot "$out/plots-fan"
+"$bin/lodbake-replay" "$out/elephant-sets.lbk" --mode sets --percent 1,3 --validate \
+  --plot "$out/plots-sets"
+echo
+echo "all steps passed; outputs in $out, charts in $out/plots-{vhier,dag,fan,sets}"

@@ -37,6 +37,7 @@
 #include "lib/replay/sets_replay.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
+#include "tools/replay/plots.h"
 
 namespace lodbake::cli {
 namespace {
@@ -48,6 +49,7 @@ struct Request {
   std::string mode = "vhier";
   std::string path = "scan";
   std::string csv;
+  std::string plot;  // --plot DIR
   std::string tolerance = "1";
   std::string traversal = "priority";
   std::string budget_mode = "auto";
@@ -297,6 +299,35 @@ Result<Session> load(const Bytes& bytes, const Request& request) {
   }
 }
 
+// "elephant.lbk, mode dag, path scan": the charts' heading.
+std::string plot_title(const Request& request) {
+  const size_t slash = request.input.find_last_of('/');
+  std::string title = slash == std::string::npos ? request.input : request.input.substr(slash + 1);
+  title += ", mode " + request.mode;
+  if (request.mode != "sets") {
+    const size_t path_slash = request.path.find_last_of('/');
+    title += ", path " +
+             (path_slash == std::string::npos ? request.path : request.path.substr(path_slash + 1));
+  }
+  return title;
+}
+
+// The --plot files as paths, for the reports.
+std::vector<std::string> plot_paths(const Request& request, const std::vector<std::string>& files) {
+  std::vector<std::string> paths;
+  for (const std::string& f : files)
+    paths.push_back(request.plot + "/" + f);
+  return paths;
+}
+
+void print_plots(const Request& request, const std::vector<std::string>& files) {
+  if (files.empty()) return;
+  std::cout << "plots         " << request.plot << ":";
+  for (size_t i = 0; i < files.size(); ++i)
+    std::cout << (i == 0 ? " " : ", ") << files[i];
+  std::cout << "\n";
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
@@ -408,7 +439,8 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
     progress.update(static_cast<double>(i + 1) / path.size());
   }
 
-  if (!request.csv.empty()) {
+  std::vector<std::string> plots;
+  if (!request.csv.empty() || !request.plot.empty()) {
     std::ostringstream csv;
     csv << (dag   ? "frame,traversal,splits,collapses,visited,budget_mode,fs,fc,triangles,"
                     "traversal_ms,accuracy\n"
@@ -432,8 +464,18 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
         }
       }
     }
-    Status written = write_file_atomic(request.csv, csv.str());
-    if (!written.is_ok()) return tool.fail(request.csv, written);
+    if (!request.plot.empty()) {
+      std::string lanes;
+      for (const std::string& lane : session.lanes)
+        lanes += (lanes.empty() ? "" : " ") + lane;
+      const Status plotted =
+          write_plots({request.plot, request.mode, lanes, plot_title(request), csv.str()}, &plots);
+      if (!plotted.is_ok()) return tool.fail(request.plot, plotted);
+    }
+    if (!request.csv.empty()) {
+      Status written = write_file_atomic(request.csv, csv.str());
+      if (!written.is_ok()) return tool.fail(request.csv, written);
+    }
   }
 
   std::vector<LaneSummary> lanes;
@@ -506,6 +548,7 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
     report["adapt_ms"] = timing(l);
     report["frames_at_pass_limit"] = l.pass_limited;
   }
+  if (!plots.empty()) report["plots"] = plot_paths(request, plots);
   if (tool.json()) {
     tool.print_json(report);
     return 0;
@@ -522,6 +565,7 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
             << " deg, tolerance " << request.options.tolerance_pixels << " px";
   if (request.tolerance.back() == '%') std::cout << " (" << request.tolerance << " of the height)";
   std::cout << "\n";
+  print_plots(request, plots);
   if (fan) {
     const LaneSummary& l = lanes[0];
     const size_t operations = l.fan_merges + l.fan_splits + l.collapses + l.splits;
@@ -646,7 +690,7 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
       }
       summaries.push_back(summarize_sets_test(spacing, percent, steps.value()));
       recovered += steps.value().size();
-      if (!request.csv.empty()) {
+      if (!request.csv.empty() || !request.plot.empty()) {
         for (size_t k = 0; k < steps.value().size(); ++k) {
           const SetsStep& step = steps.value()[k];
           csv << spacing_name(spacing) << ',' << percent << ',' << k << ',' << step.lod << ','
@@ -656,6 +700,12 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
       }
       progress.update(static_cast<double>(summaries.size()) / tests);
     }
+  }
+  std::vector<std::string> plots;
+  if (!request.plot.empty()) {
+    const Status plotted =
+        write_plots({request.plot, request.mode, "", plot_title(request), csv.str()}, &plots);
+    if (!plotted.is_ok()) return tool.fail(request.plot, plotted);
   }
   if (!request.csv.empty()) {
     Status written = write_file_atomic(request.csv, csv.str());
@@ -675,20 +725,22 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
                       {"fresh_mindices_per_s", t.fresh_mindices_per_s},
                       {"coherent_mindices_per_s", t.coherent_mindices_per_s}});
     }
-    tool.print_json({{"schema", kReplaySchema},
-                     {"input", request.input},
-                     {"mode", request.mode},
-                     {"validated", request.validate},
-                     {"sets",
-                      {{"strips", graph.strip_count()},
-                       {"nodes", graph.node_count()},
-                       {"lods", graph.lod_count},
-                       {"base_triangles", data.pm.base.triangle_count()}}},
-                     {"spacing", request.spacing},
-                     {"percents", request.percents},
-                     {"lods_recovered", recovered},
-                     {"timing", "steady_clock, recovery alone"},
-                     {"tests", rows}});
+    nlohmann::json report = {{"schema", kReplaySchema},
+                             {"input", request.input},
+                             {"mode", request.mode},
+                             {"validated", request.validate},
+                             {"sets",
+                              {{"strips", graph.strip_count()},
+                               {"nodes", graph.node_count()},
+                               {"lods", graph.lod_count},
+                               {"base_triangles", data.pm.base.triangle_count()}}},
+                             {"spacing", request.spacing},
+                             {"percents", request.percents},
+                             {"lods_recovered", recovered},
+                             {"timing", "steady_clock, recovery alone"},
+                             {"tests", rows}};
+    if (!plots.empty()) report["plots"] = plot_paths(request, plots);
+    tool.print_json(report);
     return 0;
   }
   std::cout << "replay        " << request.input << ": mode sets, " << summaries.size()
@@ -697,6 +749,7 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
   std::cout << "sets          " << graph.strip_count() << " strips, " << graph.node_count()
             << " nodes over " << graph.lod_count << " LoDs, " << data.pm.base.triangle_count()
             << " base triangles\n";
+  print_plots(request, plots);
   std::cout
       << "tests         LoD 0 to the coarsest and back; recovery alone (steady_clock): fresh\n"
          "              recover() and coherent recover_coherent() at every LoD\n\n";
@@ -817,6 +870,12 @@ int main(int argc, char** argv) {
       "the frame otherwise); sets: after every LoD, that the strips' triangles are the "
       "progressive mesh's at that LoD with their orientation, form such a triangulation "
       "and coherent recovery equals fresh recovery (exit 7 naming the LoD)")(
+      "plot", po::value<std::string>(&request.plot)->value_name("DIR"),
+      "draw the paper-style charts as SVG in DIR (made when missing) with gnuplot "
+      "(Debian's gnuplot-nox): dag: traversal time, accuracy, fronts against the mesh, "
+      "operations per frame; vhier and fan: adapt time, front or active nodes against "
+      "the mesh, operations per frame; sets: recovery time per LoD. DIR also gets the "
+      "rows (frames.csv) and the script (replay.gp) to re-run")(
       "csv", po::value<std::string>(&request.csv)->value_name("FILE"),
       "write per-frame rows to FILE (vhier: frame, splits, collapses, "
       "passes, front, triangles, adapt_ms; dag: one row per frame and "
@@ -931,6 +990,7 @@ int main(int argc, char** argv) {
   request.dag.tolerance_pixels = request.options.tolerance_pixels;
   request.fan.viewport = request.options.viewport;
   request.fan.tolerance_pixels = request.options.tolerance_pixels;
+  if (tool.has("plot") && request.plot.empty()) return tool.usage_error("--plot takes a folder");
   if (!request.csv.empty() && same_file(request.input, request.csv))
     return tool.usage_error("the --csv output '" + request.csv + "' is the input itself");
   return tool.run([&] { return run(tool, request); });
