@@ -51,13 +51,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The triangle with its smallest corner first, cyclic order kept.
-Triangle canonical(const Triangle& t) {
-  if (t[1] < t[0] && t[1] < t[2]) return {t[1], t[2], t[0]};
-  if (t[2] < t[0] && t[2] < t[1]) return {t[2], t[0], t[1]};
-  return t;
-}
-
 }  // namespace
 
 const char* dag_traversal_name(DagTraversal traversal) {
@@ -332,11 +325,8 @@ std::vector<std::string> DagReplay::check() const {
 
 double cut_accuracy(const std::vector<Triangle>& reference, const std::vector<Triangle>& other) {
   if (reference.empty()) return 1;
-  std::vector<Triangle> a(reference.size()), b(other.size());
-  std::transform(reference.begin(), reference.end(), a.begin(), canonical);
-  std::transform(other.begin(), other.end(), b.begin(), canonical);
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
+  const std::vector<Triangle> a = sorted_canonical(reference);
+  const std::vector<Triangle> b = sorted_canonical(other);
   size_t shared = 0;
   for (size_t i = 0, j = 0; i < a.size() && j < b.size();) {
     if (a[i] < b[j]) {

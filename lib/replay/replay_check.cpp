@@ -1,5 +1,7 @@
 #include "lib/replay/replay_check.h"
 
+#include <algorithm>
+
 namespace lodbake {
 
 std::vector<std::string> triangulation_problems(const MeshCheckReport& r) {
@@ -14,6 +16,18 @@ std::vector<std::string> triangulation_problems(const MeshCheckReport& r) {
   add(r.inconsistent_orientation_edges,
       "edges walked twice the same way (inconsistent orientation)");
   return problems;
+}
+
+std::vector<Triangle> sorted_canonical(std::vector<Triangle> triangles) {
+  for (Triangle& t : triangles) {
+    if (t[1] < t[0] && t[1] < t[2]) {
+      t = {t[1], t[2], t[0]};
+    } else if (t[2] < t[0] && t[2] < t[1]) {
+      t = {t[2], t[0], t[1]};
+    }
+  }
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
 }
 
 }  // namespace lodbake

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/mesh/triangle_mesh.h"
 #include "lib/check/mesh_check.h"
 
 namespace lodbake {
@@ -16,5 +17,10 @@ namespace lodbake {
 /// triangles, each with its count; empty when there is none. Non-manifold
 /// vertices and boundaries are not problems (an input may have them).
 std::vector<std::string> triangulation_problems(const MeshCheckReport& report);
+
+/// Each triangle rotated to start at its smallest corner (the cyclic order,
+/// so the orientation, kept), then sorted: two triangle lists describe the
+/// same oriented triangles exactly when these are equal.
+std::vector<Triangle> sorted_canonical(std::vector<Triangle> triangles);
 
 }  // namespace lodbake

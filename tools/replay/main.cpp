@@ -35,6 +35,7 @@
 #include "lib/replay/dag_replay.h"
 #include "lib/replay/fan_replay.h"
 #include "lib/replay/sets_replay.h"
+#include "lib/replay/structure_cross_check.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
 #include "tools/replay/plots.h"
@@ -85,6 +86,63 @@ struct Row {
   double accuracy = -1;
 };
 
+// --validate's cross-structure check: the hierarchy (VHIE) against the
+// split DAG (VSPL + DAGE) of the same container, after every frame. It holds
+// what the replayed mode does not decode itself; `unavailable` says why the
+// check cannot run (the other structure is missing or not the same one).
+struct CrossCheckState {
+  std::string unavailable;
+  VertexHierarchy h;
+  ProgressiveMesh pm;
+  VsplitDag dag;
+  std::optional<StructureCrossCheck> check;
+  size_t frames = 0;        // checks made (one per frame and lane)
+  size_t on_own_front = 0;  // of which on the replay's own front
+};
+
+// Makes the check for the structures the mode decoded (`h`, or `pm` and
+// `dag`), decoding the other one from the container; never fails: a
+// container without it gets `unavailable` set.
+std::shared_ptr<CrossCheckState> prepare_cross_check(const Container& container,
+                                                     const Section& base, const VertexHierarchy* h,
+                                                     const ProgressiveMesh* pm,
+                                                     const VsplitDag* dag) {
+  auto cross = std::make_shared<CrossCheckState>();
+  auto fail = [&](const std::string& why) {
+    cross->unavailable = why;
+    return cross;
+  };
+  if (h == nullptr) {
+    const Section* vhie = container.find(kVhieTag);
+    if (vhie == nullptr) return fail("the container has no VHIE section");
+    Result<TriangleMesh> base_mesh = decode_base(base.data, base.size);
+    if (!base_mesh.is_ok()) return fail(base_mesh.status().message());
+    Result<VertexHierarchy> decoded =
+        decode_vhie(vhie->data, vhie->size, std::move(base_mesh).value());
+    if (!decoded.is_ok()) return fail("VHIE: " + decoded.status().message());
+    cross->h = std::move(decoded).value();
+    h = &cross->h;
+  } else {
+    const Section* vspl = container.find(kVsplTag);
+    const Section* dage = container.find(kDageTag);
+    if (vspl == nullptr || dage == nullptr)
+      return fail("the container has no VSPL + DAGE sections");
+    Result<ProgressiveMesh> decoded_pm =
+        decode_progressive_mesh(base.data, base.size, vspl->data, vspl->size);
+    if (!decoded_pm.is_ok()) return fail("VSPL: " + decoded_pm.status().message());
+    Result<VsplitDag> decoded_dag = decode_dage(dage->data, dage->size);
+    if (!decoded_dag.is_ok()) return fail("DAGE: " + decoded_dag.status().message());
+    cross->pm = std::move(decoded_pm).value();
+    cross->dag = std::move(decoded_dag).value();
+    pm = &cross->pm;
+    dag = &cross->dag;
+  }
+  Result<StructureCrossCheck> check = StructureCrossCheck::create(*h, *pm, *dag);
+  if (!check.is_ok()) return fail(check.status().message());
+  cross->check.emplace(std::move(check).value());
+  return cross;
+}
+
 // A loaded structure, stepped one camera at a time; one Row per lane.
 struct Session {
   BoundingSphere sphere;
@@ -93,6 +151,7 @@ struct Session {
   std::vector<std::string> lanes;
   std::function<Result<std::vector<Row>>(const CameraFrame&)> step;
   std::function<std::vector<std::string>()> check;
+  std::shared_ptr<CrossCheckState> cross;  // with --validate in modes vhier and dag
 };
 
 struct VhierState {
@@ -154,7 +213,21 @@ Result<Session> load_vhier(const Container& container, const Section& base,
     row.ms = f.adapt_ms;
     return std::vector<Row>{row};
   };
-  session.check = [state] { return check_vhier_mesh(*state->refiner); };
+  if (request.validate)
+    session.cross = prepare_cross_check(container, base, &state->h, nullptr, nullptr);
+  std::shared_ptr<CrossCheckState> cross = session.cross;
+  session.check = [state, cross] {
+    std::vector<std::string> problems = check_vhier_mesh(*state->refiner);
+    if (cross && cross->check) {
+      std::vector<uint8_t> flags = cross->check->refiner_splits(*state->refiner);
+      const bool own = cross->check->close(&flags);
+      ++cross->frames;
+      cross->on_own_front += own;
+      for (std::string& p : cross->check->compare(flags, own ? &*state->refiner : nullptr, nullptr))
+        problems.push_back(std::move(p));
+    }
+    return problems;
+  };
   return session;
 }
 
@@ -231,11 +304,25 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
     }
     return rows;
   };
-  session.check = [state, traversals] {
+  if (request.validate)
+    session.cross = prepare_cross_check(container, base, nullptr, &state->pm, &state->dag);
+  std::shared_ptr<CrossCheckState> cross = session.cross;
+  session.check = [state, traversals, cross] {
     std::vector<std::string> problems;
     for (size_t i = 0; i < traversals.size(); ++i) {
+      const std::string lane = std::string(dag_traversal_name(traversals[i])) + " traversal: ";
       for (const std::string& p : state->lanes[i].check())
-        problems.push_back(std::string(dag_traversal_name(traversals[i])) + " traversal: " + p);
+        problems.push_back(lane + p);
+      if (cross && cross->check) {
+        std::vector<uint8_t> flags = cross->check->dag_splits(state->lanes[i].fronts());
+        const bool own = cross->check->close(&flags);
+        ++cross->frames;
+        cross->on_own_front += own;
+        const std::vector<Triangle> cut =
+            own ? state->lanes[i].cut_triangles() : std::vector<Triangle>();
+        for (const std::string& p : cross->check->compare(flags, nullptr, own ? &cut : nullptr))
+          problems.push_back(lane + p);
+      }
     }
     return problems;
   };
@@ -549,6 +636,11 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
     report["frames_at_pass_limit"] = l.pass_limited;
   }
   if (!plots.empty()) report["plots"] = plot_paths(request, plots);
+  if (const CrossCheckState* cross = session.cross.get()) {
+    report["cross_check"] = cross->check ? nlohmann::json{{"checks", cross->frames},
+                                                          {"on_own_front", cross->on_own_front}}
+                                         : nlohmann::json{{"unavailable", cross->unavailable}};
+  }
   if (tool.json()) {
     tool.print_json(report);
     return 0;
@@ -566,6 +658,17 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
   if (request.tolerance.back() == '%') std::cout << " (" << request.tolerance << " of the height)";
   std::cout << "\n";
   print_plots(request, plots);
+  if (const CrossCheckState* cross = session.cross.get()) {
+    if (cross->check) {
+      std::cout << "cross-check   " << (dag ? "every DAG cut gives" : "every front gives")
+                << " the same triangles in the " << (dag ? "hierarchy" : "split DAG") << " ("
+                << cross->frames << " checks, " << cross->on_own_front
+                << " on the replay's own front, the others on the smallest front closed under "
+                   "both)\n";
+    } else {
+      std::cout << "cross-check   not made: " << cross->unavailable << "\n";
+    }
+  }
   if (fan) {
     const LaneSummary& l = lanes[0];
     const size_t operations = l.fan_merges + l.fan_splits + l.collapses + l.splits;
