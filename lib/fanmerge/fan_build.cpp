@@ -35,8 +35,10 @@
 #include <new>
 
 #include "lib/fanmerge/fan_mesh_state.h"
+#include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/quadric.h"
+#include "lib/simplify/vec_math.h"
 
 namespace lodbake {
 namespace {
@@ -45,19 +47,6 @@ using fan_internal::FanMeshState;
 using fan_internal::has_corner;
 
 constexpr double kPi = 3.14159265358979323846;
-
-Vec3d to_d(const Vec3f& p) {
-  return {p[0], p[1], p[2]};
-}
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // A binary min-heap of vertices keyed by priority (ties: vertex index), with
 // each vertex's position kept so that a changed priority is updated in place:
@@ -236,8 +225,7 @@ class FanBuilder {
       const Vec3d p0 = to_d(input_.positions[t[0]]);
       const Vec3d p1 = to_d(input_.positions[t[1]]);
       const Vec3d p2 = to_d(input_.positions[t[2]]);
-      Quadric q = Quadric::from_triangle(p0, p1, p2);
-      if (q.weight > 0) q *= std::sqrt(q.weight) / q.weight;
+      const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t)
         quadric_[v] += q;
       if (!(bw > 0) ||
@@ -250,13 +238,10 @@ class FanBuilder {
         if (!topology.boundary[a] || !topology.boundary[b] ||
             !is_boundary_half_edge(topology, a, b))
           continue;
-        const Vec3d pa = to_d(input_.positions[a]);
-        const Vec3d e = sub(to_d(input_.positions[b]), pa);
-        Vec3d pn = cross(e, normal);
-        const double len = std::sqrt(dot(pn, pn));
-        if (!(len > 0)) continue;
-        pn = {pn[0] / len, pn[1] / len, pn[2] / len};
-        const Quadric bq = Quadric::from_plane(pn, -dot(pn, pa), bw * std::sqrt(dot(e, e)));
+        Quadric bq;
+        if (!boundary_edge_quadric(to_d(input_.positions[a]), to_d(input_.positions[b]), normal, bw,
+                                   &bq))
+          continue;
         quadric_[a] += bq;
         quadric_[b] += bq;
       }

@@ -15,6 +15,7 @@
 #include "lib/fanmerge/fan_build.h"
 #include "lib/fanmerge/fan_mesh_state.h"
 #include "lib/fanmerge/fan_runtime.h"
+#include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/mesh_topology.h"
 #include "tests/unit/simplify_test_meshes.h"
 #include "tests/unit/test_meshes.h"
@@ -99,10 +100,58 @@ TEST(FanBuild, ForestShapeAndCounts) {
     EXPECT_GE(s.depth, 2u);
     EXPECT_TRUE(valid_triangulation(r.coarsest));
     EXPECT_LT(r.coarsest.triangle_count(), c.mesh.triangle_count() / 4);
-    // The fine path is ordered by collapse error: children's order is
-    // checked through the stored error being their sum (>= 0, finite).
     for (float e : h.error)
       EXPECT_GE(e, 0.f);
+  }
+}
+
+// Replays the construction's quadrics independently (sqrt-area plane
+// quadrics of the input faces, a centre's quadric growing by each child it
+// merges, in fine-path order): at every node, the children after the centre
+// are in non-decreasing delta(u) = Q_u(v) / w_u (the fine path is the
+// collapse-error order), and the node's error is their sum, Delta(v). On the
+// closed meshes, where no boundary planes enter.
+TEST(FanBuild, FinePathIsInDeltaOrderAndErrorIsTheirSum) {
+  for (const Case& c : small_cases()) {
+    std::set<std::pair<uint32_t, uint32_t>> edges;
+    for (const Triangle& t : c.mesh.triangles)
+      for (int k = 0; k < 3; ++k)
+        edges.insert({t[k], t[(k + 1) % 3]});
+    bool closed = true;
+    for (const auto& [a, b] : edges)
+      closed = closed && edges.count({b, a}) != 0;
+    if (!closed) continue;
+    SCOPED_TRACE(c.name);
+    const FanHierarchy h = build(c.mesh).hierarchy;
+    std::vector<Quadric> q(c.mesh.vertex_count());
+    auto at = [&](uint32_t v) { return to_d(c.mesh.positions[v]); };
+    for (const Triangle& t : c.mesh.triangles) {
+      const Quadric f = sqrt_area_triangle_quadric(at(t[0]), at(t[1]), at(t[2]));
+      for (uint32_t v : t)
+        q[v] += f;
+    }
+    std::vector<uint32_t> vertex_of(h.node_count());
+    for (uint32_t v = 0; v < h.vertex_count; ++v)
+      vertex_of[v] = v;
+    size_t checked = 0;
+    for (uint32_t i = 0; i < h.internal_count(); ++i) {
+      const uint32_t begin = h.child_start[i], end = h.child_start[i + 1];
+      const uint32_t v = vertex_of[h.children[begin]];
+      vertex_of[h.vertex_count + i] = v;
+      double sum = 0, last = -1;
+      for (uint32_t k = begin + 1; k < end; ++k) {
+        const uint32_t u = vertex_of[h.children[k]];
+        const double d = q[u].weight > 0 ? q[u].evaluate(at(v)) / q[u].weight : 0.0;
+        ASSERT_GE(d, last) << "node " << i << ", child " << k - begin;
+        last = d;
+        sum += d;
+      }
+      ASSERT_NEAR(h.error[i], sum, 1e-5 * sum + 1e-30) << "node " << i;
+      for (uint32_t k = begin + 1; k < end; ++k)
+        q[v] += q[vertex_of[h.children[k]]];
+      ++checked;
+    }
+    EXPECT_GT(checked, 20u);
   }
 }
 
