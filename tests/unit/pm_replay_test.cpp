@@ -73,13 +73,14 @@ TEST_P(PmReplayOnSharedMesh, FullRefinementIsTheInputAndEveryPrefixIsClean) {
   EXPECT_TRUE(same_oriented_triangles(mapped.value(), input));
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedMeshes, PmReplayOnSharedMesh,
-                         ::testing::Values("cgal_tetrahedron.off", "cgal_cube_quad.off",
-                                           "igl_decimated-knight.off", "npm_bunny.obj",
-                                           "cgal_mushroom.off", "cgal_elephant.off", "c3d_spot.obj",
-                                           "cgal_knot2.off", "cgal_fandisk.off",
-                                           "igl_camelhead.off", "stanford_bun_zipper.ply",
-                                           "cgal_elephant-with-holes.off", "cgal_blobby_3cc.off"));
+INSTANTIATE_TEST_SUITE_P(
+    SharedMeshes, PmReplayOnSharedMesh,
+    ::testing::Values("cgal_tetrahedron.off", "cgal_cube_quad.off", "igl_decimated-knight.off",
+                      "npm_bunny.obj", "cgal_mushroom.off", "cgal_elephant.off", "c3d_spot.obj",
+                      "cgal_knot2.off", "cgal_fandisk.off", "igl_camelhead.off",
+                      "stanford_bun_zipper.ply", "cgal_elephant-with-holes.off",
+                      "cgal_blobby_3cc.off", "cgal_mpi.off", "igl_fertility.off", "cgal_cheese.off",
+                      "cgal_camel.off", "cgal_ChineseDragon-10kv.off", "c3d_rocker-arm.obj"));
 
 TEST(PmReplay, OptimalPlacementReplaysExactly) {
   const TriangleMesh input = load_clean_mesh("cgal_mushroom.off");

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "lib/check/mesh_check.h"
+#include "lib/simplify/pm_replay.h"
 #include "simplify_test_meshes.h"
 
 namespace lodbake {
@@ -313,6 +314,71 @@ TEST(Simplify, CornersMovedToTheSurvivorTakeItsValues) {
   options.permissive = true;
   const SimplifyResult p = run(mesh, options);
   EXPECT_GT(mismatches(p.mesh), 0u);
+}
+
+// The largest angle, in degrees, by which one collapse of the recorded PM
+// turned a face it moved: the PM is collapsed from the full mesh back to its
+// base, and each face around vt that survives is compared before and after vt
+// becomes vs.
+double largest_turn_degrees(const ProgressiveMesh& pm) {
+  Result<PmRefiner> refiner = PmRefiner::create(pm);
+  EXPECT_TRUE(refiner.is_ok());
+  if (!refiner.is_ok()) return 0;
+  PmRefiner& r = refiner.value();
+  EXPECT_TRUE(r.refine_to(pm.full_vertex_count()).is_ok());
+  auto normal = [](const std::vector<Vec3f>& p, const Triangle& t) {
+    std::array<double, 3> a{}, b{};
+    for (int k = 0; k < 3; ++k) {
+      a[k] = double{p[t[1]][k]} - p[t[0]][k];
+      b[k] = double{p[t[2]][k]} - p[t[0]][k];
+    }
+    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                                 a[0] * b[1] - a[1] * b[0]};
+  };
+  double largest = 0;
+  while (r.applied_splits() > 0) {
+    const uint32_t vt = static_cast<uint32_t>(r.vertex_count() - 1);
+    const uint32_t vs = pm.splits[r.applied_splits() - 1].vs;
+    const TriangleMesh before = r.mesh();
+    EXPECT_TRUE(r.collapse_last().is_ok());
+    const std::vector<Vec3f>& after_positions = r.mesh().positions;
+    for (const Triangle& t : before.triangles) {
+      const bool has_vt = t[0] == vt || t[1] == vt || t[2] == vt;
+      const bool has_vs = t[0] == vs || t[1] == vs || t[2] == vs;
+      if (!has_vt || has_vs) continue;
+      Triangle moved = t;
+      for (uint32_t& v : moved)
+        if (v == vt) v = vs;
+      const auto n0 = normal(before.positions, t);
+      const auto n1 = normal(after_positions, moved);
+      const double l0 = std::sqrt(n0[0] * n0[0] + n0[1] * n0[1] + n0[2] * n0[2]);
+      const double l1 = std::sqrt(n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]);
+      if (!(l0 > 0 && l1 > 0)) continue;
+      const double c = (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]) / (l0 * l1);
+      largest =
+          std::max(largest, std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / 3.14159265358979);
+    }
+  }
+  return largest;
+}
+
+// --max-normal-change: no collapse turns a moved face by more than the
+// limit; the default limit lets collapses turn faces further, so the tight
+// one changed the collapse sequence.
+TEST(Simplify, NormalChangeLimitBoundsEveryCollapse) {
+  const TriangleMesh mesh = load_clean_mesh("cgal_fandisk.off");
+  SimplifyOptions options;
+  options.record_pm = true;
+  options.target_triangles = 200;
+  const SimplifyResult loose = run(mesh, options);
+  ASSERT_TRUE(loose.pm.has_value());
+  EXPECT_GT(largest_turn_degrees(*loose.pm), 30.0);
+  options.max_normal_change_degrees = 30.0;
+  const SimplifyResult tight = run(mesh, options);
+  ASSERT_TRUE(tight.pm.has_value());
+  EXPECT_LE(largest_turn_degrees(*tight.pm), 30.0 + 1e-3);
+  EXPECT_FALSE(tight.pm->splits == loose.pm->splits);
+  expect_clean(tight.mesh);
 }
 
 TEST(Simplify, RefusesMeshesItCannotTake) {
