@@ -4,6 +4,7 @@ SHELL := /bin/bash
 BUILD ?= build
 ASAN_BUILD ?= build-sanitize
 FUZZ_BUILD ?= build-fuzz
+NODRACO_BUILD ?= build-nodraco
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SHARED_DATA ?= $(abspath ../shared/data)
 
@@ -15,7 +16,7 @@ FUZZ_PACKAGES := clang libclang-rt-14-dev
 
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
 
-.PHONY: all deps fuzz-deps configure build run test test-sanitize fuzz bench format format-check clean
+.PHONY: all deps fuzz-deps configure build run test test-sanitize test-nodraco fuzz bench format format-check clean
 
 all: build
 
@@ -55,6 +56,17 @@ test-sanitize: deps
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j $(JOBS) -L 'unit|fuzz'
+
+# The tools built without the Draco section codec (-DLODBAKE_DRACO_CODEC=OFF)
+# and the CLI cases through CTest: cases that need the codec are left out,
+# the nodraco_ ones (exit code 5 for Draco sections) run instead.
+NODRACO_TOOLS := lodbake-inspect lodbake-pack lodbake-simplify lodbake-hierarchy lodbake-fan \
+  lodbake-strips lodbake-replay
+test-nodraco: deps
+	@cmake -S . -B $(NODRACO_BUILD) $(CMAKE_FLAGS) -DLODBAKE_DRACO_CODEC=OFF -DLODBAKE_BENCHMARKS=OFF \
+	  > $(NODRACO_BUILD).configure.log 2>&1 || { cat $(NODRACO_BUILD).configure.log; exit 1; }
+	cmake --build $(NODRACO_BUILD) -j $(JOBS) --target $(NODRACO_TOOLS)
+	cd $(NODRACO_BUILD) && ctest --output-on-failure -j $(JOBS) -L cli
 
 # Real libFuzzer binaries (clang); run one with e.g.
 #   build-fuzz/tests/fuzz/fuzz_container tests/fuzz/corpus/container
