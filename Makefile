@@ -86,6 +86,9 @@ SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
 # Progressive-mesh container sizes: raw, compact and Draco against OpenMesh's
 # .pm, the streaming paper's vsplit topology and Draco single-rate.
 PACK_BENCH_MESHES := $(SIMPLIFY_BENCH_MESHES)
+# Every section kind's bytes as its tool writes it and after lodbake-pack
+# (raw and --draco), from the tools themselves (tests/bench/pack_sections.sh).
+PACK_SECTIONS_MESHES := $(SIMPLIFY_BENCH_MESHES)
 # Split DAG and vertex trees (docs/hierarchy-dag-vtrees.md): bunny and full dragon.
 DAG_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
 # Balanced vertex hierarchy against OpenMesh-mkbalancedpm (build time,
@@ -106,6 +109,7 @@ bench: bench-deps build
 	$(BUILD)/tests/bench/bench_fan --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_strips --runs $(BENCH_RUNS) $(STRIPS_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_pack --runs $(BENCH_RUNS) $(PACK_BENCH_MESHES)
+	tests/bench/pack_sections.sh $(BUILD)/tools $(PACK_SECTIONS_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
