@@ -13,10 +13,15 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config ccache xz-utils \
   nlohmann-json3-dev libssl-dev zlib1g-dev \
   libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev gnuplot-nox
 FUZZ_PACKAGES := clang libclang-rt-14-dev
+# Peers the benchmarks run as subprocesses: OpenMesh-mkbalancedpm
+# (bench_hierarchy) and OpenMesh-Analyzer, the VDPM analyzer (bench_pack's
+# .spm anchor). Without them those rows are left out with a note.
+BENCH_PACKAGES := libopenmesh-apps
 
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
 
-.PHONY: all deps fuzz-deps configure build run test test-sanitize test-nodraco fuzz bench format format-check clean
+.PHONY: all deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz bench \
+  format format-check clean
 
 all: build
 
@@ -33,6 +38,9 @@ deps:
 
 fuzz-deps:
 	@$(MAKE) --no-print-directory deps DEBIAN_PACKAGES="$(DEBIAN_PACKAGES) $(FUZZ_PACKAGES)"
+
+bench-deps:
+	@$(MAKE) --no-print-directory deps DEBIAN_PACKAGES="$(DEBIAN_PACKAGES) $(BENCH_PACKAGES)"
 
 configure: deps
 	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) > $(BUILD).configure.log 2>&1 || { cat $(BUILD).configure.log; exit 1; }
@@ -91,6 +99,9 @@ SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
 # Progressive-mesh container sizes: raw, compact and Draco against OpenMesh's
 # .pm, the streaming paper's vsplit topology and Draco single-rate.
 PACK_BENCH_MESHES := $(SIMPLIFY_BENCH_MESHES)
+# Every section kind's bytes as its tool writes it and after lodbake-pack
+# (raw and --draco), from the tools themselves (tests/bench/pack_sections.sh).
+PACK_SECTIONS_MESHES := $(SIMPLIFY_BENCH_MESHES)
 # Split DAG and vertex trees (docs/hierarchy-dag-vtrees.md): bunny and full dragon.
 DAG_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
 # Balanced vertex hierarchy against OpenMesh-mkbalancedpm (build time,
@@ -100,7 +111,7 @@ HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
 # Strips and the SETS graph: stripifier against meshopt_stripify, SETS sizes,
 # the paper's recovery tests (docs/benchmarks.md).
 STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
-bench: build
+bench: bench-deps build
 	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy \
 	  bench_dag bench_fan bench_strips bench_pack
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
@@ -111,6 +122,7 @@ bench: build
 	$(BUILD)/tests/bench/bench_fan --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_strips --runs $(BENCH_RUNS) $(STRIPS_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_pack --runs $(BENCH_RUNS) $(PACK_BENCH_MESHES)
+	tests/bench/pack_sections.sh $(BUILD)/tools $(PACK_SECTIONS_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -17,7 +17,6 @@
 //
 //   bench_hierarchy [--runs N] [--markdown] [--peer PATH] FILE...
 #include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -122,19 +121,10 @@ Row run_mkbalancedpm(const std::string& peer, const TriangleMesh& mesh, int runs
     row.error = "cannot write " + off;
     return row;
   }
-  std::vector<double> times;
-  std::vector<double> cpu;
-  const std::string command = "'" + peer + "' -o '" + pm + "' '" + off + "' > '" + log + "' 2>&1";
-  for (int r = 0; r < runs; ++r) {
-    const auto start = Clock::now();
-    const double cpu_start = cpu_seconds(RUSAGE_CHILDREN);
-    const int status = std::system(command.c_str());
-    times.push_back(seconds_since(start));
-    cpu.push_back(cpu_seconds(RUSAGE_CHILDREN) - cpu_start);
-    if (status != 0) {
-      row.error = "mkbalancedpm exited with status " + std::to_string(WEXITSTATUS(status));
-      return row;
-    }
+  const lodbake::bench::ToolRun run = lodbake::bench::run_tool({peer, "-o", pm, off}, log, runs);
+  if (run.exit_status != 0) {
+    row.error = "mkbalancedpm exited with status " + std::to_string(run.exit_status);
+    return row;
   }
   std::ifstream in(log);
   std::stringstream all;
@@ -154,8 +144,8 @@ Row run_mkbalancedpm(const std::string& peer, const TriangleMesh& mesh, int runs
     std::memcpy(&base, pm_bytes.value().data() + 8, 4);
     row.roots = base;
   }
-  row.seconds = median(times);
-  row.cpu = median(cpu);
+  row.seconds = run.wall_seconds;
+  row.cpu = run.cpu_seconds;
   row.ok = true;
   std::remove(off.c_str());
   std::remove(pm.c_str());
@@ -191,7 +181,7 @@ int main(int argc, char** argv) {
     }
   }
   if (files.empty()) return usage();
-  const bool have_peer = std::ifstream(peer).good();
+  const bool have_peer = lodbake::bench::tool_installed(peer);
   if (!have_peer)
     std::fprintf(stderr, "bench_hierarchy: %s not found, lodbake only\n", peer.c_str());
   if (markdown) {

@@ -5,7 +5,11 @@
 //     quantized, compact quantized with a Draco BASE; the compact VSPL's
 //     parts (permutation, errors) measured by re-encoding without them;
 //   - OpenMesh's progressive mesh file (DecimaterT + ModQuadricT +
-//     ModProgMeshT::write(): 24 bytes per split);
+//     ModProgMeshT::write(): 24 bytes per split), and the .spm OpenMesh's
+//     VDPM analyzer (OpenMesh-Analyzer, Debian libopenmesh-apps, run as a
+//     subprocess; --analyzer PATH) makes of it: the vertex hierarchy with
+//     its refinement data (about 80 bytes per split); left out with a note
+//     when the analyzer is not installed;
 //   - the streaming paper's 96 bits of topology per vsplit packet (Kim, Lee,
 //     Kobbelt), a constant;
 //   - Draco single-rate of the full mesh: the draco_encoder defaults (qp 11,
@@ -16,7 +20,8 @@
 // Sizes are exact; times are medians of --runs runs (noisy on a shared
 // machine: compare the ratios of one run).
 //
-//   bench_pack [--runs N] [--bits Q] [--base-triangles T] [--markdown] FILE...
+//   bench_pack [--runs N] [--bits Q] [--base-triangles T] [--analyzer PATH] [--markdown]
+//              FILE...
 #include <unistd.h>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
@@ -27,6 +32,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -84,9 +90,29 @@ Bytes repack(const Bytes& file, const RepackOptions& options) {
   return r.value().file;
 }
 
-uint64_t openmesh_pm_bytes(const TriangleMesh& input, uint64_t base_triangles) {
+// OpenMesh's two progressive-mesh files of the same decimation: the .pm
+// ModProgMeshT writes, and the .spm OpenMesh's VDPM analyzer
+// (OpenMesh-Analyzer, Debian libopenmesh-apps) makes of it, run as a
+// subprocess: the vertex hierarchy with its refinement data.
+struct OpenMeshFiles {
+  uint64_t pm_bytes = 0;
+  uint64_t pm_splits = 0;  ///< detail vertices in the .pm header
+  uint64_t spm_bytes = 0;  ///< 0 when there is no .spm (spm_note says why)
+  uint64_t spm_splits = 0;
+  std::string spm_note;
+};
+
+uint32_t u32_at(const Bytes& bytes, size_t offset) {
+  uint32_t value = 0;
+  if (offset + 4 <= bytes.size()) std::memcpy(&value, bytes.data() + offset, 4);
+  return value;
+}
+
+OpenMeshFiles openmesh_files(const TriangleMesh& input, uint64_t base_triangles,
+                             const std::string& analyzer) {
   using Mesh = OpenMesh::TriMesh_ArrayKernelT<>;
   using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
+  OpenMeshFiles files;
   Mesh mesh;
   std::vector<Mesh::VertexHandle> handles;
   for (const Vec3f& p : input.positions)
@@ -99,13 +125,38 @@ uint64_t openmesh_pm_bytes(const TriangleMesh& input, uint64_t base_triangles) {
   decimater.add(quadric);
   decimater.add(progressive);
   decimater.module(quadric).unset_max_err();
-  if (!decimater.initialize()) return 0;
+  if (!decimater.initialize()) return files;
   decimater.decimate_to_faces(0, base_triangles);
-  const std::string path = "/tmp/bench_pack_" + std::to_string(getpid()) + ".pm";
-  if (!decimater.module(progressive).write(path)) return 0;
-  Result<Bytes> bytes = read_file(path);
-  std::remove(path.c_str());
-  return bytes.is_ok() ? bytes.value().size() : 0;
+  const std::string scratch = "/tmp/bench_pack_" + std::to_string(getpid());
+  const std::string pm = scratch + ".pm", spm = scratch + ".spm", log = scratch + ".log";
+  if (!decimater.module(progressive).write(pm)) return files;
+  // "ProgMesh", base vertices, base faces, detail vertices.
+  if (Result<Bytes> bytes = read_file(pm); bytes.is_ok()) {
+    files.pm_bytes = bytes.value().size();
+    files.pm_splits = u32_at(bytes.value(), 16);
+  }
+  if (!bench::tool_installed(analyzer)) {
+    files.spm_note =
+        analyzer + " is not installed (Debian libopenmesh-apps; make bench installs it)";
+  } else {
+    const bench::ToolRun run = bench::run_tool({analyzer, "-o", spm, pm}, log);
+    Result<Bytes> bytes = read_file(spm);
+    // "VDProgMesh", base vertices, base faces, detail vertices.
+    if (run.exit_status != 0 || !bytes.is_ok() || bytes.value().size() < 22 ||
+        std::memcmp(bytes.value().data(), "VDProgMesh", 10) != 0) {
+      files.spm_note = analyzer + " failed (exit status " + std::to_string(run.exit_status) +
+                       ", see its output in " + log + ")";
+      std::remove(pm.c_str());
+      std::remove(spm.c_str());
+      return files;
+    }
+    files.spm_bytes = bytes.value().size();
+    files.spm_splits = u32_at(bytes.value(), 18);
+    std::remove(log.c_str());
+  }
+  std::remove(pm.c_str());
+  std::remove(spm.c_str());
+  return files;
 }
 
 struct DracoResult {
@@ -174,6 +225,7 @@ int main(int argc, char** argv) {
   int bits = 14;
   uint64_t base_triangles = 100;
   bool markdown = false;
+  std::string analyzer = "/usr/bin/OpenMesh-Analyzer";
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -183,6 +235,8 @@ int main(int argc, char** argv) {
       bits = std::atoi(argv[++i]);
     } else if (arg == "--base-triangles" && i + 1 < argc) {
       base_triangles = std::strtoull(argv[++i], nullptr, 10);
+    } else if (arg == "--analyzer" && i + 1 < argc) {
+      analyzer = argv[++i];
     } else if (arg == "--markdown") {
       markdown = true;
     } else {
@@ -191,8 +245,8 @@ int main(int argc, char** argv) {
   }
   if (files.empty() || bits < 1 || bits > 30) {
     std::fprintf(stderr,
-                 "usage: bench_pack [--runs N] [--bits Q] [--base-triangles T] [--markdown] "
-                 "FILE...\n");
+                 "usage: bench_pack [--runs N] [--bits Q] [--base-triangles T] [--analyzer PATH] "
+                 "[--markdown] FILE...\n");
     return 1;
   }
   int status = 0;
@@ -271,8 +325,11 @@ int main(int argc, char** argv) {
     rows.push_back({"  .. without the permutation", without_permutation.size()});
     rows.push_back({"  .. and without errors (topology + positions)", without_errors.size()});
     rows.push_back({"  .. of which VSPL topology (vs, vl, vr)", topology_bytes});
-    rows.push_back(
-        {"OpenMesh .pm (float32, 24 B/split)", openmesh_pm_bytes(input, base_triangles)});
+    const OpenMeshFiles openmesh = openmesh_files(input, base_triangles, analyzer);
+    rows.push_back({"OpenMesh .pm (float32, 24 B/split)", openmesh.pm_bytes});
+    if (openmesh.spm_bytes != 0) {
+      rows.push_back({"OpenMesh .spm (VDPM analyzer of that .pm)", openmesh.spm_bytes});
+    }
     rows.push_back(
         {"streaming paper topology (96 bits/split)", static_cast<uint64_t>(pm.splits.size()) * 12});
     const DracoResult d_library = draco_single_rate(input, 0, -1, runs);
@@ -320,6 +377,24 @@ int main(int argc, char** argv) {
     std::printf("%sVSPL alone: compact %.2f bits/split, raw %d-bit %.2f bits/split%s\n",
                 markdown ? "" : "  ", section_size(packed, kVsplTag) * 8.0 / splits, bits,
                 section_size(raw_quantized, kVsplTag) * 8.0 / splits, markdown ? "\n" : "");
+    // OpenMesh's files per split of OpenMesh's own PM (its decimation, so its
+    // split count), the figures the anchors quote.
+    const auto per_split = [](uint64_t bytes, uint64_t count) {
+      return count == 0 ? 0.0 : static_cast<double>(bytes) / static_cast<double>(count);
+    };
+    std::printf("%sOpenMesh's own PM: %llu splits; .pm %.2f bytes (%.1f bits) per split",
+                markdown ? "" : "  ", static_cast<unsigned long long>(openmesh.pm_splits),
+                per_split(openmesh.pm_bytes, openmesh.pm_splits),
+                8 * per_split(openmesh.pm_bytes, openmesh.pm_splits));
+    if (openmesh.spm_bytes != 0) {
+      std::printf(", .spm %.2f bytes (%.1f bits) per split (%llu splits)%s\n",
+                  per_split(openmesh.spm_bytes, openmesh.spm_splits),
+                  8 * per_split(openmesh.spm_bytes, openmesh.spm_splits),
+                  static_cast<unsigned long long>(openmesh.spm_splits), markdown ? "\n" : "");
+    } else {
+      std::printf("; no .spm: %s%s\n", openmesh.spm_note.c_str(), markdown ? "\n" : "");
+      std::fprintf(stderr, "bench_pack: no .spm row: %s\n", openmesh.spm_note.c_str());
+    }
   }
   return status;
 }
