@@ -92,42 +92,70 @@ size_t split_count(const VertexHierarchy& h) {
 
 }  // namespace
 
+bool rfin_record_is_valid(const RfinRecord& record) {
+  return good(record.radius) && good(record.mu2) && good(record.delta2);
+}
+
+Result<RfinRecord> quantize_refinement(const NodeRefinement& d) {
+  if (!good(d.radius) || !good(d.mu2) || !good(d.delta2) || !good(d.cone_half_angle) ||
+      !std::isfinite(d.cone_axis[0]) || !std::isfinite(d.cone_axis[1]) ||
+      !std::isfinite(d.cone_axis[2])) {
+    return invalid_input("a negative or non-finite value");
+  }
+  RfinRecord r;
+  r.radius = d.radius;
+  r.mu2 = d.mu2;
+  r.delta2 = d.delta2;
+  uint32_t qx = 0, qy = 0;
+  octa_encode(d.cone_axis, &qx, &qy);
+  const double err = angle_between(octa_decode(qx, qy), d.cone_axis);
+  const double angle = std::min(kPi, double{d.cone_half_angle} + err);
+  r.axis_x = static_cast<uint16_t>(qx);
+  r.axis_y = static_cast<uint16_t>(qy);
+  r.half_angle = static_cast<uint16_t>(std::min(65535.0, std::ceil(angle / kAngleUnit)));
+  return r;
+}
+
+NodeRefinement dequantize_refinement(const RfinRecord& record) {
+  NodeRefinement d;
+  d.radius = record.radius;
+  d.mu2 = record.mu2;
+  d.delta2 = record.delta2;
+  d.cone_axis = octa_decode(record.axis_x, record.axis_y);
+  d.cone_half_angle = static_cast<float>(record.half_angle * kAngleUnit);
+  return d;
+}
+
 Result<Bytes> encode_rfin(const VertexHierarchy& h, const std::vector<NodeRefinement>& data) {
   if (data.size() != h.node_count()) {
     return invalid_input("cannot encode RFIN: " + std::to_string(data.size()) + " records for " +
                          std::to_string(h.node_count()) + " nodes");
   }
   try {
-    Bytes out;
-    ByteWriter w(&out);
-    const size_t splits = split_count(h);
-    w.write(static_cast<uint32_t>(splits));
-    w.write(uint32_t{0});
+    std::vector<RfinRecord> records;
     for (size_t i = 0; i < data.size(); ++i) {
       if (h.first_child[i] == kNoNode) continue;
-      const NodeRefinement& d = data[i];
-      if (!good(d.radius) || !good(d.mu2) || !good(d.delta2) || !good(d.cone_half_angle) ||
-          !std::isfinite(d.cone_axis[0]) || !std::isfinite(d.cone_axis[1]) ||
-          !std::isfinite(d.cone_axis[2])) {
+      Result<RfinRecord> q = quantize_refinement(data[i]);
+      if (!q.is_ok()) {
         return invalid_input("cannot encode RFIN: node " + std::to_string(i) +
                              " has a negative or non-finite value");
       }
-      w.write(d.radius);
-      w.write(d.mu2);
-      w.write(d.delta2);
+      records.push_back(q.value());
+    }
+    Bytes out;
+    ByteWriter w(&out);
+    w.write(static_cast<uint32_t>(records.size()));
+    w.write(uint32_t{0});
+    for (const RfinRecord& r : records) {
+      w.write(r.radius);
+      w.write(r.mu2);
+      w.write(r.delta2);
     }
     BitWriter bits(&out);
-    for (size_t i = 0; i < data.size(); ++i) {
-      if (h.first_child[i] == kNoNode) continue;
-      const NodeRefinement& d = data[i];
-      uint32_t qx = 0, qy = 0;
-      octa_encode(d.cone_axis, &qx, &qy);
-      const double err = angle_between(octa_decode(qx, qy), d.cone_axis);
-      const double angle = std::min(kPi, double{d.cone_half_angle} + err);
-      const auto qa = static_cast<uint32_t>(std::min(65535.0, std::ceil(angle / kAngleUnit)));
-      bits.write(qx, 16);
-      bits.write(qy, 16);
-      bits.write(qa, 16);
+    for (const RfinRecord& r : records) {
+      bits.write(r.axis_x, 16);
+      bits.write(r.axis_y, 16);
+      bits.write(r.half_angle, 16);
     }
     bits.finish();
     return out;
@@ -152,23 +180,23 @@ Result<uint32_t> read_rfin_summary(const uint8_t* data, size_t size) {
   return splits;
 }
 
-Result<std::vector<NodeRefinement>> decode_rfin(const uint8_t* data, size_t size,
-                                                const VertexHierarchy& h) {
+Result<std::vector<RfinRecord>> decode_rfin_records(const uint8_t* data, size_t size,
+                                                    const VertexHierarchy& h) {
   LODBAKE_ASSIGN_OR_RETURN(uint32_t splits, read_rfin_summary(data, size));
   if (splits != split_count(h)) {
     return bad_rfin(std::to_string(splits) + " records, VHIE has " +
                     std::to_string(split_count(h)) + " splits");
   }
   try {
-    std::vector<NodeRefinement> out(h.node_count());
+    std::vector<RfinRecord> out(h.node_count());
     ByteReader r(data + kRfinFixedBytes, size - kRfinFixedBytes);
     for (size_t i = 0; i < out.size(); ++i) {
       if (h.first_child[i] == kNoNode) continue;
-      NodeRefinement& d = out[i];
+      RfinRecord& d = out[i];
       r.read(&d.radius);
       r.read(&d.mu2);
       r.read(&d.delta2);
-      if (!good(d.radius) || !good(d.mu2) || !good(d.delta2)) {
+      if (!rfin_record_is_valid(d)) {
         return bad_rfin("node " + std::to_string(i) + ": negative or non-finite value");
       }
     }
@@ -179,8 +207,23 @@ Result<std::vector<NodeRefinement>> decode_rfin(const uint8_t* data, size_t size
       bits.read(16, &qx);
       bits.read(16, &qy);
       bits.read(16, &qa);
-      out[i].cone_axis = octa_decode(qx, qy);
-      out[i].cone_half_angle = static_cast<float>(qa * kAngleUnit);
+      out[i].axis_x = static_cast<uint16_t>(qx);
+      out[i].axis_y = static_cast<uint16_t>(qy);
+      out[i].half_angle = static_cast<uint16_t>(qa);
+    }
+    return out;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory decoding RFIN");
+  }
+}
+
+Result<std::vector<NodeRefinement>> decode_rfin(const uint8_t* data, size_t size,
+                                                const VertexHierarchy& h) {
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<RfinRecord> records, decode_rfin_records(data, size, h));
+  try {
+    std::vector<NodeRefinement> out(h.node_count());
+    for (size_t i = 0; i < out.size(); ++i) {
+      if (h.first_child[i] != kNoNode) out[i] = dequantize_refinement(records[i]);
     }
     return out;
   } catch (const std::bad_alloc&) {

@@ -37,22 +37,46 @@ Result<SelectiveRefiner> SelectiveRefiner::create(const VertexHierarchy& h) {
   for (uint32_t i = 0; i < n; ++i)
     r.id_index_.emplace_back(r.ids_[i], i);
   std::sort(r.id_index_.begin(), r.id_index_.end());
-  r.active_.assign(n, 0);
-  const size_t roots = h.root_count();
+  LODBAKE_RETURN_IF_ERROR(r.start_at_base());
+  return r;
+}
+
+Result<SelectiveRefiner> SelectiveRefiner::create_growing(const VertexHierarchy& h) {
+  const size_t n = h.node_count();
+  if (n < h.root_count() || h.first_child.size() != n || h.cut_left.size() != n ||
+      h.cut_right.size() != n || h.position.size() != n) {
+    return invalid_input("partial vertex hierarchy: arrays of different sizes");
+  }
+  SelectiveRefiner r(h);
+  LODBAKE_RETURN_IF_ERROR(r.start_at_base());
+  return r;
+}
+
+void SelectiveRefiner::grow() {
+  const size_t n = h_->node_count();
+  if (n <= active_.size()) return;
+  active_.resize(n, 0);
+  vertex_faces_.resize(n);
+}
+
+Status SelectiveRefiner::start_at_base() {
+  const size_t n = h_->node_count();
+  active_.assign(n, 0);
+  const size_t roots = h_->root_count();
   for (size_t i = 0; i < roots; ++i)
-    r.active_[i] = 1;
-  r.front_size_ = roots;
-  r.vertex_faces_.resize(n);
-  for (size_t f = 0; f < h.base.triangles.size(); ++f) {
-    const Triangle& t = h.base.triangles[f];
+    active_[i] = 1;
+  front_size_ = roots;
+  vertex_faces_.resize(n);
+  for (size_t f = 0; f < h_->base.triangles.size(); ++f) {
+    const Triangle& t = h_->base.triangles[f];
     if (t[0] >= roots || t[1] >= roots || t[2] >= roots || t[0] == t[1] || t[1] == t[2] ||
         t[0] == t[2]) {
       return invalid_input("base triangle " + std::to_string(f) +
                            " has an out-of-range or repeated vertex index");
     }
-    r.add_face(t);
+    add_face(t);
   }
-  return r;
+  return Status::ok();
 }
 
 std::vector<uint32_t> SelectiveRefiner::front() const {

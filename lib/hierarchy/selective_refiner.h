@@ -21,6 +21,19 @@ class SelectiveRefiner {
   /// not pass validate_hierarchy() (formats/sections/vhie.h) or its base
   /// mesh has an out-of-range or repeated index. `h` must outlive the refiner.
   static Result<SelectiveRefiner> create(const VertexHierarchy& h);
+  /// A refiner over a hierarchy that grows while it is refined: a streaming
+  /// client's partial hierarchy (lib/replay/stream_client.h). Only the base
+  /// mesh and the array sizes are checked. Nodes the owner appends to `h`
+  /// later (a pair of children after their parent, parent[] and
+  /// first_child[] set) are taken in by grow(). cut_left / cut_right may
+  /// name any node on the path from the fundamental cut vertex to its root
+  /// that is not above the front: ActiveAncestor climbs from there. The
+  /// <tree-id, node-id> functions (id_of, node_of, active_ancestor_id) and
+  /// collapse_to_base() need a complete hierarchy (create()).
+  static Result<SelectiveRefiner> create_growing(const VertexHierarchy& h);
+  /// Extends the per-node state to the hierarchy's node count (new nodes
+  /// inactive, without faces).
+  void grow();
 
   bool is_active(uint32_t node) const { return active_[node] != 0; }
   /// Nodes of the front (the current mesh's vertices), ascending.
@@ -75,6 +88,7 @@ class SelectiveRefiner {
 
  private:
   explicit SelectiveRefiner(const VertexHierarchy& h) : h_(&h) {}
+  Status start_at_base();
   struct SplitPlan {
     uint32_t cl = kNoNode;
     uint32_t cr = kNoNode;

@@ -7,7 +7,9 @@
 // (lib/replay/fan_replay.h). Mode sets is not camera-driven: BASE + VSPL +
 // SETS, the strip paper's LoD-recovery tests (lib/replay/sets_replay.h), one
 // step per LoD recovered; it runs through run_sets(), the camera modes
-// through run_camera_path().
+// through run_camera_path(). Mode stream: BASE + VHIE + RFIN served to a
+// client over an in-memory channel (lib/replay/stream_session.h), through
+// run_stream().
 // Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <charconv>
@@ -35,6 +37,7 @@
 #include "lib/replay/dag_replay.h"
 #include "lib/replay/fan_replay.h"
 #include "lib/replay/sets_replay.h"
+#include "lib/replay/stream_session.h"
 #include "lib/replay/structure_cross_check.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
@@ -870,10 +873,213 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
   return 0;
 }
 
+// Mode stream: the hierarchy served frame by frame to a client that starts
+// from the base mesh (Kim, Lee and Kobbelt 2005), bytes counted both ways,
+// and the view-independent baseline of section 8.
+int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
+  Result<Container> container = read_container(bytes.data(), bytes.size());
+  if (!container.is_ok()) return tool.fail(request.input, container.status());
+  const Section* base = container.value().find(kBaseTag);
+  const Section* vhie = container.value().find(kVhieTag);
+  const Section* rfin = container.value().find(kRfinTag);
+  if (base == nullptr || vhie == nullptr || rfin == nullptr) {
+    return tool.fail(request.input, invalid_input(std::string("container has no ") +
+                                                  (base == nullptr   ? "BASE"
+                                                   : vhie == nullptr ? "VHIE"
+                                                                     : "RFIN") +
+                                                  " section; mode stream needs BASE + VHIE + RFIN "
+                                                  "(lodbake-hierarchy --sections vhie)"));
+  }
+  Result<TriangleMesh> base_mesh = decode_base(base->data, base->size);
+  if (!base_mesh.is_ok()) return tool.fail(request.input, base_mesh.status());
+  Result<VertexHierarchy> h = decode_vhie(vhie->data, vhie->size, std::move(base_mesh).value());
+  if (!h.is_ok()) return tool.fail(request.input, h.status());
+  Result<std::vector<RfinRecord>> records = decode_rfin_records(rfin->data, rfin->size, h.value());
+  if (!records.is_ok()) return tool.fail(request.input, records.status());
+  Result<StreamHierarchy> db = StreamHierarchy::create(h.value(), std::move(records).value());
+  if (!db.is_ok()) return tool.fail(request.input, db.status());
+  StreamReplayOptions options;
+  options.viewport = request.options.viewport;
+  options.tolerance_pixels = request.options.tolerance_pixels;
+  options.max_passes = request.options.max_passes;
+  Result<StreamSession> created = StreamSession::create(db.value(), options);
+  if (!created.is_ok()) return tool.fail(request.input, created.status());
+  StreamSession& session = created.value();
+
+  Session view_session;
+  view_session.sphere = bounding_sphere(h.value().position);
+  std::string path_file;
+  Result<std::vector<CameraFrame>> read = read_path(request, view_session, &path_file);
+  if (!read.is_ok()) return tool.fail(path_file, read.status());
+  const std::vector<CameraFrame> path = std::move(read).value();
+
+  std::vector<StreamFrameStats> frames;
+  Progress progress(tool, "streaming");
+  for (size_t i = 0; i < path.size(); ++i) {
+    Result<StreamFrameStats> f = session.frame(path[i], view_session.sphere);
+    if (!f.is_ok()) {
+      return tool.fail(request.input, Status(f.status().kind(), "frame " + std::to_string(i) +
+                                                                    ": " + f.status().message()));
+    }
+    frames.push_back(f.value());
+    if (request.validate) {
+      std::vector<std::string> problems = check_vhier_mesh(session.client().refiner());
+      if (f.value().missing != 0 || f.value().requests > 1) {
+        problems.push_back(std::to_string(f.value().missing) + " needed splits missing after " +
+                           std::to_string(f.value().requests) + " requests");
+      }
+      if (!problems.empty()) {
+        std::string message = "frame " + std::to_string(i) + ": invalid mesh: " + problems[0];
+        for (size_t k = 1; k < problems.size(); ++k)
+          message += "; " + problems[k];
+        return tool.fail(request.input, Status(ErrorKind::kValidation, message));
+      }
+    }
+    progress.update(static_cast<double>(i + 1) / path.size());
+  }
+  std::vector<uint32_t> sent = session.server().sent();
+  if (request.validate) {
+    std::sort(sent.begin(), sent.end());
+    if (std::adjacent_find(sent.begin(), sent.end()) != sent.end()) {
+      return tool.fail(request.input,
+                       Status(ErrorKind::kValidation, "a vsplit packet was sent twice"));
+    }
+  }
+  Result<StreamBaseline> baseline =
+      view_independent_baseline(db.value(), session.server().sent(), session.base_bytes());
+  if (!baseline.is_ok()) return tool.fail(request.input, baseline.status());
+  const StreamBaseline& vi = baseline.value();
+
+  if (!request.csv.empty()) {
+    std::ostringstream csv;
+    csv << "frame,uplink_bytes,downlink_bytes,requests,packets,splits,collapses,triangles,"
+           "front,window_bytes,buffer_bytes,front_bytes\n";
+    for (size_t i = 0; i < frames.size(); ++i) {
+      const StreamFrameStats& f = frames[i];
+      csv << i << ',' << f.uplink_bytes << ',' << f.downlink_bytes << ',' << f.requests << ','
+          << f.packets << ',' << f.splits << ',' << f.collapses << ',' << f.triangles << ','
+          << f.front_size << ',' << f.server.window_bytes << ',' << f.server.buffer_bytes << ','
+          << f.server.front_bytes << '\n';
+    }
+    Status written = write_file_atomic(request.csv, csv.str());
+    if (!written.is_ok()) return tool.fail(request.csv, written);
+  }
+
+  uint64_t up = 0, down = session.base_bytes();
+  size_t requests = 0, packets = 0, splits = 0, collapses = 0, max_triangles = 0;
+  size_t max_window = 0, max_buffer = 0, max_front_bytes = 0, request_frames = 0;
+  double triangles = 0;
+  for (const StreamFrameStats& f : frames) {
+    up += f.uplink_bytes;
+    down += f.downlink_bytes;
+    requests += f.requests;
+    request_frames += f.requests != 0;
+    packets += f.packets;
+    splits += f.splits;
+    collapses += f.collapses;
+    triangles += static_cast<double>(f.triangles);
+    max_triangles = std::max(max_triangles, f.triangles);
+    max_window = std::max(max_window, f.server.window_bytes);
+    max_buffer = std::max(max_buffer, f.server.buffer_bytes);
+    max_front_bytes = std::max(max_front_bytes, f.server.front_bytes);
+  }
+  triangles /= static_cast<double>(std::max<size_t>(frames.size(), 1));
+  const StreamServerMemory memory = session.server().memory();
+  const StreamIdWidths widths = db.value().widths;
+  const int topology_bits = 3 * widths.id_bits();
+  const double ratio = static_cast<double>(down) / static_cast<double>(vi.bytes);
+  const double window_share =
+      static_cast<double>(memory.window_bytes) / static_cast<double>(memory.front_bytes);
+  const double buffer_share =
+      static_cast<double>(memory.buffer_bytes) / static_cast<double>(memory.front_bytes);
+  if (tool.json()) {
+    tool.print_json(
+        {{"schema", kReplaySchema},
+         {"input", request.input},
+         {"mode", request.mode},
+         {"path", request.path},
+         {"frames", frames.size()},
+         {"validated", request.validate},
+         {"viewport",
+          {{"width", request.options.viewport.width},
+           {"height", request.options.viewport.height},
+           {"fov_degrees", request.fov_degrees},
+           {"near_fraction", request.options.viewport.near_fraction}}},
+         {"tolerance", request.tolerance},
+         {"tolerance_pixels", request.options.tolerance_pixels},
+         {"hierarchy",
+          {{"nodes", h.value().node_count()},
+           {"roots", h.value().root_count()},
+           {"splits", vi.pm_splits},
+           {"tree_bits", widths.tree_bits},
+           {"node_bits", widths.node_bits}}},
+         {"uplink",
+          {{"bytes", up}, {"requests", requests}, {"frames_with_requests", request_frames}}},
+         {"downlink",
+          {{"bytes", down}, {"base_bytes", session.base_bytes()}, {"packets", packets}}},
+         {"packet",
+          {{"topology_bits", topology_bits},
+           {"paper_topology_bits", 96},
+           {"earlier_topology_bits", {192, 256}},
+           {"mean_bits", packets == 0
+                             ? 0.0
+                             : static_cast<double>(vi.sent_bits) / static_cast<double>(packets)}}},
+         {"client",
+          {{"splits", splits},
+           {"collapses", collapses},
+           {"triangles", {{"mean", triangles}, {"max", max_triangles}}}}},
+         {"server_memory",
+          {{"window_bytes", memory.window_bytes},
+           {"buffer_bytes", memory.buffer_bytes},
+           {"front_nodes", memory.front_nodes},
+           {"front_bytes", memory.front_bytes},
+           {"max_window_bytes", max_window},
+           {"max_buffer_bytes", max_buffer},
+           {"max_front_bytes", max_front_bytes}}},
+         {"view_independent",
+          {{"prefix_splits", vi.prefix},
+           {"pm_splits", vi.pm_splits},
+           {"bytes", vi.bytes},
+           {"full_bytes", vi.full_bytes},
+           {"view_dependent_share", ratio}}}});
+    return 0;
+  }
+  std::cout << "replay        " << request.input << ": mode stream, path " << request.path << ", "
+            << frames.size() << " frames" << (request.validate ? ", every frame validated" : "")
+            << "\n";
+  std::cout << "hierarchy     " << h.value().node_count() << " nodes, " << h.value().root_count()
+            << " roots, " << vi.pm_splits << " splits, <tree-id, node-id> <" << widths.tree_bits
+            << ", " << widths.node_bits << ">\n";
+  std::cout << "view          " << request.options.viewport.width << "x"
+            << request.options.viewport.height << ", fov " << request.fov_degrees
+            << " deg, tolerance " << request.options.tolerance_pixels << " px\n";
+  std::cout << "uplink        " << up << " bytes, " << requests << " view requests in "
+            << request_frames << " of " << frames.size() << " frames\n";
+  std::cout << "downlink      " << down << " bytes: base " << session.base_bytes() << ", "
+            << packets << " vsplit packets of " << vi.pm_splits << "\n";
+  std::cout << "packet        topology " << topology_bits << " bits (3 x " << widths.id_bits()
+            << "; the paper 96, earlier schemes 192-256), mean "
+            << (packets == 0 ? 0.0
+                             : static_cast<double>(vi.sent_bits) / static_cast<double>(packets))
+            << " bits with geometry and refinement data\n";
+  std::cout << "client        " << splits << " splits, " << collapses
+            << " collapses, triangles mean " << triangles << ", max " << max_triangles << "\n";
+  std::cout << "server memory window " << memory.window_bytes << " bytes (buffer "
+            << memory.buffer_bytes << ") vs a stored vertex front " << memory.front_bytes
+            << " bytes (" << memory.front_nodes << " nodes): " << 100 * window_share << "% ("
+            << 100 * buffer_share << "%)\n";
+  std::cout << "vs view-indep " << down << " vs " << vi.bytes << " bytes (" << 100 * ratio
+            << "%): the PM's fixed order needs a prefix of " << vi.prefix << " of " << vi.pm_splits
+            << " splits to hold the " << packets << " sent; the whole PM is " << vi.full_bytes
+            << " bytes (the paper: bunny 177,120 vs 827,688, dragon 946,400 vs 3,816,384)\n";
+  return 0;
+}
+
 int run(const Tool& tool, const Request& request) {
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
   if (request.mode == "sets") return run_sets(tool, request, bytes.value());
+  if (request.mode == "stream") return run_stream(tool, request, bytes.value());
   return run_camera_path(tool, request, bytes.value());
 }
 
@@ -920,7 +1126,7 @@ int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
   Tool tool("lodbake-replay",
-            "FILE.lbk [--mode vhier|dag|fan|sets] [--path scan|orbit|FILE] [options]",
+            "FILE.lbk [--mode vhier|dag|fan|sets|stream] [--path scan|orbit|FILE] [options]",
             "Replays a camera path on a container's view-dependent structure and reports,\n"
             "per frame, the refinement operations, fronts, triangles and adapt time; or\n"
             "(mode sets) runs the SETS strip paper's LoD-recovery tests.\n"
@@ -945,6 +1151,13 @@ int main(int argc, char** argv) {
             "or view options): each test recovers --percent of all LoDs, spaced linearly or\n"
             "exponentially (--spacing), from LoD 0 (the full mesh) to the coarsest and back,\n"
             "each LoD with a fresh and a coherent recovery timed alone (Belmonte et al. 2006).\n"
+            "Mode stream: BASE + VHIE + RFIN; a server session and a client in one process\n"
+            "(Kim, Lee and Kobbelt 2005): the client starts from the base mesh, refines and\n"
+            "coarsens as mode vhier on the hierarchy it has received and sends its view when\n"
+            "it needs a split it lacks; the server answers with vsplit packets chosen by\n"
+            "qrefine over its windowed active tags. Reports the bytes both ways per frame\n"
+            "(--csv), packet bits, server memory against a stored vertex front, and the bytes\n"
+            "of streaming the same progressive mesh in its fixed order instead.\n"
             "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
             "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
             "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
@@ -955,7 +1168,7 @@ int main(int argc, char** argv) {
   uint32_t width = 1024, height = 768;
   float near_fraction = 0.01f;
   tool.options().add_options()("mode", po::value<std::string>(&request.mode)->value_name("M"),
-                               "the structure replayed: vhier (default), dag, fan or sets")(
+                               "the structure replayed: vhier (default), dag, fan, sets or stream")(
       "path", po::value<std::string>(&request.path)->value_name("P"),
       "scan (default), orbit, or a CSV or JSON camera path FILE")(
       "tolerance", po::value<std::string>(&request.tolerance)->value_name("T"),
@@ -987,7 +1200,8 @@ int main(int argc, char** argv) {
       "frame, fan_merges, fan_splits, collapses, splits, active, "
       "triangles, adapt_ms; sets: one row per LoD: spacing, "
       "percent, step, lod, strips, indices, triangles, fresh_us, "
-      "coherent_us)");
+      "coherent_us; stream: frame, uplink_bytes, downlink_bytes, requests, packets, "
+      "splits, collapses, triangles, front, window_bytes, buffer_bytes, front_bytes)");
   tool.options().add_options()(
       "traversal", po::value<std::string>(&request.traversal)->value_name("T"),
       "dag: priority (default), linear, constant, or all (the three side by side)")(
@@ -1014,10 +1228,12 @@ int main(int argc, char** argv) {
   if (std::optional<int> code = tool.single_positional("input", "FILE.lbk", &request.input))
     return *code;
   if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan" &&
-      request.mode != "sets") {
+      request.mode != "sets" && request.mode != "stream") {
     return tool.usage_error("--mode '" + request.mode +
-                            "' is not available (modes: vhier, dag, fan, sets)");
+                            "' is not available (modes: vhier, dag, fan, sets, stream)");
   }
+  if (request.mode == "stream" && tool.has("plot"))
+    return tool.usage_error("--plot does not apply to --mode stream");
   // Each option belongs to the camera modes or to mode sets; one given to
   // the other kind is refused rather than silently ignored.
   const bool sets = request.mode == "sets";

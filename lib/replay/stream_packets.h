@@ -1,0 +1,148 @@
+// The wire format of truly selective view-dependent streaming (Kim, Lee and
+// Kobbelt, "View-dependent mesh streaming with minimal latency", section
+// 5.3 and Figure 3; packet size, section 7.2): the client's view request
+// (uplink), the base mesh with the roots' refinement data, vsplit packets
+// and the end of an answer (downlink). Byte layout: docs/replay.md, "Mode
+// `stream`". Every message is
+//
+//   byte 0      magic and version: 0xB1 (high nibble 0xB = stream message,
+//               low nibble = version 1)
+//   byte 1      type (StreamMessageType)
+//   bytes 2-5   payload length, uint32 little-endian
+//   payload     as the type says, bit fields packed LSB first
+//               (formats/support/bit_packing.h), the last byte zero-padded
+//
+// The decoders take one whole message, refuse anything else with
+// kInvalidInput ("stream message: ..."; a newer version: kUnsupported),
+// bound every count by the bits that remain before allocating, and accept
+// exactly one encoding of each message (what decodes re-encodes to the same
+// bytes), so they never crash or over-allocate on hostile input.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/triangle_mesh.h"
+#include "formats/mesh/vertex_hierarchy.h"
+#include "formats/sections/rfin.h"
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+
+namespace lodbake {
+
+inline constexpr uint8_t kStreamMagicVersion = 0xB1;
+inline constexpr size_t kStreamHeaderBytes = 6;
+/// The largest payload a decoder takes (64 MiB); the server splits longer
+/// answers into several vsplit messages.
+inline constexpr uint32_t kMaxStreamPayloadBytes = 1u << 26;
+
+enum class StreamMessageType : uint8_t {
+  kView = 1,         ///< client -> server: the viewing parameters
+  kBase = 2,         ///< server -> client: base mesh + roots' refinement data
+  kVsplits = 3,      ///< server -> client: a batch of vsplit packets
+  kEndOfAnswer = 4,  ///< server -> client: the answer to a view is complete
+};
+
+/// The client's viewing parameters (the paper's Figure 3(a)).
+struct ViewRequest {
+  /// World to eye coordinates, column-major as OpenGL stores it (the eye
+  /// looks down -z, up is +y). The last row must be (0, 0, 0, 1) and the
+  /// upper 3x3 invertible; distances are measured in world units, so a
+  /// rigid transform (gluLookAt) is what the criteria expect.
+  std::array<float, 16> modelview{};
+  float fovy_degrees = 60;  ///< vertical field of view, in (0, 180)
+  float aspect = 4.0f / 3;  ///< width / height, > 0
+  /// Screen-space tolerance as a fraction of the viewport height (pixels /
+  /// height); 0 asks for every split (the whole hierarchy).
+  float tolerance = 0;
+  /// Near plane distance in world units (> 0); not in the paper's packet,
+  /// which leaves the near plane implicit.
+  float near_distance = 0.01f;
+  bool operator==(const ViewRequest& o) const;
+};
+/// Payload bytes of a view request: 16 + 4 float32.
+inline constexpr size_t kViewRequestPayloadBytes = 80;
+
+/// The bits of a <tree-id, node-id>: ceil(log2 #roots) for the tree and the
+/// hierarchy's depth for the heap id (hierarchy_shape()).
+struct StreamIdWidths {
+  int tree_bits = 0;  ///< bits_for_count(roots), 0..32
+  int node_bits = 1;  ///< 1..64
+  int id_bits() const { return tree_bits + node_bits; }
+};
+
+/// One child's (or root's) refinement data: a leaf of the complete
+/// hierarchy sends only its flag (qrefine() is never asked about it).
+struct StreamNodeData {
+  bool internal = false;
+  RfinRecord record;  ///< zero for a leaf
+  bool operator==(const StreamNodeData& o) const;
+};
+
+/// The paper's Figure 3(b). Topology: three <tree-id, node-id>, 3 x
+/// id_bits() (the paper: 3 x 32 = 96 bits); a missing wing (boundary) is
+/// heap id 0 with tree id 0.
+struct VsplitPacket {
+  HierarchyNodeId vs;
+  HierarchyNodeId cut_left;
+  HierarchyNodeId cut_right;
+  /// The right (removed) child's position; the left child keeps vs's
+  /// (half-edge collapses), so it is not sent.
+  Vec3f position{};
+  StreamNodeData left;
+  StreamNodeData right;
+  bool operator==(const VsplitPacket& o) const;
+};
+
+struct BaseMessage {
+  /// Base mesh over the roots (vertex i = tree i), float32 positions.
+  TriangleMesh mesh;
+  /// The hierarchy's depth (node-id bits, 1..64).
+  int node_bits = 1;
+  /// One entry per root.
+  std::vector<StreamNodeData> roots;
+};
+
+/// Bits of one packet's fields (without message framing): topology 3 x
+/// id_bits, geometry 96, two leaf flags, 144 per internal child.
+uint64_t vsplit_packet_bits(const VsplitPacket& packet, const StreamIdWidths& widths);
+inline constexpr int kStreamPositionBits = 96;
+inline constexpr int kStreamRecordBits = 144;
+
+/// The type of a whole message after checking its header: magic, version
+/// (newer: kUnsupported), a known type and a length that is the rest of the
+/// bytes and at most kMaxStreamPayloadBytes.
+Result<StreamMessageType> stream_message_type(const uint8_t* data, size_t size);
+
+Bytes encode_view_request(const ViewRequest& view);
+/// Refuses non-finite values, a modelview whose last row is not (0, 0, 0, 1)
+/// or whose 3x3 part is singular, fovy outside (0, 180), aspect <= 0, a
+/// negative tolerance, near <= 0.
+Result<ViewRequest> decode_view_request(const uint8_t* data, size_t size);
+
+/// \return kInvalidInput when the mesh has no vertex or an index out of
+///         range, a root entry is missing, or node_bits is outside 1..64.
+Result<Bytes> encode_base_message(const BaseMessage& base);
+/// Payload: uint32 roots, uint32 triangles, uint8 node_bits, three zero
+/// bytes, roots x 3 float32, then bits: 3 x bits_for_count(roots) per
+/// triangle, then per root a flag bit and (internal) its record.
+Result<BaseMessage> decode_base_message(const uint8_t* data, size_t size);
+
+/// `root_count` bounds the tree ids (and gives tree_bits).
+/// \return kInvalidInput for an id outside the widths or the roots.
+Result<Bytes> encode_vsplit_message(const std::vector<VsplitPacket>& packets,
+                                    const StreamIdWidths& widths, uint32_t root_count);
+/// Payload: uint32 count, then the packets' bits. Refuses a heap id 0 for
+/// vs, a tree id >= root_count, a missing wing with a tree id, both wings
+/// missing, non-finite positions, invalid records, nonzero padding.
+Result<std::vector<VsplitPacket>> decode_vsplit_message(const uint8_t* data, size_t size,
+                                                        const StreamIdWidths& widths,
+                                                        uint32_t root_count);
+
+/// Payload: uint32, the number of vsplit packets of the whole answer.
+Bytes encode_end_of_answer(uint32_t packets);
+Result<uint32_t> decode_end_of_answer(const uint8_t* data, size_t size);
+
+}  // namespace lodbake

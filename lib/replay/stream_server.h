@@ -1,0 +1,128 @@
+// The server of truly selective view-dependent streaming (Kim, Lee and
+// Kobbelt 2005, sections 5.2, 5.3 and 6.1): a static database entry (the
+// hierarchy with its RFIN records, shared by every session) and a session
+// per client holding only the client's active tags, windowed over the
+// breadth-first node array. A view request is answered by qrefine() over the
+// active nodes (SelectiveStreaming), each split preceded by the splits
+// SelStreamVSplit's partial order asks for, and never a node twice.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/vertex_hierarchy.h"
+#include "formats/sections/rfin.h"
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+#include "lib/replay/stream_packets.h"
+#include "lib/replay/stream_view.h"
+
+namespace lodbake {
+
+/// Active tags as a bit array over node indices with a window (section 6.1,
+/// Figure 4(b)): every bit below win_min() and from win_max() on is 0, and
+/// only the words that cover the window are allocated. The buffer slides
+/// right as the window does and doubles when the window outgrows it (the
+/// paper's allocation policy).
+class ActiveTagWindow {
+ public:
+  bool test(size_t i) const;
+  void set(size_t i);
+  void clear(size_t i);
+  /// The lowest set bit and one past the highest (equal when none is set):
+  /// always tight.
+  size_t win_min() const { return win_min_; }
+  size_t win_max() const { return win_max_; }
+  /// The first set bit at or after `from`, win_max() when none.
+  size_t next(size_t from) const;
+  size_t set_count() const { return set_count_; }
+  /// ceil((win_max - win_min) / 8): the window itself, the paper's "ideal".
+  size_t window_bytes() const { return (win_max_ - win_min_ + 7) / 8; }
+  /// The allocated buffer (whole 64-bit words).
+  size_t buffer_bytes() const { return words_.size() * 8; }
+
+ private:
+  std::vector<uint64_t> words_;
+  size_t first_word_ = 0;  // node index / 64 of words_[0]
+  size_t win_min_ = 0;
+  size_t win_max_ = 0;
+  size_t set_count_ = 0;
+};
+
+/// The database entry: a hierarchy (validate_hierarchy() clean) and its RFIN
+/// records, with the derived ids, id widths and dequantized data.
+struct StreamHierarchy {
+  const VertexHierarchy* h = nullptr;
+  std::vector<RfinRecord> records;   ///< one per node, leaves zero
+  std::vector<NodeRefinement> data;  ///< dequantize_refinement(records[i])
+  std::vector<HierarchyNodeId> ids;  ///< <tree-id, node-id> of every node
+  StreamIdWidths widths;
+
+  /// `h` must outlive the result. \return kInvalidInput when `h` does not
+  /// validate or `records` does not have one entry per node.
+  static Result<StreamHierarchy> create(const VertexHierarchy& h, std::vector<RfinRecord> records);
+  /// The same from RFIN's float values (quantize_refinement() per node).
+  static Result<StreamHierarchy> create(const VertexHierarchy& h,
+                                        const std::vector<NodeRefinement>& data);
+  StreamNodeData node_data(uint32_t node) const;
+  /// The base message: the base mesh, the depth and the roots' data.
+  Result<Bytes> base_message() const;
+  /// The packet of node s's split (its children's data, its cut vertices).
+  VsplitPacket packet(uint32_t s) const;
+};
+
+struct StreamServerOptions {
+  /// Keep the tags of real leaves set once they are sent (the server front
+  /// taken literally). Off by default: a real leaf is never split, so its
+  /// tag would only pin win_min; the front is the tagged nodes plus the sent
+  /// leaves, and ActiveAncestor still finds every front node (docs/replay.md).
+  bool tag_real_leaves = false;
+  /// Packets per vsplit message (an answer is several messages, then an
+  /// end-of-answer).
+  size_t max_packets_per_message = 4096;
+};
+
+/// Server memory for one session.
+struct StreamServerMemory {
+  size_t window_bytes = 0;  ///< the tag window, ceil(span / 8)
+  size_t buffer_bytes = 0;  ///< the allocated tag buffer
+  size_t front_nodes = 0;   ///< the server's vertex front (sent leaves of the client's tree)
+  size_t front_bytes = 0;   ///< a stored vertex front: 4 bytes (a node index) per front node
+};
+
+class StreamServerSession {
+ public:
+  /// A session at the base mesh: the roots' tags set. `db` must outlive it.
+  StreamServerSession(const StreamHierarchy& db, const StreamServerOptions& options);
+
+  /// Base mesh transmission (the session's first message).
+  Result<Bytes> base_message() const { return db_->base_message(); }
+
+  /// Answers one view request (a whole uplink message): the vsplit messages
+  /// of every split qrefine() asks for on the active nodes, in an order that
+  /// respects SelStreamVSplit's partial order, then an end-of-answer (alone
+  /// when nothing is needed). A split that the partial order forces behind
+  /// the sweep's position makes the sweep run again from its children, so
+  /// one answer holds everything the view needs. Refuses a malformed request
+  /// with the decoder's status, state unchanged.
+  Result<std::vector<Bytes>> answer(const uint8_t* request, size_t size);
+
+  const ActiveTagWindow& tags() const { return tags_; }
+  /// Nodes whose split was sent, in sending order.
+  const std::vector<uint32_t>& sent() const { return sent_; }
+  StreamServerMemory memory() const;
+
+ private:
+  uint32_t active_ancestor(uint32_t leaf) const;
+  Status sel_stream_vsplit(uint32_t node, std::vector<VsplitPacket>* out, size_t* behind,
+                           size_t cursor);
+
+  const StreamHierarchy* db_;
+  StreamServerOptions options_;
+  ActiveTagWindow tags_;
+  std::vector<uint32_t> sent_;
+  size_t front_nodes_ = 0;
+};
+
+}  // namespace lodbake
