@@ -120,8 +120,7 @@ void DagReplay::derive_bounds() {
       d2 += (double{a[i]} - b[i]) * (double{a[i]} - b[i]);
     return std::sqrt(d2);
   };
-  radius_.assign(nodes, 0);
-  error_bound_.assign(nodes, 0);
+  bounds_.assign(nodes, NodeBound());
   for (size_t k = nodes; k-- > 0;) {
     const uint32_t n = static_cast<uint32_t>(k);
     const Vec3f& centre = pm_->splits[n].vt_position;
@@ -132,26 +131,25 @@ void DagReplay::derive_bounds() {
         r = std::max(r, distance(centre, position(v)));
     }
     for (const uint32_t* c = fronts_.children_begin(n); c != fronts_.children_end(n); ++c) {
-      r = std::max(r, distance(centre, pm_->splits[*c].vt_position) + radius_[*c]);
-      e = std::max(e, error_bound_[*c]);
+      r = std::max(r, distance(centre, pm_->splits[*c].vt_position) + bounds_[*c].radius);
+      e = std::max(e, bounds_[*c].error);
     }
     // Rounded up so that float storage keeps every child inside.
-    radius_[n] = static_cast<float>(r * (1 + 1e-6)) + 1e-30f;
-    error_bound_[n] = e;
+    bounds_[n] = {centre[0], centre[1], centre[2], static_cast<float>(r * (1 + 1e-6)) + 1e-30f, e};
   }
 }
 
+// Every front node is evaluated every frame, in no memory order: one record
+// per node (one cache line holds three) is what the evaluation reads.
 float DagReplay::priority(uint32_t node) const {
-  const Vec3f& p = pm_->splits[node].vt_position;
-  const double r = radius_[node];
+  const NodeBound& b = bounds_[node];
+  const double x = b.x, y = b.y, z = b.z, r = b.radius;
   for (const std::array<float, 4>& q : view_.frustum) {
-    if (double{q[0]} * p[0] + double{q[1]} * p[1] + double{q[2]} * p[2] + q[3] < -r) return 0;
+    if (double{q[0]} * x + double{q[1]} * y + double{q[2]} * z + q[3] < -r) return 0;
   }
-  double d2 = 0;
-  for (int i = 0; i < 3; ++i)
-    d2 += (double{p[i]} - view_.eye[i]) * (double{p[i]} - view_.eye[i]);
-  const double d = std::max({std::sqrt(d2) - r, near_distance_, 1e-12});
-  return static_cast<float>(double{error_bound_[node]} / d * pixels_per_unit_at_1_);
+  const double dx = x - view_.eye[0], dy = y - view_.eye[1], dz = z - view_.eye[2];
+  const double d = std::max({std::sqrt(dx * dx + dy * dy + dz * dz) - r, near_distance_, 1e-12});
+  return static_cast<float>(double{b.error} / d * pixels_per_unit_at_1_);
 }
 
 Status DagReplay::apply(Side side, uint32_t node, std::vector<uint32_t>* entered) {

@@ -87,7 +87,7 @@ class DagReplay {
   float priority(uint32_t node) const;
   /// Radius of the sphere around split `node`'s new vertex that holds its
   /// triangles and its descendants' spheres.
-  float bound_radius(uint32_t node) const { return radius_[node]; }
+  float bound_radius(uint32_t node) const { return bounds_[node].radius; }
   /// The current cut's triangles (vertex ids of the PM: base vertices, then
   /// split i's new vertex as base_vertex_count + i).
   std::vector<Triangle> cut_triangles() const { return dag_cut_triangles(lineage_, fronts_); }
@@ -145,8 +145,12 @@ class DagReplay {
   SplitLineage lineage_;
   std::vector<uint32_t> added_;  // net triangles a split adds
   uint32_t max_added_ = 0;
-  std::vector<float> radius_;       // per node, see bound_radius()
-  std::vector<float> error_bound_;  // per node, see priority()
+  // Per node: the new vertex (the sphere's centre), bound_radius() and the
+  // error bound priority() projects.
+  struct NodeBound {
+    float x = 0, y = 0, z = 0, radius = 0, error = 0;
+  };
+  std::vector<NodeBound> bounds_;
   size_t triangles_ = 0;
   FrontQueue split_queue_;
   FrontQueue collapse_queue_;
