@@ -191,6 +191,22 @@ Status StreamClient::receive(const uint8_t* data, size_t size) {
   }
 }
 
+Result<Bytes> StreamClient::reconnect() {
+  try {
+    std::vector<HierarchyNodeId> leaves;
+    for (uint32_t v = 0; v < h_->node_count(); ++v) {
+      if (h_->is_leaf(v)) leaves.push_back(ids_[v]);
+    }
+    LODBAKE_ASSIGN_OR_RETURN(Bytes message,
+                             encode_resume_message(std::move(leaves), widths_, roots_));
+    pending_ = 0;
+    complete_ = true;
+    return message;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory writing the resume message");
+  }
+}
+
 Result<StreamClientAdapt> StreamClient::adapt(const StreamView& view, size_t max_passes) {
   StreamClientAdapt stats;
   const VertexHierarchy& h = *h_;

@@ -46,6 +46,11 @@ class StreamClient {
   /// True after an end-of-answer, until the next vsplit message.
   bool answer_complete() const { return pending_ == 0 && complete_; }
 
+  /// For a new connection after a lost one: forgets the count of an answer
+  /// cut short (the packets that arrived stay applied) and returns the
+  /// resume message, the ids of the partial hierarchy's leaves.
+  Result<Bytes> reconnect();
+
   /// One pass of section 5.3's SelectiveRefinement over the client's front
   /// (local node order: parents before children), repeated until nothing
   /// changes or `max_passes`: split (with SelStreamVSplit's order) an active

@@ -16,6 +16,7 @@
 //   says so.
 #include "lib/replay/stream_packets.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <new>
@@ -162,8 +163,8 @@ uint64_t vsplit_packet_bits(const VsplitPacket& p, const StreamIdWidths& widths)
          (p.right.internal ? kStreamRecordBits : 0);
 }
 
-Result<StreamMessageType> stream_message_type(const uint8_t* data, size_t size) {
-  ByteReader r(data, size);
+Result<uint32_t> stream_payload_length(const uint8_t* header, size_t size, uint32_t max_payload) {
+  ByteReader r(header, size);
   uint8_t magic = 0, type = 0;
   uint32_t length = 0;
   if (!r.read(&magic) || !r.read(&type) || !r.read(&length)) {
@@ -177,15 +178,21 @@ Result<StreamMessageType> stream_message_type(const uint8_t* data, size_t size) 
   if ((magic & 15) != (kStreamMagicVersion & 15)) {
     return bad("unknown version " + std::to_string(magic & 15));
   }
-  if (type < 1 || type > 4) return bad("unknown type " + std::to_string(type));
-  if (length > kMaxStreamPayloadBytes) {
-    return bad("payload of " + std::to_string(length) + " bytes exceeds the limit");
+  if (type < 1 || type > kStreamLastMessageType) return bad("unknown type " + std::to_string(type));
+  if (length > std::min(max_payload, kMaxStreamPayloadBytes)) {
+    return bad("payload of " + std::to_string(length) + " bytes exceeds the limit of " +
+               std::to_string(std::min(max_payload, kMaxStreamPayloadBytes)));
   }
-  if (length != r.remaining()) {
+  return length;
+}
+
+Result<StreamMessageType> stream_message_type(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t length, stream_payload_length(data, size));
+  if (length != size - kStreamHeaderBytes) {
     return bad("header says " + std::to_string(length) + " payload bytes, " +
-               std::to_string(r.remaining()) + " follow");
+               std::to_string(size - kStreamHeaderBytes) + " follow");
   }
-  return static_cast<StreamMessageType>(type);
+  return static_cast<StreamMessageType>(data[1]);
 }
 
 Bytes encode_view_request(const ViewRequest& view) {
@@ -437,6 +444,108 @@ Result<uint32_t> decode_end_of_answer(const uint8_t* data, size_t size) {
   uint32_t packets = 0;
   if (r.remaining() != 4 || !r.read(&packets)) return bad("end of answer is not 4 payload bytes");
   return packets;
+}
+
+Bytes encode_hello() {
+  Bytes payload;
+  ByteWriter w(&payload);
+  w.write(uint32_t{0});
+  return frame(StreamMessageType::kResume, payload);
+}
+
+Result<Bytes> encode_resume_message(std::vector<HierarchyNodeId> leaves,
+                                    const StreamIdWidths& widths, uint32_t root_count) {
+  if (!valid_widths(widths, root_count)) return invalid_input("resume message: bad id widths");
+  try {
+    std::sort(leaves.begin(), leaves.end());
+    Bytes payload;
+    ByteWriter w(&payload);
+    w.write(static_cast<uint32_t>(leaves.size()));
+    BitWriter b(&payload);
+    for (size_t i = 0; i < leaves.size(); ++i) {
+      const HierarchyNodeId& id = leaves[i];
+      if (id.heap == 0 || id.tree >= root_count || !fits(id.heap, widths.node_bits) ||
+          (i > 0 && leaves[i - 1] == id)) {
+        return invalid_input("resume message: an id outside the hierarchy's widths or repeated");
+      }
+      b.write(id.tree, widths.tree_bits);
+      write_wide(&b, id.heap, widths.node_bits);
+    }
+    b.finish();
+    if (payload.size() > kMaxStreamPayloadBytes) {
+      return invalid_input("resume message: payload over the limit");
+    }
+    return frame(StreamMessageType::kResume, payload);
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory encoding a resume message");
+  }
+}
+
+Result<uint32_t> resume_leaf_count(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, StreamMessageType::kResume, "resume"));
+  uint32_t count = 0;
+  if (!r.read(&count)) return bad("resume message without its leaf count");
+  return count;
+}
+
+Result<std::vector<HierarchyNodeId>> decode_resume_message(const uint8_t* data, size_t size,
+                                                           const StreamIdWidths& widths,
+                                                           uint32_t root_count,
+                                                           uint64_t max_leaves) {
+  if (!valid_widths(widths, root_count)) return invalid_input("resume message: bad id widths");
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, StreamMessageType::kResume, "resume"));
+  uint32_t count = 0;
+  if (!r.read(&count)) return bad("resume message without its leaf count");
+  if (count > max_leaves) {
+    return bad(std::to_string(count) + " leaves, more than the hierarchy's " +
+               std::to_string(max_leaves) + " nodes");
+  }
+  if (uint64_t{count} * static_cast<uint64_t>(widths.id_bits()) > uint64_t{r.remaining()} * 8) {
+    return bad(std::to_string(count) + " leaf ids need more bytes than remain");
+  }
+  try {
+    std::vector<HierarchyNodeId> leaves(count);
+    BitReader b(r.current(), r.remaining());
+    for (size_t i = 0; i < leaves.size(); ++i) {
+      uint32_t tree = 0;
+      uint64_t heap = 0;
+      if (!b.read(widths.tree_bits, &tree) || !read_wide(&b, widths.node_bits, &heap)) {
+        return bad("resume message truncated");
+      }
+      leaves[i] = {tree, heap};
+      const std::string at = "resume leaf " + std::to_string(i) + ": ";
+      if (heap == 0) return bad(at + "node id 0");
+      if (tree >= root_count) return bad(at + "tree id out of range");
+      if (i > 0 && !(leaves[i - 1] < leaves[i])) return bad(at + "ids out of order or repeated");
+    }
+    if (b.bytes_consumed() != r.remaining()) return bad("trailing bytes after the resume leaves");
+    if (!b.padding_is_zero()) return bad("nonzero padding bits in a resume message");
+    return leaves;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory decoding a resume message");
+  }
+}
+
+Bytes encode_scene_message(const BoundingSphere& sphere) {
+  Bytes payload;
+  ByteWriter w(&payload);
+  for (float c : sphere.center)
+    w.write(c);
+  w.write(sphere.radius);
+  return frame(StreamMessageType::kScene, payload);
+}
+
+Result<BoundingSphere> decode_scene_message(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, StreamMessageType::kScene, "scene"));
+  if (r.remaining() != 16) return bad("a scene message has 16 payload bytes");
+  BoundingSphere s;
+  for (float& c : s.center) {
+    r.read(&c);
+    if (!std::isfinite(c)) return bad("the scene's centre is not finite");
+  }
+  r.read(&s.radius);
+  if (!(s.radius > 0) || !std::isfinite(s.radius)) return bad("the scene's radius is not positive");
+  return s;
 }
 
 }  // namespace lodbake

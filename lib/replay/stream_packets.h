@@ -29,6 +29,7 @@
 #include "formats/sections/rfin.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/replay/camera_path.h"
 
 namespace lodbake {
 
@@ -43,7 +44,13 @@ enum class StreamMessageType : uint8_t {
   kBase = 2,         ///< server -> client: base mesh + roots' refinement data
   kVsplits = 3,      ///< server -> client: a batch of vsplit packets
   kEndOfAnswer = 4,  ///< server -> client: the answer to a view is complete
+  /// client -> server, a connection's first message: the leaves of the
+  /// client's partial hierarchy (none: a new session, answered by the base
+  /// and scene messages; else the session resumes from them, no answer).
+  kResume = 5,
+  kScene = 6,  ///< server -> client, after the base: the model's bounding sphere
 };
+inline constexpr uint8_t kStreamLastMessageType = 6;
 
 /// The client's viewing parameters (the paper's Figure 3(a)).
 struct ViewRequest {
@@ -116,6 +123,15 @@ inline constexpr int kStreamRecordBits = 144;
 /// bytes and at most kMaxStreamPayloadBytes.
 Result<StreamMessageType> stream_message_type(const uint8_t* data, size_t size);
 
+/// The payload length a message header announces, from its first
+/// kStreamHeaderBytes alone (what a transport reads before the payload):
+/// the same checks as stream_message_type() except that the payload is not
+/// there yet, with the length bounded by `max_payload` (at most
+/// kMaxStreamPayloadBytes), so a peer announcing a huge message is refused
+/// before anything is allocated for it.
+Result<uint32_t> stream_payload_length(const uint8_t* header, size_t size,
+                                       uint32_t max_payload = kMaxStreamPayloadBytes);
+
 Bytes encode_view_request(const ViewRequest& view);
 /// Refuses non-finite values, a modelview whose last row is not (0, 0, 0, 1)
 /// or whose 3x3 part is singular, fovy outside (0, 180), aspect <= 0, a
@@ -144,5 +160,34 @@ Result<std::vector<VsplitPacket>> decode_vsplit_message(const uint8_t* data, siz
 /// Payload: uint32, the number of vsplit packets of the whole answer.
 Bytes encode_end_of_answer(uint32_t packets);
 Result<uint32_t> decode_end_of_answer(const uint8_t* data, size_t size);
+
+/// A new session's first message: a resume message without leaves (no id
+/// widths needed: the client has not seen the base yet).
+Bytes encode_hello();
+/// The leaves of a client's partial hierarchy (ids of the complete one),
+/// which the encoder sorts. \return kInvalidInput for an id outside the
+/// widths or the roots, heap id 0, or a repeated id.
+Result<Bytes> encode_resume_message(std::vector<HierarchyNodeId> leaves,
+                                    const StreamIdWidths& widths, uint32_t root_count);
+/// Payload: uint32 count, then count x (tree bits + node bits) in strictly
+/// increasing <tree-id, node-id> order (one encoding). Refuses more than
+/// `max_leaves` ids (the server passes its hierarchy's node count) before
+/// allocating, heap id 0, a tree id >= root_count, ids out of order or
+/// repeated, nonzero padding. Whether the ids form a front of the server's
+/// hierarchy is the server's check (StreamServerSession::resume()).
+Result<std::vector<HierarchyNodeId>> decode_resume_message(const uint8_t* data, size_t size,
+                                                           const StreamIdWidths& widths,
+                                                           uint32_t root_count,
+                                                           uint64_t max_leaves);
+/// The leaf count of a resume message from its first 10 bytes (0 for a
+/// hello), for a server that has to tell a new session from a resumed one
+/// before it knows which widths apply. kInvalidInput when not a resume message.
+Result<uint32_t> resume_leaf_count(const uint8_t* data, size_t size);
+
+/// Payload: the bounding sphere's centre (3 float32) and radius (float32,
+/// > 0), all finite: what a client needs to place its camera path without
+/// the container.
+Bytes encode_scene_message(const BoundingSphere& sphere);
+Result<BoundingSphere> decode_scene_message(const uint8_t* data, size_t size);
 
 }  // namespace lodbake

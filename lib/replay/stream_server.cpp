@@ -20,7 +20,14 @@
 //   the first such child, so an answer is complete for its view and a
 //   client asks at most once per view;
 // - the memory of a stored vertex front is counted as 4 bytes (a node
-//   index) per front node.
+//   index) per front node;
+// - resume (not in the paper, the reconnecting client): the server
+//   keeps nothing of a closed connection; the client's leaves say exactly
+//   what it holds (a partial hierarchy is the ancestors of its leaves, and
+//   each prefix of an answer is a state the server's own sweep went
+//   through), so the new session is rebuilt from them and a split the
+//   client holds is never sent again. Packets lost in flight when the
+//   connection died are not held by the client, so they are sent again.
 #include "lib/replay/stream_server.h"
 
 #include <algorithm>
@@ -127,6 +134,7 @@ Result<StreamHierarchy> StreamHierarchy::create(const VertexHierarchy& h,
     db.ids = hierarchy_node_ids(h);
     db.widths.tree_bits = bits_for_count(h.root_count());
     db.widths.node_bits = static_cast<int>(hierarchy_shape(h).depth);
+    db.sphere = bounding_sphere(h.position);
     return db;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory preparing the hierarchy for streaming");
@@ -179,6 +187,25 @@ VsplitPacket StreamHierarchy::packet(uint32_t s) const {
   p.left = node_data(left);
   p.right = node_data(left + 1);
   return p;
+}
+
+uint32_t StreamHierarchy::node_of(const HierarchyNodeId& id) const {
+  if (id.tree >= h->root_count() || id.heap == 0) return kNoNode;
+  int top = 63;
+  while (((id.heap >> top) & 1) == 0)
+    --top;
+  uint32_t v = id.tree;
+  for (int bit = top - 1; bit >= 0; --bit) {
+    if (h->is_leaf(v)) return kNoNode;
+    v = h->first_child[v] + static_cast<uint32_t>((id.heap >> bit) & 1);
+  }
+  return v;
+}
+
+uint32_t StreamHierarchy::uplink_payload_limit() const {
+  const uint64_t resume = 4 + (uint64_t{h->node_count()} * widths.id_bits() + 7) / 8;
+  return static_cast<uint32_t>(std::min<uint64_t>(
+      kMaxStreamPayloadBytes, std::max<uint64_t>(resume, kViewRequestPayloadBytes)));
 }
 
 StreamServerSession::StreamServerSession(const StreamHierarchy& db,
@@ -236,6 +263,7 @@ Status StreamServerSession::sel_stream_vsplit(uint32_t node, std::vector<VsplitP
 
 Result<std::vector<Bytes>> StreamServerSession::answer(const uint8_t* request, size_t size) {
   LODBAKE_ASSIGN_OR_RETURN(ViewRequest req, decode_view_request(request, size));
+  ++answers_;
   const StreamView view = stream_view(req);
   const VertexHierarchy& h = *db_->h;
   try {
@@ -271,6 +299,59 @@ Result<std::vector<Bytes>> StreamServerSession::answer(const uint8_t* request, s
   }
 }
 
+Status StreamServerSession::resume(const std::vector<HierarchyNodeId>& leaves) {
+  const VertexHierarchy& h = *db_->h;
+  if (answers_ != 0 || resumed_ != 0 || !sent_.empty()) {
+    return runtime_error("resume: the session has already started");
+  }
+  try {
+    // 1: on the path above a leaf (held split), 2: a leaf.
+    std::vector<uint8_t> state(h.node_count(), 0);
+    std::vector<uint32_t> front;
+    front.reserve(leaves.size());
+    for (const HierarchyNodeId& id : leaves) {
+      const std::string at =
+          "resume: leaf <" + std::to_string(id.tree) + "," + std::to_string(id.heap) + ">: ";
+      const uint32_t v = db_->node_of(id);
+      if (v == kNoNode) return invalid_input(at + "no such node in the hierarchy");
+      if (state[v] != 0) return invalid_input(at + "repeated or above another leaf");
+      state[v] = 2;
+      front.push_back(v);
+      for (uint32_t p = h.parent[v]; p != kNoNode && state[p] != 1; p = h.parent[p]) {
+        if (state[p] == 2) return invalid_input(at + "below another leaf");
+        state[p] = 1;
+      }
+    }
+    size_t held = 0;
+    for (uint32_t r = 0; r < h.root_count(); ++r) {
+      if (state[r] == 0) {
+        return invalid_input("resume: tree " + std::to_string(r) + " has no leaf");
+      }
+    }
+    for (uint32_t v = 0; v < h.node_count(); ++v) {
+      if (state[v] != 1) continue;
+      ++held;
+      const uint32_t c = h.first_child[v];
+      if (state[c] == 0 || state[c + 1] == 0) {
+        return invalid_input("resume: node <" + std::to_string(db_->ids[v].tree) + "," +
+                             std::to_string(db_->ids[v].heap) +
+                             "> is split but a child is neither a leaf nor split");
+      }
+    }
+    ActiveTagWindow tags;
+    std::sort(front.begin(), front.end());
+    for (uint32_t v : front) {
+      if (!h.is_leaf(v) || options_.tag_real_leaves) tags.set(v);
+    }
+    tags_ = std::move(tags);
+    front_nodes_ = front.size();
+    resumed_ = held;
+    return Status::ok();
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory resuming a streaming session");
+  }
+}
+
 StreamServerMemory StreamServerSession::memory() const {
   StreamServerMemory m;
   m.window_bytes = tags_.window_bytes();
@@ -278,6 +359,60 @@ StreamServerMemory StreamServerSession::memory() const {
   m.front_nodes = front_nodes_;
   m.front_bytes = 4 * front_nodes_;
   return m;
+}
+
+StreamServerConnection::StreamServerConnection(const StreamHierarchy& db,
+                                               const StreamServerOptions& options)
+    : db_(&db), session_(db, options) {}
+
+Status StreamServerConnection::handle(const Bytes& message, StreamTransport* out) {
+  LODBAKE_ASSIGN_OR_RETURN(StreamMessageType type,
+                           stream_message_type(message.data(), message.size()));
+  if (!started_) {
+    if (type != StreamMessageType::kResume) {
+      return invalid_input("stream message: type " + std::to_string(static_cast<int>(type)) +
+                           " where a connection's first message (hello or resume) was expected");
+    }
+    LODBAKE_ASSIGN_OR_RETURN(uint32_t count, resume_leaf_count(message.data(), message.size()));
+    if (count == 0) {
+      LODBAKE_ASSIGN_OR_RETURN(
+          std::vector<HierarchyNodeId> none,
+          decode_resume_message(message.data(), message.size(), db_->widths,
+                                static_cast<uint32_t>(db_->h->root_count()), 0));
+      (void)none;
+      LODBAKE_ASSIGN_OR_RETURN(Bytes base, db_->base_message());
+      started_ = true;
+      LODBAKE_RETURN_IF_ERROR(out->send(base));
+      return out->send(encode_scene_message(db_->sphere));
+    }
+    LODBAKE_ASSIGN_OR_RETURN(
+        std::vector<HierarchyNodeId> leaves,
+        decode_resume_message(message.data(), message.size(), db_->widths,
+                              static_cast<uint32_t>(db_->h->root_count()), db_->h->node_count()));
+    LODBAKE_RETURN_IF_ERROR(session_.resume(leaves));
+    started_ = true;
+    return Status::ok();
+  }
+  if (type != StreamMessageType::kView) {
+    return invalid_input("stream message: type " + std::to_string(static_cast<int>(type)) +
+                         " where a view request was expected");
+  }
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<Bytes> answer,
+                           session_.answer(message.data(), message.size()));
+  ++requests_;
+  for (const Bytes& m : answer)
+    LODBAKE_RETURN_IF_ERROR(out->send(m));
+  return Status::ok();
+}
+
+Status StreamServerConnection::serve(StreamTransport* t) {
+  t->set_max_payload(db_->uplink_payload_limit());
+  for (;;) {
+    bool closed = false;
+    LODBAKE_ASSIGN_OR_RETURN(Bytes message, t->receive(&closed));
+    if (closed) return Status::ok();
+    LODBAKE_RETURN_IF_ERROR(handle(message, t));
+  }
 }
 
 }  // namespace lodbake

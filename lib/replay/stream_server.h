@@ -15,7 +15,9 @@
 #include "formats/sections/rfin.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/replay/camera_path.h"
 #include "lib/replay/stream_packets.h"
+#include "lib/replay/stream_transport.h"
 #include "lib/replay/stream_view.h"
 
 namespace lodbake {
@@ -58,6 +60,8 @@ struct StreamHierarchy {
   std::vector<NodeRefinement> data;  ///< dequantize_refinement(records[i])
   std::vector<HierarchyNodeId> ids;  ///< <tree-id, node-id> of every node
   StreamIdWidths widths;
+  /// bounding_sphere() of every node's position: the scene message.
+  BoundingSphere sphere;
 
   /// `h` must outlive the result. \return kInvalidInput when `h` does not
   /// validate or `records` does not have one entry per node.
@@ -70,6 +74,13 @@ struct StreamHierarchy {
   Result<Bytes> base_message() const;
   /// The packet of node s's split (its children's data, its cut vertices).
   VsplitPacket packet(uint32_t s) const;
+  /// The node of an id (the root's children chosen by the heap id's bits
+  /// after its leading 1), kNoNode when the hierarchy has no such node.
+  uint32_t node_of(const HierarchyNodeId& id) const;
+  /// The largest uplink payload a client can need: a resume message naming
+  /// every node (and at least a view request). Servers bound their
+  /// transports' reads with it.
+  uint32_t uplink_payload_limit() const;
 };
 
 struct StreamServerOptions {
@@ -99,6 +110,20 @@ class StreamServerSession {
   /// Base mesh transmission (the session's first message).
   Result<Bytes> base_message() const { return db_->base_message(); }
 
+  /// Continues a client's session on a new connection from the leaves of
+  /// its partial hierarchy (decode_resume_message()): every ancestor of a
+  /// leaf counts as held by the client (resumed()), the leaves are the
+  /// server's front, and the tags are set for those that are internal.
+  /// \pre a fresh session (nothing answered yet).
+  /// \return kInvalidInput, state unchanged, when the ids are not a front
+  ///         of the hierarchy: an id that names no node, a leaf above
+  ///         another, a tree without one, a held split whose child is
+  ///         neither a leaf nor held.
+  Status resume(const std::vector<HierarchyNodeId>& leaves);
+  /// Splits the client held when the session resumed (0 when it started
+  /// from the base mesh); sent() holds only what this session sent.
+  size_t resumed() const { return resumed_; }
+
   /// Answers one view request (a whole uplink message): the vsplit messages
   /// of every split qrefine() asks for on the active nodes, in an order that
   /// respects SelStreamVSplit's partial order, then an end-of-answer (alone
@@ -123,6 +148,39 @@ class StreamServerSession {
   ActiveTagWindow tags_;
   std::vector<uint32_t> sent_;
   size_t front_nodes_ = 0;
+  size_t resumed_ = 0;
+  size_t answers_ = 0;
+};
+
+/// One client's connection on the server. The first message is a resume
+/// message: without leaves (a hello) the server sends the base and scene
+/// messages; with leaves the session resumes from them and nothing is sent.
+/// Every later message must be a view request, answered with vsplit
+/// messages and an end-of-answer. Anything else ends the connection with
+/// the decoder's kInvalidInput status.
+class StreamServerConnection {
+ public:
+  /// `db` must outlive the connection.
+  StreamServerConnection(const StreamHierarchy& db, const StreamServerOptions& options);
+
+  /// Handles one whole uplink message, sending its answer through `out`.
+  Status handle(const Bytes& message, StreamTransport* out);
+  /// Bounds `t`'s reads by db.uplink_payload_limit(), then receives and
+  /// handles messages until the client closes between two of them (ok) or
+  /// anything fails (that status).
+  Status serve(StreamTransport* t);
+
+  /// True after the first message was accepted.
+  bool started() const { return started_; }
+  /// \pre started().
+  const StreamServerSession& session() const { return session_; }
+  size_t requests() const { return requests_; }
+
+ private:
+  const StreamHierarchy* db_;
+  StreamServerSession session_;
+  bool started_ = false;
+  size_t requests_ = 0;
 };
 
 }  // namespace lodbake

@@ -1,12 +1,14 @@
-// Mode stream of the replay runtime (issue 9): a streaming server session
-// and its client in one process, joined by an in-memory channel that counts
-// every byte both ways, driven frame by frame along a camera path; and the
+// Mode stream of the replay runtime (issue 9): the client's side of a
+// streaming session over any transport (lib/replay/stream_transport.h), a
+// server session and its client in one process over an in-memory transport
+// that counts every byte both ways, a multi-client TCP server, and the
 // view-independent baseline the paper compares with (section 8, Figure 9).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "formats/support/file_io.h"
@@ -14,28 +16,9 @@
 #include "lib/replay/camera_path.h"
 #include "lib/replay/stream_client.h"
 #include "lib/replay/stream_server.h"
+#include "lib/replay/stream_transport.h"
 
 namespace lodbake {
-
-/// Two message queues, client -> server (uplink) and server -> client
-/// (downlink), with their byte and message counts.
-class StreamChannel {
- public:
-  void send_up(Bytes message);
-  void send_down(Bytes message);
-  /// False when the queue is empty.
-  bool receive_up(Bytes* message);
-  bool receive_down(Bytes* message);
-  uint64_t uplink_bytes() const { return up_bytes_; }
-  uint64_t downlink_bytes() const { return down_bytes_; }
-  uint64_t uplink_messages() const { return up_messages_; }
-  uint64_t downlink_messages() const { return down_messages_; }
-
- private:
-  std::deque<Bytes> up_;
-  std::deque<Bytes> down_;
-  uint64_t up_bytes_ = 0, down_bytes_ = 0, up_messages_ = 0, down_messages_ = 0;
-};
 
 struct StreamReplayOptions {
   Viewport viewport;
@@ -61,37 +44,108 @@ struct StreamFrameStats {
   size_t missing = 0;  ///< splits still missing at the end of the frame
   size_t triangles = 0;
   size_t front_size = 0;  ///< the client's active nodes
+  /// The server session's memory (one-process sessions only; a remote
+  /// client does not know it).
   StreamServerMemory server;
 };
 
-class StreamSession {
- public:
-  /// Creates the server session and the client, and sends the base message
-  /// (downlink bytes before the first frame). `db` must outlive the session.
-  static Result<StreamSession> create(const StreamHierarchy& db,
-                                      const StreamReplayOptions& options);
+/// Runs after every message the client sends: in one process, it lets the
+/// server handle what was sent before the client reads the answer.
+using StreamPump = std::function<Status()>;
 
-  /// One camera: the client adapts with what it has, sends its view when a
-  /// needed split is missing, applies the answer and adapts again.
-  /// `sphere` places the near plane (viewport.near_fraction of its radius).
-  Result<StreamFrameStats> frame(const CameraFrame& camera, const BoundingSphere& sphere);
+/// The client's side of a session over any transport (section 5.1's main
+/// loop): a hello answered by the base and scene messages, then per frame
+/// the client adapts with what it has, sends its view when a needed split
+/// is missing, applies the answer and adapts again. After a lost
+/// connection, resume() continues on a new one.
+class StreamClientSession {
+ public:
+  /// Sends the hello over `t` (which must outlive its use) and reads the
+  /// base and scene messages.
+  static Result<StreamClientSession> start(StreamTransport* t, const StreamReplayOptions& options,
+                                           StreamPump pump = {});
+  /// Continues over a new connection `t`: sends the resume message (the
+  /// partial hierarchy's leaves). Packets of an answer cut short stay
+  /// applied; the next frame asks for what is still missing.
+  Status resume(StreamTransport* t, StreamPump pump = {});
+
+  /// One camera, the near plane at viewport.near_fraction of the scene's radius.
+  Result<StreamFrameStats> frame(const CameraFrame& camera);
   /// The same for a view request given as is (tests: tolerance 0).
   Result<StreamFrameStats> step(const ViewRequest& request);
 
-  const StreamClient& client() const { return client_; }
-  const StreamServerSession& server() const { return *server_; }
-  const StreamChannel& channel() const { return channel_; }
+  const StreamClient& client() const { return *client_; }
+  /// From the scene message: what the client places its camera path around.
+  const BoundingSphere& sphere() const { return sphere_; }
   uint64_t base_bytes() const { return base_bytes_; }
+  /// The opening exchange: the hello up, the base and scene messages down.
+  uint64_t start_uplink_bytes() const { return start_up_; }
+  uint64_t start_downlink_bytes() const { return start_down_; }
+  /// Connections used (1 + resumes).
+  size_t connections() const { return connections_; }
 
  private:
-  StreamSession(const StreamHierarchy& db, const StreamReplayOptions& options, StreamClient client);
-  const StreamHierarchy* db_;
+  StreamClientSession() = default;
+  Status send(const Bytes& message);
+  StreamTransport* t_ = nullptr;
+  StreamPump pump_;
   StreamReplayOptions options_;
-  std::unique_ptr<StreamServerSession> server_;
-  StreamClient client_;
-  StreamChannel channel_;
-  uint64_t base_bytes_ = 0;
+  std::unique_ptr<StreamClient> client_;
+  BoundingSphere sphere_;
+  uint64_t base_bytes_ = 0, start_up_ = 0, start_down_ = 0;
+  size_t connections_ = 1;
 };
+
+/// One server session and its client in one process, joined by an
+/// in-memory transport that counts every byte both ways.
+class StreamSession {
+ public:
+  /// Creates the server connection and the client and runs the opening
+  /// exchange. `db` must outlive the session.
+  static Result<StreamSession> create(const StreamHierarchy& db,
+                                      const StreamReplayOptions& options);
+
+  /// One camera (`sphere` places the near plane).
+  Result<StreamFrameStats> frame(const CameraFrame& camera, const BoundingSphere& sphere);
+  Result<StreamFrameStats> step(const ViewRequest& request);
+
+  const StreamClient& client() const { return client_->client(); }
+  const StreamServerSession& server() const { return server_->session(); }
+  /// The base message alone, and the opening exchange's bytes both ways.
+  uint64_t base_bytes() const { return client_->base_bytes(); }
+  uint64_t start_uplink_bytes() const { return client_->start_uplink_bytes(); }
+  uint64_t start_downlink_bytes() const { return client_->start_downlink_bytes(); }
+
+ private:
+  StreamSession() = default;
+  std::unique_ptr<StreamTransport> client_end_, server_end_;
+  std::unique_ptr<StreamServerConnection> server_;
+  std::unique_ptr<StreamClientSession> client_;
+};
+
+/// What one connection of serve_stream_clients() did.
+struct StreamServedClient {
+  Status status;  ///< ok when the client closed between two messages
+  uint64_t uplink_bytes = 0;
+  uint64_t downlink_bytes = 0;
+  size_t requests = 0;
+  size_t packets = 0;  ///< vsplit packets sent
+  size_t resumed = 0;  ///< splits the client held when it resumed
+  bool started = false;
+  StreamServerMemory memory;
+  std::vector<uint32_t> sent;
+};
+
+/// Accepts `clients` connections on `listener` and serves each on its own
+/// thread with its own session (active tags, window) over the shared
+/// database; returns when every connection has ended. A connection's own
+/// failure (a malformed message, a dead peer) is in its entry; the result
+/// fails only when a client does not connect within the accept timeout
+/// (after the connections already accepted ended).
+Result<std::vector<StreamServedClient>> serve_stream_clients(const StreamHierarchy& db,
+                                                             TcpListener* listener, size_t clients,
+                                                             const StreamServerOptions& options,
+                                                             const TcpOptions& tcp = TcpOptions());
 
 /// View-independent streaming of the same hierarchy's progressive mesh in
 /// its fixed order (hierarchy_to_progressive_mesh()), with vsplit records of

@@ -3,7 +3,9 @@
 // vsplit messages under three id-width contexts (roots, depth): (15, 16),
 // (18, 11) and (1, 40), so 0-bit tree ids and ids over 32 bits are covered.
 // Whatever decodes must re-encode to the same bytes (one encoding per
-// message), and a client fed a decoded base message must start.
+// message), and a client fed a decoded base message must start. Resume
+// messages decode under the same three contexts, each with a server bound
+// on the leaf count; a decoded one must agree with resume_leaf_count().
 #include <cstdint>
 
 #include "formats/support/bit_packing.h"
@@ -52,6 +54,31 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         Result<Bytes> again = encode_vsplit_message(p.value(), widths, c[0]);
         require(again.is_ok(), "decoded vsplit message cannot be encoded");
         require_same_bytes(again.value(), data, size, "vsplit round trip");
+      }
+      break;
+    }
+    case StreamMessageType::kResume: {
+      const uint32_t contexts[3][2] = {{15, 16}, {18, 11}, {1, 40}};
+      Result<uint32_t> count = resume_leaf_count(data, size);
+      for (const auto& c : contexts) {
+        StreamIdWidths widths;
+        widths.tree_bits = bits_for_count(c[0]);
+        widths.node_bits = static_cast<int>(c[1]);
+        Result<std::vector<HierarchyNodeId>> leaves =
+            decode_resume_message(data, size, widths, c[0], uint64_t{1} << 20);
+        if (!leaves.is_ok()) continue;
+        require(count.is_ok() && count.value() == leaves.value().size(),
+                "resume leaf count disagrees with the decoded leaves");
+        Result<Bytes> again = encode_resume_message(leaves.value(), widths, c[0]);
+        require(again.is_ok(), "decoded resume message cannot be encoded");
+        require_same_bytes(again.value(), data, size, "resume round trip");
+      }
+      break;
+    }
+    case StreamMessageType::kScene: {
+      Result<BoundingSphere> s = decode_scene_message(data, size);
+      if (s.is_ok()) {
+        require_same_bytes(encode_scene_message(s.value()), data, size, "scene round trip");
       }
       break;
     }

@@ -15,71 +15,13 @@
 
 #include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
-#include "lib/hierarchy/balanced_build.h"
-#include "lib/hierarchy/refinement_data.h"
 #include "lib/replay/stream_session.h"
-#include "lib/replay/vhier_replay.h"
-#include "simplify_test_meshes.h"
-#include "tests/unit/test_meshes.h"
+#include "tests/unit/stream_test_support.h"
 
 namespace lodbake {
 namespace {
 
-struct Built {
-  TriangleMesh input;
-  VertexHierarchy h;
-  std::vector<NodeRefinement> data;
-};
-
-Built build(TriangleMesh input) {
-  Built b;
-  b.input = std::move(input);
-  b.input.normals = MeshAttribute();
-  b.input.texcoords = MeshAttribute();
-  Result<BalancedHierarchy> built = build_balanced_hierarchy(b.input, BalancedBuildOptions());
-  EXPECT_TRUE(built.is_ok()) << built.status().message();
-  if (!built.is_ok()) return b;
-  b.h = std::move(built).value().hierarchy;
-  Result<std::vector<NodeRefinement>> data = compute_refinement_data(b.h, b.input);
-  EXPECT_TRUE(data.is_ok()) << data.status().message();
-  if (data.is_ok()) b.data = std::move(data).value();
-  return b;
-}
-
-Built build_mesh(const std::string& name) {
-  if (name == "torus") return build(test_meshes::torus(24, 16));
-  return build(load_clean_mesh(name));
-}
-
-Triangle canonical(const Triangle& t) {
-  const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
-  return {t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
-}
-
-std::vector<Triangle> sorted_canonical(std::vector<Triangle> tris) {
-  for (Triangle& t : tris)
-    t = canonical(t);
-  std::sort(tris.begin(), tris.end());
-  return tris;
-}
-
-// node index of every id of the complete hierarchy
-std::map<HierarchyNodeId, uint32_t> id_map(const StreamHierarchy& db) {
-  std::map<HierarchyNodeId, uint32_t> m;
-  for (uint32_t i = 0; i < db.ids.size(); ++i)
-    m[db.ids[i]] = i;
-  return m;
-}
-
-ViewRequest refine_everything(const Built& b) {
-  const BoundingSphere sphere = bounding_sphere(b.h.position);
-  CameraFrame f;
-  f.eye = {sphere.center[0], sphere.center[1], sphere.center[2] + 3 * sphere.radius};
-  f.target = sphere.center;
-  ViewRequest r = view_request_for(f, Viewport(), 0.01f * sphere.radius, 0);
-  EXPECT_EQ(r.tolerance, 0.0f);
-  return r;
-}
+using namespace stream_test;
 
 class StreamOnMesh : public ::testing::TestWithParam<const char*> {};
 
@@ -388,6 +330,7 @@ TEST(StreamClientTest, RefusesPacketsItCannotTake) {
 
 namespace lodbake {
 namespace {
+using namespace stream_test;
 
 // With LODBAKE_STREAM_CORPUS_OUT set, writes the seeds of
 // tests/fuzz/corpus/stream_packets there (how they were made); otherwise
@@ -420,6 +363,26 @@ TEST(StreamPackets, FuzzCorpusSeeds) {
     seeds.push_back(
         {"vsplits_" + std::to_string(c[0]) + "_" + std::to_string(c[1]) + ".bin", bytes.value()});
   }
+  // Resume messages (hello, and leaves under each context) and a scene.
+  seeds.push_back({"hello.bin", encode_hello()});
+  for (const auto& c : contexts) {
+    StreamIdWidths widths;
+    widths.tree_bits = bits_for_count(c[0]);
+    widths.node_bits = static_cast<int>(c[1]);
+    const std::vector<HierarchyNodeId> leaves = {
+        {0, 2}, {0, 7}, {0, (uint64_t{1} << (c[1] - 1)) + 1}, {c[0] - 1, 1}};
+    Result<Bytes> bytes = encode_resume_message(leaves, widths, c[0]);
+    ASSERT_TRUE(bytes.is_ok()) << bytes.status().message();
+    ASSERT_TRUE(
+        decode_resume_message(bytes.value().data(), bytes.value().size(), widths, c[0], 1u << 20)
+            .is_ok());
+    seeds.push_back(
+        {"resume_" + std::to_string(c[0]) + "_" + std::to_string(c[1]) + ".bin", bytes.value()});
+  }
+  BoundingSphere sphere;
+  sphere.center = {0.5f, -1, 2};
+  sphere.radius = 3;
+  seeds.push_back({"scene.bin", encode_scene_message(sphere)});
   Bytes newer = m.end;
   newer[0] = 0xB2;
   seeds.push_back({"newer_version.bin", newer});

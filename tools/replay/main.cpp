@@ -13,6 +13,7 @@
 // Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,6 +39,7 @@
 #include "lib/replay/fan_replay.h"
 #include "lib/replay/sets_replay.h"
 #include "lib/replay/stream_session.h"
+#include "lib/replay/stream_transport.h"
 #include "lib/replay/structure_cross_check.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/common/cli.h"
@@ -66,6 +68,11 @@ struct Request {
   // Mode sets.
   std::vector<double> percents = paper_recovery_percents();
   std::string spacing = "both";
+  // Mode stream over TCP: --serve PORT (a server for `clients` connections)
+  // or --connect ADDRESS (a client, no FILE); --clients K in one process.
+  std::optional<LoopbackAddress> serve;
+  std::optional<LoopbackAddress> connect;
+  size_t clients = 1;
 };
 
 // One frame's measures of one lane (the vhier refiner, one DAG traversal,
@@ -873,41 +880,413 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
   return 0;
 }
 
-// Mode stream: the hierarchy served frame by frame to a client that starts
-// from the base mesh (Kim, Lee and Kobbelt 2005), bytes counted both ways,
-// and the view-independent baseline of section 8.
-int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
-  Result<Container> container = read_container(bytes.data(), bytes.size());
-  if (!container.is_ok()) return tool.fail(request.input, container.status());
-  const Section* base = container.value().find(kBaseTag);
-  const Section* vhie = container.value().find(kVhieTag);
-  const Section* rfin = container.value().find(kRfinTag);
+// Mode stream's database: the container's hierarchy and RFIN records.
+struct StreamDb {
+  std::unique_ptr<VertexHierarchy> h;  // StreamHierarchy points at it
+  std::unique_ptr<StreamHierarchy> db;
+};
+
+Result<StreamDb> load_stream_db(const Bytes& bytes) {
+  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
+  const Section* base = container.find(kBaseTag);
+  const Section* vhie = container.find(kVhieTag);
+  const Section* rfin = container.find(kRfinTag);
   if (base == nullptr || vhie == nullptr || rfin == nullptr) {
-    return tool.fail(request.input, invalid_input(std::string("container has no ") +
-                                                  (base == nullptr   ? "BASE"
-                                                   : vhie == nullptr ? "VHIE"
-                                                                     : "RFIN") +
-                                                  " section; mode stream needs BASE + VHIE + RFIN "
-                                                  "(lodbake-hierarchy --sections vhie)"));
+    return invalid_input(std::string("container has no ") +
+                         (base == nullptr   ? "BASE"
+                          : vhie == nullptr ? "VHIE"
+                                            : "RFIN") +
+                         " section; mode stream needs BASE + VHIE + RFIN "
+                         "(lodbake-hierarchy --sections vhie)");
   }
-  Result<TriangleMesh> base_mesh = decode_base(base->data, base->size);
-  if (!base_mesh.is_ok()) return tool.fail(request.input, base_mesh.status());
-  Result<VertexHierarchy> h = decode_vhie(vhie->data, vhie->size, std::move(base_mesh).value());
-  if (!h.is_ok()) return tool.fail(request.input, h.status());
-  Result<std::vector<RfinRecord>> records = decode_rfin_records(rfin->data, rfin->size, h.value());
-  if (!records.is_ok()) return tool.fail(request.input, records.status());
-  Result<StreamHierarchy> db = StreamHierarchy::create(h.value(), std::move(records).value());
-  if (!db.is_ok()) return tool.fail(request.input, db.status());
+  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
+  LODBAKE_ASSIGN_OR_RETURN(VertexHierarchy h,
+                           decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));
+  StreamDb out;
+  out.h = std::make_unique<VertexHierarchy>(std::move(h));
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<RfinRecord> records,
+                           decode_rfin_records(rfin->data, rfin->size, *out.h));
+  LODBAKE_ASSIGN_OR_RETURN(StreamHierarchy db, StreamHierarchy::create(*out.h, std::move(records)));
+  out.db = std::make_unique<StreamHierarchy>(std::move(db));
+  return out;
+}
+
+StreamReplayOptions stream_options(const Request& request) {
   StreamReplayOptions options;
   options.viewport = request.options.viewport;
   options.tolerance_pixels = request.options.tolerance_pixels;
   options.max_passes = request.options.max_passes;
-  Result<StreamSession> created = StreamSession::create(db.value(), options);
+  return options;
+}
+
+// --validate's check of one streamed frame: a valid mesh, one request at
+// most and nothing missing.
+Status stream_frame_check(const StreamClient& client, const StreamFrameStats& f, size_t i) {
+  std::vector<std::string> problems = check_vhier_mesh(client.refiner());
+  if (f.missing != 0 || f.requests > 1) {
+    problems.push_back(std::to_string(f.missing) + " needed splits missing after " +
+                       std::to_string(f.requests) + " requests");
+  }
+  if (problems.empty()) return Status::ok();
+  std::string message = "frame " + std::to_string(i) + ": invalid mesh: " + problems[0];
+  for (size_t k = 1; k < problems.size(); ++k)
+    message += "; " + problems[k];
+  return Status(ErrorKind::kValidation, message);
+}
+
+// One client's frames added up (the opening exchange included).
+struct StreamTotals {
+  uint64_t up = 0, down = 0;
+  size_t frames = 0, requests = 0, request_frames = 0, packets = 0, splits = 0, collapses = 0;
+  size_t max_triangles = 0;
+  double mean_triangles = 0;
+};
+
+StreamTotals stream_totals(const std::vector<StreamFrameStats>& frames, uint64_t start_up,
+                           uint64_t start_down) {
+  StreamTotals t;
+  t.up = start_up;
+  t.down = start_down;
+  t.frames = frames.size();
+  for (const StreamFrameStats& f : frames) {
+    t.up += f.uplink_bytes;
+    t.down += f.downlink_bytes;
+    t.requests += f.requests;
+    t.request_frames += f.requests != 0;
+    t.packets += f.packets;
+    t.splits += f.splits;
+    t.collapses += f.collapses;
+    t.mean_triangles += static_cast<double>(f.triangles);
+    t.max_triangles = std::max(t.max_triangles, f.triangles);
+  }
+  t.mean_triangles /= static_cast<double>(std::max<size_t>(frames.size(), 1));
+  return t;
+}
+
+// A camera path turned about the vertical axis through the sphere's centre.
+std::vector<CameraFrame> turned_path(std::vector<CameraFrame> path, const BoundingSphere& sphere,
+                                     float degrees) {
+  const float a = degrees * 3.14159265f / 180, c = std::cos(a), s = std::sin(a);
+  for (CameraFrame& f : path) {
+    for (Vec3f* p : {&f.eye, &f.target}) {
+      const float x = (*p)[0] - sphere.center[0], z = (*p)[2] - sphere.center[2];
+      (*p)[0] = sphere.center[0] + c * x + s * z;
+      (*p)[2] = sphere.center[2] - s * x + c * z;
+    }
+  }
+  return path;
+}
+
+// --clients K (K > 1) in one process: K sessions on one database, client k
+// on the scan (even k) or orbit (odd k) path, or on --path, turned by
+// 360 k / K degrees; their frames interleaved, as simultaneous clients.
+int run_stream_clients(const Tool& tool, const Request& request, const StreamDb& loaded) {
+  const StreamHierarchy& db = *loaded.db;
+  const StreamReplayOptions options = stream_options(request);
+  const size_t k_count = request.clients;
+  std::vector<StreamSession> sessions;
+  std::vector<std::vector<CameraFrame>> paths;
+  std::vector<std::string> names;
+  std::vector<float> degrees;
+  Session view_session;
+  view_session.sphere = db.sphere;
+  for (size_t k = 0; k < k_count; ++k) {
+    Result<StreamSession> created = StreamSession::create(db, options);
+    if (!created.is_ok()) return tool.fail(request.input, created.status());
+    sessions.push_back(std::move(created).value());
+    Request lane = request;
+    if (!tool.has("path")) lane.path = k % 2 == 0 ? "scan" : "orbit";
+    std::string path_file;
+    Result<std::vector<CameraFrame>> read = read_path(lane, view_session, &path_file);
+    if (!read.is_ok()) return tool.fail(path_file, read.status());
+    degrees.push_back(360.0f * static_cast<float>(k) / static_cast<float>(k_count));
+    paths.push_back(turned_path(std::move(read).value(), db.sphere, degrees.back()));
+    names.push_back(lane.path);
+  }
+  std::vector<std::vector<StreamFrameStats>> frames(k_count);
+  size_t longest = 0;
+  for (const std::vector<CameraFrame>& p : paths)
+    longest = std::max(longest, p.size());
+  Progress progress(tool, "streaming");
+  for (size_t i = 0; i < longest; ++i) {
+    for (size_t k = 0; k < k_count; ++k) {
+      if (i >= paths[k].size()) continue;
+      Result<StreamFrameStats> f = sessions[k].frame(paths[k][i], db.sphere);
+      if (!f.is_ok()) {
+        return tool.fail(
+            request.input,
+            Status(f.status().kind(), "client " + std::to_string(k) + ", frame " +
+                                          std::to_string(i) + ": " + f.status().message()));
+      }
+      if (request.validate) {
+        Status checked = stream_frame_check(sessions[k].client(), f.value(), i);
+        if (!checked.is_ok()) {
+          return tool.fail(request.input, Status(checked.kind(), "client " + std::to_string(k) +
+                                                                     ", " + checked.message()));
+        }
+      }
+      frames[k].push_back(f.value());
+    }
+    progress.update(static_cast<double>(i + 1) / static_cast<double>(longest));
+  }
+  if (request.validate) {
+    for (size_t k = 0; k < k_count; ++k) {
+      std::vector<uint32_t> sent = sessions[k].server().sent();
+      std::sort(sent.begin(), sent.end());
+      if (std::adjacent_find(sent.begin(), sent.end()) != sent.end()) {
+        return tool.fail(request.input,
+                         Status(ErrorKind::kValidation, "client " + std::to_string(k) +
+                                                            ": a vsplit packet was sent twice"));
+      }
+    }
+  }
+  StreamTotals all;
+  size_t window = 0, buffer = 0, front = 0;
+  nlohmann::json lanes = nlohmann::json::array();
+  std::ostringstream text;
+  for (size_t k = 0; k < k_count; ++k) {
+    const StreamTotals t = stream_totals(frames[k], sessions[k].start_uplink_bytes(),
+                                         sessions[k].start_downlink_bytes());
+    const StreamServerMemory m = sessions[k].server().memory();
+    all.up += t.up;
+    all.down += t.down;
+    all.requests += t.requests;
+    all.packets += t.packets;
+    all.frames += t.frames;
+    window += m.window_bytes;
+    buffer += m.buffer_bytes;
+    front += m.front_bytes;
+    lanes.push_back({{"client", k},
+                     {"path", names[k]},
+                     {"turned_degrees", degrees[k]},
+                     {"frames", t.frames},
+                     {"uplink_bytes", t.up},
+                     {"requests", t.requests},
+                     {"downlink_bytes", t.down},
+                     {"packets", t.packets},
+                     {"triangles", {{"mean", t.mean_triangles}, {"max", t.max_triangles}}},
+                     {"server_memory",
+                      {{"window_bytes", m.window_bytes},
+                       {"buffer_bytes", m.buffer_bytes},
+                       {"front_nodes", m.front_nodes},
+                       {"front_bytes", m.front_bytes}}}});
+    char label[32];
+    std::snprintf(label, sizeof label, "client %-6zu", k);
+    text << label << " path " << names[k] << " turned " << degrees[k] << " deg, " << t.frames
+         << " frames: uplink " << t.up << " bytes (" << t.requests << " requests), downlink "
+         << t.down << " bytes (" << t.packets << " packets); server window " << m.window_bytes
+         << " bytes (buffer " << m.buffer_bytes << ") vs a stored front " << m.front_bytes
+         << " bytes\n";
+  }
+  if (tool.json()) {
+    tool.print_json({{"schema", kReplaySchema},
+                     {"input", request.input},
+                     {"mode", request.mode},
+                     {"clients", lanes},
+                     {"validated", request.validate},
+                     {"tolerance_pixels", request.options.tolerance_pixels},
+                     {"total",
+                      {{"uplink_bytes", all.up},
+                       {"downlink_bytes", all.down},
+                       {"requests", all.requests},
+                       {"packets", all.packets},
+                       {"server_window_bytes", window},
+                       {"server_buffer_bytes", buffer},
+                       {"stored_front_bytes", front}}}});
+    return 0;
+  }
+  std::cout << "replay        " << request.input << ": mode stream, " << k_count
+            << " clients on one server in one process, " << all.frames << " frames"
+            << (request.validate ? ", every frame validated" : "") << "\n";
+  std::cout << "hierarchy     " << db.h->node_count() << " nodes, " << db.h->root_count()
+            << " roots, <tree-id, node-id> <" << db.widths.tree_bits << ", " << db.widths.node_bits
+            << ">\n";
+  std::cout << text.str();
+  std::cout << "total         uplink " << all.up << " bytes, downlink " << all.down << " bytes, "
+            << all.packets << " packets; server memory " << window << " bytes of windows ("
+            << window / k_count << " per client, buffers " << buffer << ") vs stored fronts "
+            << front << " bytes\n";
+  return 0;
+}
+
+// --serve: a TCP server on loopback for --clients connections, each on its
+// own thread with its own session; the address on stdout's first line.
+int run_stream_serve(const Tool& tool, const Request& request, const StreamDb& loaded) {
+  const StreamHierarchy& db = *loaded.db;
+  Result<TcpListener> listener = TcpListener::listen(*request.serve);
+  if (!listener.is_ok()) {
+    return tool.fail(request.serve->host + ":" + std::to_string(request.serve->port),
+                     listener.status());
+  }
+  const std::string address =
+      listener.value().host() + ":" + std::to_string(listener.value().port());
+  std::cout << address << std::endl;  // flushed: a script waits for it
+  TcpOptions tcp;
+  tcp.connect_timeout_ms = 60000;
+  tcp.io_timeout_ms = 60000;
+  const auto start = std::chrono::steady_clock::now();
+  Result<std::vector<StreamServedClient>> served =
+      serve_stream_clients(db, &listener.value(), request.clients, StreamServerOptions(), tcp);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!served.is_ok()) return tool.fail(address, served.status());
+  uint64_t up = 0, down = 0;
+  size_t packets = 0, window = 0, front = 0;
+  const StreamServedClient* failed = nullptr;
+  nlohmann::json lanes = nlohmann::json::array();
+  std::ostringstream text;
+  for (size_t k = 0; k < served.value().size(); ++k) {
+    const StreamServedClient& c = served.value()[k];
+    up += c.uplink_bytes;
+    down += c.downlink_bytes;
+    packets += c.packets;
+    window += c.memory.window_bytes;
+    front += c.memory.front_bytes;
+    if (!c.status.is_ok() && failed == nullptr) failed = &c;
+    lanes.push_back({{"client", k},
+                     {"ok", c.status.is_ok()},
+                     {"error", c.status.message()},
+                     {"uplink_bytes", c.uplink_bytes},
+                     {"downlink_bytes", c.downlink_bytes},
+                     {"requests", c.requests},
+                     {"packets", c.packets},
+                     {"resumed_splits", c.resumed},
+                     {"server_memory",
+                      {{"window_bytes", c.memory.window_bytes},
+                       {"buffer_bytes", c.memory.buffer_bytes},
+                       {"front_nodes", c.memory.front_nodes},
+                       {"front_bytes", c.memory.front_bytes}}}});
+    char label[32];
+    std::snprintf(label, sizeof label, "client %-6zu", k);
+    text << label << " uplink " << c.uplink_bytes << " bytes (" << c.requests
+         << " requests), downlink " << c.downlink_bytes << " bytes (" << c.packets << " packets"
+         << (c.resumed != 0 ? ", resumed holding " + std::to_string(c.resumed) + " splits" : "")
+         << "); server window " << c.memory.window_bytes << " bytes (buffer "
+         << c.memory.buffer_bytes << ") vs a stored front " << c.memory.front_bytes << " bytes"
+         << (c.status.is_ok() ? "" : "; ended: " + c.status.message()) << "\n";
+  }
+  if (tool.json()) {
+    tool.print_json({{"schema", kReplaySchema},
+                     {"input", request.input},
+                     {"mode", request.mode},
+                     {"served", address},
+                     {"seconds", seconds},
+                     {"clients", lanes},
+                     {"total",
+                      {{"uplink_bytes", up},
+                       {"downlink_bytes", down},
+                       {"packets", packets},
+                       {"server_window_bytes", window},
+                       {"stored_front_bytes", front}}}});
+  } else {
+    std::cout << "served        " << request.input << ": mode stream on " << address << ", "
+              << served.value().size() << " clients in " << seconds << " s\n";
+    std::cout << text.str();
+    std::cout << "total         uplink " << up << " bytes, downlink " << down << " bytes, "
+              << packets << " packets; server memory " << window
+              << " bytes of windows vs stored fronts " << front << " bytes\n";
+  }
+  if (failed != nullptr) return tool.fail(address, failed->status);
+  return 0;
+}
+
+// --connect: a client on its camera path against a server; the base and
+// scene messages give it everything, so no FILE.
+int run_stream_connect(const Tool& tool, const Request& request) {
+  const std::string address = request.connect->host + ":" + std::to_string(request.connect->port);
+  Result<std::unique_ptr<StreamTransport>> t = tcp_connect(*request.connect);
+  if (!t.is_ok()) return tool.fail(address, t.status());
+  Result<StreamClientSession> started =
+      StreamClientSession::start(t.value().get(), stream_options(request));
+  if (!started.is_ok()) return tool.fail(address, started.status());
+  StreamClientSession& session = started.value();
+  Session view_session;
+  view_session.sphere = session.sphere();
+  std::string path_file;
+  Result<std::vector<CameraFrame>> read = read_path(request, view_session, &path_file);
+  if (!read.is_ok()) return tool.fail(path_file, read.status());
+  const std::vector<CameraFrame> path = std::move(read).value();
+  std::vector<StreamFrameStats> frames;
+  Progress progress(tool, "streaming");
+  for (size_t i = 0; i < path.size(); ++i) {
+    Result<StreamFrameStats> f = session.frame(path[i]);
+    if (!f.is_ok()) {
+      return tool.fail(address, Status(f.status().kind(),
+                                       "frame " + std::to_string(i) + ": " + f.status().message()));
+    }
+    if (request.validate) {
+      Status checked = stream_frame_check(session.client(), f.value(), i);
+      if (!checked.is_ok()) return tool.fail(address, checked);
+    }
+    frames.push_back(f.value());
+    progress.update(static_cast<double>(i + 1) / static_cast<double>(path.size()));
+  }
+  t.value()->close();
+  if (!request.csv.empty()) {
+    std::ostringstream csv;
+    csv << "frame,uplink_bytes,downlink_bytes,requests,packets,splits,collapses,triangles,front\n";
+    for (size_t i = 0; i < frames.size(); ++i) {
+      const StreamFrameStats& f = frames[i];
+      csv << i << ',' << f.uplink_bytes << ',' << f.downlink_bytes << ',' << f.requests << ','
+          << f.packets << ',' << f.splits << ',' << f.collapses << ',' << f.triangles << ','
+          << f.front_size << '\n';
+    }
+    Status written = write_file_atomic(request.csv, csv.str());
+    if (!written.is_ok()) return tool.fail(request.csv, written);
+  }
+  const StreamTotals tot =
+      stream_totals(frames, session.start_uplink_bytes(), session.start_downlink_bytes());
+  const StreamIdWidths& widths = session.client().widths();
+  if (tool.json()) {
+    tool.print_json(
+        {{"schema", kReplaySchema},
+         {"connect", address},
+         {"mode", request.mode},
+         {"path", request.path},
+         {"frames", tot.frames},
+         {"validated", request.validate},
+         {"tolerance_pixels", request.options.tolerance_pixels},
+         {"uplink", {{"bytes", tot.up}, {"requests", tot.requests}}},
+         {"downlink",
+          {{"bytes", tot.down}, {"base_bytes", session.base_bytes()}, {"packets", tot.packets}}},
+         {"packet", {{"topology_bits", 3 * widths.id_bits()}}},
+         {"client",
+          {{"splits", tot.splits},
+           {"collapses", tot.collapses},
+           {"triangles", {{"mean", tot.mean_triangles}, {"max", tot.max_triangles}}}}}});
+    return 0;
+  }
+  std::cout << "replay        " << address << ": mode stream over TCP, path " << request.path
+            << ", " << tot.frames << " frames"
+            << (request.validate ? ", every frame validated" : "") << "\n";
+  std::cout << "uplink        " << tot.up << " bytes, " << tot.requests << " view requests in "
+            << tot.request_frames << " of " << tot.frames << " frames\n";
+  std::cout << "downlink      " << tot.down << " bytes: base " << session.base_bytes() << ", "
+            << tot.packets << " vsplit packets\n";
+  std::cout << "packet        topology " << 3 * widths.id_bits() << " bits (3 x "
+            << widths.id_bits() << "; the paper 96)\n";
+  std::cout << "client        " << tot.splits << " splits, " << tot.collapses
+            << " collapses, triangles mean " << tot.mean_triangles << ", max " << tot.max_triangles
+            << "\n";
+  return 0;
+}
+
+// Mode stream: the hierarchy served frame by frame to a client that starts
+// from the base mesh (Kim, Lee and Kobbelt 2005), bytes counted both ways,
+// and the view-independent baseline of section 8.
+int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
+  Result<StreamDb> loaded = load_stream_db(bytes);
+  if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
+  if (request.serve) return run_stream_serve(tool, request, loaded.value());
+  if (request.clients > 1) return run_stream_clients(tool, request, loaded.value());
+  const StreamHierarchy& stream_db = *loaded.value().db;
+  const VertexHierarchy& hierarchy = *loaded.value().h;
+  Result<StreamSession> created = StreamSession::create(stream_db, stream_options(request));
   if (!created.is_ok()) return tool.fail(request.input, created.status());
   StreamSession& session = created.value();
 
   Session view_session;
-  view_session.sphere = bounding_sphere(h.value().position);
+  view_session.sphere = stream_db.sphere;
   std::string path_file;
   Result<std::vector<CameraFrame>> read = read_path(request, view_session, &path_file);
   if (!read.is_ok()) return tool.fail(path_file, read.status());
@@ -923,17 +1302,8 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
     }
     frames.push_back(f.value());
     if (request.validate) {
-      std::vector<std::string> problems = check_vhier_mesh(session.client().refiner());
-      if (f.value().missing != 0 || f.value().requests > 1) {
-        problems.push_back(std::to_string(f.value().missing) + " needed splits missing after " +
-                           std::to_string(f.value().requests) + " requests");
-      }
-      if (!problems.empty()) {
-        std::string message = "frame " + std::to_string(i) + ": invalid mesh: " + problems[0];
-        for (size_t k = 1; k < problems.size(); ++k)
-          message += "; " + problems[k];
-        return tool.fail(request.input, Status(ErrorKind::kValidation, message));
-      }
+      Status checked = stream_frame_check(session.client(), f.value(), i);
+      if (!checked.is_ok()) return tool.fail(request.input, checked);
     }
     progress.update(static_cast<double>(i + 1) / path.size());
   }
@@ -946,7 +1316,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
     }
   }
   Result<StreamBaseline> baseline =
-      view_independent_baseline(db.value(), session.server().sent(), session.base_bytes());
+      view_independent_baseline(stream_db, session.server().sent(), session.start_downlink_bytes());
   if (!baseline.is_ok()) return tool.fail(request.input, baseline.status());
   const StreamBaseline& vi = baseline.value();
 
@@ -965,7 +1335,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
     if (!written.is_ok()) return tool.fail(request.csv, written);
   }
 
-  uint64_t up = 0, down = session.base_bytes();
+  uint64_t up = session.start_uplink_bytes(), down = session.start_downlink_bytes();
   size_t requests = 0, packets = 0, splits = 0, collapses = 0, max_triangles = 0;
   size_t max_window = 0, max_buffer = 0, max_front_bytes = 0, request_frames = 0;
   double triangles = 0;
@@ -985,7 +1355,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
   }
   triangles /= static_cast<double>(std::max<size_t>(frames.size(), 1));
   const StreamServerMemory memory = session.server().memory();
-  const StreamIdWidths widths = db.value().widths;
+  const StreamIdWidths widths = stream_db.widths;
   const int topology_bits = 3 * widths.id_bits();
   const double ratio = static_cast<double>(down) / static_cast<double>(vi.bytes);
   const double window_share =
@@ -1008,8 +1378,8 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
          {"tolerance", request.tolerance},
          {"tolerance_pixels", request.options.tolerance_pixels},
          {"hierarchy",
-          {{"nodes", h.value().node_count()},
-           {"roots", h.value().root_count()},
+          {{"nodes", hierarchy.node_count()},
+           {"roots", hierarchy.root_count()},
            {"splits", vi.pm_splits},
            {"tree_bits", widths.tree_bits},
            {"node_bits", widths.node_bits}}},
@@ -1047,7 +1417,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
   std::cout << "replay        " << request.input << ": mode stream, path " << request.path << ", "
             << frames.size() << " frames" << (request.validate ? ", every frame validated" : "")
             << "\n";
-  std::cout << "hierarchy     " << h.value().node_count() << " nodes, " << h.value().root_count()
+  std::cout << "hierarchy     " << hierarchy.node_count() << " nodes, " << hierarchy.root_count()
             << " roots, " << vi.pm_splits << " splits, <tree-id, node-id> <" << widths.tree_bits
             << ", " << widths.node_bits << ">\n";
   std::cout << "view          " << request.options.viewport.width << "x"
@@ -1076,6 +1446,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
 }
 
 int run(const Tool& tool, const Request& request) {
+  if (request.connect) return run_stream_connect(tool, request);
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
   if (request.mode == "sets") return run_sets(tool, request, bytes.value());
@@ -1126,7 +1497,8 @@ int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
   Tool tool("lodbake-replay",
-            "FILE.lbk [--mode vhier|dag|fan|sets|stream] [--path scan|orbit|FILE] [options]",
+            "FILE.lbk [--mode vhier|dag|fan|sets|stream] [--path scan|orbit|FILE] [options]\n"
+            "       lodbake-replay --mode stream --connect 127.0.0.1:PORT [--path ...] [options]",
             "Replays a camera path on a container's view-dependent structure and reports,\n"
             "per frame, the refinement operations, fronts, triangles and adapt time; or\n"
             "(mode sets) runs the SETS strip paper's LoD-recovery tests.\n"
@@ -1157,7 +1529,11 @@ int main(int argc, char** argv) {
             "it needs a split it lacks; the server answers with vsplit packets chosen by\n"
             "qrefine over its windowed active tags. Reports the bytes both ways per frame\n"
             "(--csv), packet bits, server memory against a stored vertex front, and the bytes\n"
-            "of streaming the same progressive mesh in its fixed order instead.\n"
+            "of streaming the same progressive mesh in its fixed order instead. Over TCP on\n"
+            "loopback: FILE --serve PORT [--clients K] serves K connections (port 0: any\n"
+            "free port; the address is stdout's first line) and --connect 127.0.0.1:PORT\n"
+            "(no FILE) runs a client on its camera path; --clients K without --serve runs K\n"
+            "clients on turned scan / orbit paths against one server in one process.\n"
             "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
             "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
             "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
@@ -1223,10 +1599,61 @@ int main(int argc, char** argv) {
                                "1,3,6,10,15,20, the paper's)")(
       "spacing", po::value<std::string>(&request.spacing)->value_name("S"),
       "sets: linear, exponential or both (default)");
+  std::string serve, connect;
+  tool.options().add_options()(
+      "serve", po::value<std::string>(&serve)->value_name("PORT"),
+      "stream: serve --clients connections over TCP on 127.0.0.1:PORT, then exit (0: a "
+      "free port; stdout's first line is the address)")(
+      "connect", po::value<std::string>(&connect)->value_name("ADDR"),
+      "stream: run a client on its path against the server at 127.0.0.1:PORT (no FILE: "
+      "the server sends the base mesh and the bounding sphere)")(
+      "clients", po::value<size_t>(&request.clients)->value_name("K"),
+      "stream: with --serve, the connections served (default 1); else K clients on one "
+      "server in one process (1 .. 256)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
-  if (std::optional<int> code = tool.single_positional("input", "FILE.lbk", &request.input))
+  if (tool.has("connect")) {
+    if (!tool.positionals("input").empty()) {
+      return tool.usage_error(
+          "--connect takes no FILE: the client gets everything from the server");
+    }
+  } else if (std::optional<int> code =
+                 tool.single_positional("input", "FILE.lbk", &request.input)) {
     return *code;
+  }
+  if ((tool.has("serve") || tool.has("connect") || tool.has("clients")) &&
+      request.mode != "stream") {
+    return tool.usage_error(std::string("--") +
+                            (tool.has("serve")     ? "serve"
+                             : tool.has("connect") ? "connect"
+                                                   : "clients") +
+                            " applies to --mode stream only");
+  }
+  if (tool.has("serve") && tool.has("connect"))
+    return tool.usage_error("--serve and --connect exclude each other");
+  if (request.clients < 1 || request.clients > 256)
+    return tool.usage_error("--clients takes K in 1 .. 256");
+  if (tool.has("connect")) {
+    if (tool.has("clients")) return tool.usage_error("--clients does not apply to --connect");
+    Result<LoopbackAddress> a = parse_loopback_address(connect);
+    if (!a.is_ok()) return tool.usage_error("--connect: " + a.status().message());
+    request.connect = a.value();
+  }
+  if (tool.has("serve")) {
+    Result<LoopbackAddress> a = parse_loopback_address("127.0.0.1:" + serve);
+    if (!a.is_ok()) return tool.usage_error("--serve takes a port 0 .. 65535, not '" + serve + "'");
+    request.serve = a.value();
+    for (const char* option :
+         {"path", "tolerance", "width", "height", "fov", "near", "csv", "validate"}) {
+      if (tool.has(option) && !(std::string(option) == "validate" && !request.validate)) {
+        return tool.usage_error("--" + std::string(option) +
+                                " does not apply to --serve (it is the client's)");
+      }
+    }
+  }
+  if (request.clients > 1 && !request.serve && !request.csv.empty())
+    return tool.usage_error("--csv takes one client's rows, not --clients " +
+                            std::to_string(request.clients));
   if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan" &&
       request.mode != "sets" && request.mode != "stream") {
     return tool.usage_error("--mode '" + request.mode +
