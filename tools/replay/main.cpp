@@ -9,7 +9,9 @@
 // step per LoD recovered; it runs through run_sets(), the camera modes
 // through run_camera_path(). Mode stream: BASE + VHIE + RFIN served to a
 // client over an in-memory channel (lib/replay/stream_session.h), through
-// run_stream().
+// run_stream(). Mode vtrees: BASE + VHIE + RFIN + VTRE, vertex-tree
+// transmission over the same channel (lib/replay/vtrees_session.h), through
+// run_vtrees().
 // Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <charconv>
@@ -33,15 +35,18 @@
 #include "formats/sections/sets.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
+#include "formats/sections/vtre.h"
 #include "formats/support/file_io.h"
 #include "lib/replay/camera_path.h"
 #include "lib/replay/dag_replay.h"
 #include "lib/replay/fan_replay.h"
+#include "lib/replay/replay_check.h"
 #include "lib/replay/sets_replay.h"
 #include "lib/replay/stream_session.h"
 #include "lib/replay/stream_transport.h"
 #include "lib/replay/structure_cross_check.h"
 #include "lib/replay/vhier_replay.h"
+#include "lib/replay/vtrees_session.h"
 #include "tools/common/cli.h"
 #include "tools/replay/plots.h"
 
@@ -1445,12 +1450,230 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
   return 0;
 }
 
+// Mode vtrees: vertex-tree transmission (To, Lau & Green 2001, section 5):
+// the server's visible vertex list moves along the camera path, the client
+// rebuilds the trees from the node records and selects its triangles.
+int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
+  Result<Container> container = read_container(bytes.data(), bytes.size());
+  if (!container.is_ok()) return tool.fail(request.input, container.status());
+  const char* missing = nullptr;
+  for (const char* tag : {kBaseTag, kVhieTag, kRfinTag, kVtreTag}) {
+    if (missing == nullptr && container.value().find(tag) == nullptr) missing = tag;
+  }
+  if (missing != nullptr) {
+    return tool.fail(request.input,
+                     invalid_input(std::string("container has no ") + missing +
+                                   " section; mode vtrees needs BASE + VHIE + RFIN + VTRE "
+                                   "(lodbake-hierarchy --sections vhie,vtre)"));
+  }
+  const Section* base = container.value().find(kBaseTag);
+  const Section* vhie = container.value().find(kVhieTag);
+  const Section* rfin = container.value().find(kRfinTag);
+  const Section* vtre = container.value().find(kVtreTag);
+  Result<TriangleMesh> base_mesh = decode_base(base->data, base->size);
+  if (!base_mesh.is_ok()) return tool.fail(request.input, base_mesh.status());
+  Result<VertexHierarchy> h = decode_vhie(vhie->data, vhie->size, std::move(base_mesh).value());
+  if (!h.is_ok()) return tool.fail(request.input, h.status());
+  Result<std::vector<RfinRecord>> records = decode_rfin_records(rfin->data, rfin->size, h.value());
+  if (!records.is_ok()) return tool.fail(request.input, records.status());
+  // The same dequantized refinement data as mode stream's server.
+  Result<StreamHierarchy> refinement =
+      StreamHierarchy::create(h.value(), std::move(records).value());
+  if (!refinement.is_ok()) return tool.fail(request.input, refinement.status());
+  Result<VertexTrees> trees = decode_vtre(vtre->data, vtre->size);
+  if (!trees.is_ok()) return tool.fail(request.input, trees.status());
+  Result<VtreesDatabase> db =
+      VtreesDatabase::create(trees.value(), h.value(), refinement.value().data);
+  if (!db.is_ok()) return tool.fail(request.input, db.status());
+  VtreesReplayOptions options;
+  options.viewport = request.options.viewport;
+  options.tolerance_pixels = request.options.tolerance_pixels;
+  Result<VtreesSession> created = VtreesSession::create(db.value(), options);
+  if (!created.is_ok()) return tool.fail(request.input, created.status());
+  VtreesSession& session = created.value();
+
+  Session view_session;
+  view_session.sphere = bounding_sphere(h.value().position);
+  std::string path_file;
+  Result<std::vector<CameraFrame>> read = read_path(request, view_session, &path_file);
+  if (!read.is_ok()) return tool.fail(path_file, read.status());
+  const std::vector<CameraFrame> path = std::move(read).value();
+
+  std::vector<VtreesFrameStats> frames;
+  size_t overlap_frames = 0;  // --validate: lists whose triangles are no clean triangulation
+  Progress progress(tool, "transmitting");
+  for (size_t i = 0; i < path.size(); ++i) {
+    Result<VtreesFrameStats> f = session.frame(path[i], view_session.sphere);
+    if (!f.is_ok()) {
+      return tool.fail(request.input, Status(f.status().kind(), "frame " + std::to_string(i) +
+                                                                    ": " + f.status().message()));
+    }
+    frames.push_back(f.value());
+    if (request.validate) {
+      // The client's reconstruction must be exact: its list is the server's
+      // and its triangles are VisibleVertexList's on the full trees.
+      const VisibleVertexList& list = session.server().list();
+      std::string problem;
+      for (uint32_t v = 0; problem.empty() && v < trees.value().positions.size(); ++v) {
+        if (session.client().visible_node(v) != list.visible_node(v))
+          problem =
+              "the client's visible node of vertex " + std::to_string(v) + " is not the server's";
+      }
+      if (problem.empty() &&
+          sorted_canonical(session.triangles()) != sorted_canonical(list.triangles())) {
+        problem = "the client's triangles are not the trees' own selection for its list";
+      }
+      if (!problem.empty()) {
+        return tool.fail(request.input, Status(ErrorKind::kValidation,
+                                               "frame " + std::to_string(i) + ": " + problem));
+      }
+      TriangleMesh mesh;
+      mesh.positions = session.client().positions();
+      mesh.triangles = session.triangles();
+      if (!triangulation_problems(check_mesh(mesh)).empty()) ++overlap_frames;
+    }
+    progress.update(static_cast<double>(i + 1) / path.size());
+  }
+  if (request.validate) {
+    std::vector<uint32_t> sent = session.server().sent_nodes();
+    std::sort(sent.begin(), sent.end());
+    if (std::adjacent_find(sent.begin(), sent.end()) != sent.end() ||
+        sent.size() != session.client().nodes_held()) {
+      return tool.fail(request.input,
+                       Status(ErrorKind::kValidation, "a node record was sent twice"));
+    }
+  }
+
+  if (!request.csv.empty()) {
+    std::ostringstream csv;
+    csv << "frame,uplink_bytes,downlink_bytes,left_records,right_records,traces,trace_updates,"
+           "downs,ups,visible,triangles,reconstruct_ms,select_ms\n";
+    for (size_t i = 0; i < frames.size(); ++i) {
+      const VtreesFrameStats& f = frames[i];
+      csv << i << ',' << f.uplink_bytes << ',' << f.downlink_bytes << ',' << f.left_records << ','
+          << f.right_records << ',' << f.traces << ',' << f.trace_updates << ',' << f.downs << ','
+          << f.ups << ',' << f.visible << ',' << f.triangles << ',' << f.reconstruct_ms << ','
+          << f.select_ms << '\n';
+    }
+    Status written = write_file_atomic(request.csv, csv.str());
+    if (!written.is_ok()) return tool.fail(request.csv, written);
+  }
+
+  const VtreesReceived& got = session.client().received();
+  uint64_t up = 0, down = session.trees_bytes();
+  size_t max_triangles = 0;
+  double triangles = 0, reconstruct_ms = session.trees_reconstruct_ms(), select_ms = 0;
+  for (const VtreesFrameStats& f : frames) {
+    up += f.uplink_bytes;
+    down += f.downlink_bytes;
+    triangles += static_cast<double>(f.triangles);
+    max_triangles = std::max(max_triangles, f.triangles);
+    reconstruct_ms += f.reconstruct_ms;
+    select_ms += f.select_ms;
+  }
+  triangles /= static_cast<double>(std::max<size_t>(frames.size(), 1));
+  auto mean_bytes = [](uint64_t bits, size_t count) {
+    return count == 0 ? 0.0 : static_cast<double>(bits) / 8 / static_cast<double>(count);
+  };
+  const double base_b = mean_bytes(got.base_bits, got.base_records);
+  const double left_b = mean_bytes(got.left_bits, got.left_records);
+  const double right_b = mean_bytes(got.right_bits, got.right_records);
+  const double child_b =
+      mean_bytes(got.left_bits + got.right_bits, got.left_records + got.right_records);
+  const uint64_t record_bits = got.base_bits + got.left_bits + got.right_bits;
+  const size_t splits = trees.value().split_count();
+  const double per_node_us =
+      got.left_records == 0
+          ? 0.0
+          : 1000 * reconstruct_ms / static_cast<double>(got.base_records + 2 * got.left_records);
+  if (tool.json()) {
+    tool.print_json(
+        {{"schema", kReplaySchema},
+         {"input", request.input},
+         {"mode", request.mode},
+         {"path", request.path},
+         {"frames", frames.size()},
+         {"validated", request.validate},
+         {"viewport",
+          {{"width", request.options.viewport.width},
+           {"height", request.options.viewport.height},
+           {"fov_degrees", request.fov_degrees},
+           {"near_fraction", request.options.viewport.near_fraction}}},
+         {"tolerance", request.tolerance},
+         {"tolerance_pixels", request.options.tolerance_pixels},
+         {"trees",
+          {{"nodes", trees.value().node_count()},
+           {"base_nodes", trees.value().base_vertex_count},
+           {"splits", splits},
+           {"id_bits", db.value().widths.id_bits()}}},
+         {"uplink", {{"bytes", up}, {"views", frames.size()}}},
+         {"downlink",
+          {{"bytes", down},
+           {"trees_message_bytes", session.trees_bytes()},
+           {"record_bytes", (record_bits + 7) / 8},
+           {"messages", got.messages}}},
+         {"records",
+          {{"base", {{"count", got.base_records}, {"mean_bytes", base_b}, {"paper_bytes", 22}}},
+           {"left", {{"count", got.left_records}, {"mean_bytes", left_b}}},
+           {"right", {{"count", got.right_records}, {"mean_bytes", right_b}}},
+           {"child_mean_bytes", child_b},
+           {"paper_child_bytes", 20},
+           {"traces", got.traces},
+           {"trace_bytes", static_cast<double>(got.trace_bits) / 8},
+           {"trace_updates", got.trace_updates}}},
+         {"moves", {{"down", got.downs}, {"up", got.ups}}},
+         {"client",
+          {{"nodes_held", session.client().nodes_held()},
+           {"triangles", {{"mean", triangles}, {"max", max_triangles}}},
+           {"reconstruct_ms", reconstruct_ms},
+           {"reconstruct_us_per_node", per_node_us},
+           {"select_ms", select_ms}}},
+         {"server_state_bytes", session.server().state_bytes()},
+         {"overlap_frames", request.validate ? nlohmann::json(overlap_frames) : nlohmann::json()}});
+    return 0;
+  }
+  std::cout << "replay        " << request.input << ": mode vtrees, path " << request.path << ", "
+            << frames.size() << " frames" << (request.validate ? ", every frame validated" : "")
+            << "\n";
+  std::cout << "trees         " << trees.value().node_count()
+            << " nodes: " << trees.value().base_vertex_count << " base, " << splits << " splits, "
+            << db.value().widths.id_bits() << "-bit ids\n";
+  std::cout << "view          " << request.options.viewport.width << "x"
+            << request.options.viewport.height << ", fov " << request.fov_degrees
+            << " deg, tolerance " << request.options.tolerance_pixels << " px\n";
+  std::cout << "uplink        " << up << " bytes, one view per frame\n";
+  std::cout << "downlink      " << down << " bytes in " << got.messages << " messages, "
+            << (record_bits + 7) / 8 << " of them node records\n";
+  std::cout << "records       base " << got.base_records << " x " << base_b << " B (the paper 22), "
+            << "left " << got.left_records << " x " << left_b << " B, right " << got.right_records
+            << " x " << right_b << " B: child mean " << child_b << " B (the paper 20)\n";
+  std::cout << "trace-up      " << got.traces << " first transmitted parents in records ("
+            << static_cast<double>(got.trace_bits) / 8 << " B), " << got.trace_updates
+            << " updates\n";
+  std::cout << "list moves    " << got.left_records << " down at new nodes, " << got.downs
+            << " down and " << got.ups << " up over held nodes\n";
+  std::cout << "client        " << session.client().nodes_held() << " of "
+            << trees.value().node_count() << " nodes held, triangles mean " << triangles << ", max "
+            << max_triangles << "\n";
+  std::cout << "reconstruct   " << reconstruct_ms << " ms in all (" << per_node_us
+            << " us per node), triangle selection " << select_ms << " ms in all\n";
+  if (request.validate) {
+    std::cout << "validate      the client's list and triangles were the server's every frame, "
+                 "no record sent twice; "
+              << overlap_frames << " of " << frames.size()
+              << " frames had overlapping or missing triangles (fronts the trees allow and the "
+                 "split DAG does not)\n";
+  }
+  return 0;
+}
+
 int run(const Tool& tool, const Request& request) {
   if (request.connect) return run_stream_connect(tool, request);
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
   if (request.mode == "sets") return run_sets(tool, request, bytes.value());
   if (request.mode == "stream") return run_stream(tool, request, bytes.value());
+  if (request.mode == "vtrees") return run_vtrees(tool, request, bytes.value());
   return run_camera_path(tool, request, bytes.value());
 }
 
@@ -1496,55 +1719,64 @@ std::optional<float> tolerance_pixels(const std::string& text, uint32_t height) 
 int main(int argc, char** argv) {
   using namespace lodbake;
   using namespace lodbake::cli;
-  Tool tool("lodbake-replay",
-            "FILE.lbk [--mode vhier|dag|fan|sets|stream] [--path scan|orbit|FILE] [options]\n"
-            "       lodbake-replay --mode stream --connect 127.0.0.1:PORT [--path ...] [options]",
-            "Replays a camera path on a container's view-dependent structure and reports,\n"
-            "per frame, the refinement operations, fronts, triangles and adapt time; or\n"
-            "(mode sets) runs the SETS strip paper's LoD-recovery tests.\n"
-            "Mode vhier (default): BASE + VHIE + RFIN from lodbake-hierarchy; the vertex\n"
-            "front is refined while a node's bounding sphere meets the view frustum, its\n"
-            "normal cone is not entirely back-facing and its deviation projects to more than\n"
-            "--tolerance pixels, and coarsened where none holds (Hoppe 1997).\n"
-            "Mode dag: BASE + VSPL + DAGE from lodbake-hierarchy; MANAGE-TRAVERSAL (Zheng &\n"
-            "Chan 2006): collapses of Fc whose projected error is under --tolerance, then\n"
-            "splits of Fs over it, at most --changes of each per frame, within --budget\n"
-            "triangles in BUDGET-MODE; with the priority-oriented, linear (FIFO kept across\n"
-            "frames) or constant-time (--changes nodes visited) traversal, or all three side\n"
-            "by side; the linear and constant-time ones report their accuracy, the share of\n"
-            "the priority-oriented traversal's triangles they also have.\n"
-            "Mode fan: BASE + FANH from lodbake-fan; from the coarsest mesh, the active\n"
-            "nodes are scanned each frame and each fan moves toward its target merge\n"
-            "pointer (error projected at its vertex against --tolerance, all merged out of\n"
-            "view) by one fan-merge / fan-split when the target is an end of its fine path\n"
-            "at least --coarse x its children away, else by edge collapses / vertex splits\n"
-            "(Livny, Sokolovsky & El-Sana 2007).\n"
-            "Mode sets: BASE + VSPL + SETS from lodbake-strips; not camera-driven (no --path\n"
-            "or view options): each test recovers --percent of all LoDs, spaced linearly or\n"
-            "exponentially (--spacing), from LoD 0 (the full mesh) to the coarsest and back,\n"
-            "each LoD with a fresh and a coherent recovery timed alone (Belmonte et al. 2006).\n"
-            "Mode stream: BASE + VHIE + RFIN; a server session and a client in one process\n"
-            "(Kim, Lee and Kobbelt 2005): the client starts from the base mesh, refines and\n"
-            "coarsens as mode vhier on the hierarchy it has received and sends its view when\n"
-            "it needs a split it lacks; the server answers with vsplit packets chosen by\n"
-            "qrefine over its windowed active tags. Reports the bytes both ways per frame\n"
-            "(--csv), packet bits, server memory against a stored vertex front, and the bytes\n"
-            "of streaming the same progressive mesh in its fixed order instead. Over TCP on\n"
-            "loopback: FILE --serve PORT [--clients K] serves K connections (port 0: any\n"
-            "free port; the address is stdout's first line) and --connect 127.0.0.1:PORT\n"
-            "(no FILE) runs a client on its camera path; --clients K without --serve runs K\n"
-            "clients on turned scan / orbit paths against one server in one process.\n"
-            "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
-            "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
-            "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
-            "x,y,z, target x,y,z, up x,y,z, vertical fov in degrees; '#' comments) or JSON\n"
-            "(an array of {\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z], \"fov\": deg},\n"
-            "bare or as {\"frames\": [...]}).");
+  Tool tool(
+      "lodbake-replay",
+      "FILE.lbk [--mode vhier|dag|fan|sets|stream|vtrees] [--path scan|orbit|FILE] [options]\n"
+      "       lodbake-replay --mode stream --connect 127.0.0.1:PORT [--path ...] [options]",
+      "Replays a camera path on a container's view-dependent structure and reports,\n"
+      "per frame, the refinement operations, fronts, triangles and adapt time; or\n"
+      "(mode sets) runs the SETS strip paper's LoD-recovery tests.\n"
+      "Mode vhier (default): BASE + VHIE + RFIN from lodbake-hierarchy; the vertex\n"
+      "front is refined while a node's bounding sphere meets the view frustum, its\n"
+      "normal cone is not entirely back-facing and its deviation projects to more than\n"
+      "--tolerance pixels, and coarsened where none holds (Hoppe 1997).\n"
+      "Mode dag: BASE + VSPL + DAGE from lodbake-hierarchy; MANAGE-TRAVERSAL (Zheng &\n"
+      "Chan 2006): collapses of Fc whose projected error is under --tolerance, then\n"
+      "splits of Fs over it, at most --changes of each per frame, within --budget\n"
+      "triangles in BUDGET-MODE; with the priority-oriented, linear (FIFO kept across\n"
+      "frames) or constant-time (--changes nodes visited) traversal, or all three side\n"
+      "by side; the linear and constant-time ones report their accuracy, the share of\n"
+      "the priority-oriented traversal's triangles they also have.\n"
+      "Mode fan: BASE + FANH from lodbake-fan; from the coarsest mesh, the active\n"
+      "nodes are scanned each frame and each fan moves toward its target merge\n"
+      "pointer (error projected at its vertex against --tolerance, all merged out of\n"
+      "view) by one fan-merge / fan-split when the target is an end of its fine path\n"
+      "at least --coarse x its children away, else by edge collapses / vertex splits\n"
+      "(Livny, Sokolovsky & El-Sana 2007).\n"
+      "Mode sets: BASE + VSPL + SETS from lodbake-strips; not camera-driven (no --path\n"
+      "or view options): each test recovers --percent of all LoDs, spaced linearly or\n"
+      "exponentially (--spacing), from LoD 0 (the full mesh) to the coarsest and back,\n"
+      "each LoD with a fresh and a coherent recovery timed alone (Belmonte et al. 2006).\n"
+      "Mode stream: BASE + VHIE + RFIN; a server session and a client in one process\n"
+      "(Kim, Lee and Kobbelt 2005): the client starts from the base mesh, refines and\n"
+      "coarsens as mode vhier on the hierarchy it has received and sends its view when\n"
+      "it needs a split it lacks; the server answers with vsplit packets chosen by\n"
+      "qrefine over its windowed active tags. Reports the bytes both ways per frame\n"
+      "(--csv), packet bits, server memory against a stored vertex front, and the bytes\n"
+      "of streaming the same progressive mesh in its fixed order instead. Over TCP on\n"
+      "loopback: FILE --serve PORT [--clients K] serves K connections (port 0: any\n"
+      "free port; the address is stdout's first line) and --connect 127.0.0.1:PORT\n"
+      "(no FILE) runs a client on its camera path; --clients K without --serve runs K\n"
+      "clients on turned scan / orbit paths against one server in one process.\n"
+      "Mode vtrees: BASE + VHIE + RFIN + VTRE; vertex-tree transmission (To, Lau and\n"
+      "Green 2001): the server moves its visible vertex list down and up the trees\n"
+      "with mode vhier's view criteria and sends the base, left and right node records\n"
+      "of newly visible nodes with the trace-up of fan vertices the client lacks; the\n"
+      "client rebuilds the trees and selects triangles by vertex states. Reports the\n"
+      "records per kind and their bytes against the paper's, and the client's\n"
+      "reconstruct time.\n"
+      "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
+      "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
+      "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
+      "x,y,z, target x,y,z, up x,y,z, vertical fov in degrees; '#' comments) or JSON\n"
+      "(an array of {\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z], \"fov\": deg},\n"
+      "bare or as {\"frames\": [...]}).");
   Request request;
   uint32_t width = 1024, height = 768;
   float near_fraction = 0.01f;
-  tool.options().add_options()("mode", po::value<std::string>(&request.mode)->value_name("M"),
-                               "the structure replayed: vhier (default), dag, fan, sets or stream")(
+  tool.options().add_options()(
+      "mode", po::value<std::string>(&request.mode)->value_name("M"),
+      "the structure replayed: vhier (default), dag, fan, sets, stream or vtrees")(
       "path", po::value<std::string>(&request.path)->value_name("P"),
       "scan (default), orbit, or a CSV or JSON camera path FILE")(
       "tolerance", po::value<std::string>(&request.tolerance)->value_name("T"),
@@ -1561,7 +1793,9 @@ int main(int argc, char** argv) {
       "triangulation without duplicate triangles and the counters agree (exit 7 naming "
       "the frame otherwise); sets: after every LoD, that the strips' triangles are the "
       "progressive mesh's at that LoD with their orientation, form such a triangulation "
-      "and coherent recovery equals fresh recovery (exit 7 naming the LoD)")(
+      "and coherent recovery equals fresh recovery (exit 7 naming the LoD); vtrees: that the "
+      "client's visible vertex list and triangles are the server's every frame and no record "
+      "is sent twice (exit 7 naming the frame)")(
       "plot", po::value<std::string>(&request.plot)->value_name("DIR"),
       "draw the paper-style charts as SVG in DIR (made when missing) with gnuplot "
       "(Debian's gnuplot-nox): dag: traversal time, accuracy, fronts against the mesh, "
@@ -1577,7 +1811,9 @@ int main(int argc, char** argv) {
       "triangles, adapt_ms; sets: one row per LoD: spacing, "
       "percent, step, lod, strips, indices, triangles, fresh_us, "
       "coherent_us; stream: frame, uplink_bytes, downlink_bytes, requests, packets, "
-      "splits, collapses, triangles, front, window_bytes, buffer_bytes, front_bytes)");
+      "splits, collapses, triangles, front, window_bytes, buffer_bytes, front_bytes; vtrees: "
+      "frame, uplink_bytes, downlink_bytes, left_records, right_records, traces, "
+      "trace_updates, downs, ups, visible, triangles, reconstruct_ms, select_ms)");
   tool.options().add_options()(
       "traversal", po::value<std::string>(&request.traversal)->value_name("T"),
       "dag: priority (default), linear, constant, or all (the three side by side)")(
@@ -1655,12 +1891,12 @@ int main(int argc, char** argv) {
     return tool.usage_error("--csv takes one client's rows, not --clients " +
                             std::to_string(request.clients));
   if (request.mode != "vhier" && request.mode != "dag" && request.mode != "fan" &&
-      request.mode != "sets" && request.mode != "stream") {
+      request.mode != "sets" && request.mode != "stream" && request.mode != "vtrees") {
     return tool.usage_error("--mode '" + request.mode +
-                            "' is not available (modes: vhier, dag, fan, sets, stream)");
+                            "' is not available (modes: vhier, dag, fan, sets, stream, vtrees)");
   }
-  if (request.mode == "stream" && tool.has("plot"))
-    return tool.usage_error("--plot does not apply to --mode stream");
+  if ((request.mode == "stream" || request.mode == "vtrees") && tool.has("plot"))
+    return tool.usage_error("--plot does not apply to --mode " + request.mode);
   // Each option belongs to the camera modes or to mode sets; one given to
   // the other kind is refused rather than silently ignored.
   const bool sets = request.mode == "sets";
