@@ -294,28 +294,7 @@ uint64_t vtrees_record_bits(const VtreesNodeRecord& r, VertexTreeNodeKind kind,
 }
 
 Result<VtreesMessageType> vtrees_message_type(const uint8_t* data, size_t size) {
-  ByteReader r(data, size);
-  uint8_t magic = 0, type = 0;
-  uint32_t length = 0;
-  if (!r.read(&magic) || !r.read(&type) || !r.read(&length)) {
-    return bad("shorter than its " + std::to_string(kVtreesHeaderBytes) + "-byte header");
-  }
-  if ((magic >> 4) != (kVtreesMagicVersion >> 4)) return bad("bad magic");
-  if ((magic & 15) > (kVtreesMagicVersion & 15)) {
-    return unsupported("vtrees message: version " + std::to_string(magic & 15) +
-                       " is newer than this reader's " + std::to_string(kVtreesMagicVersion & 15));
-  }
-  if ((magic & 15) != (kVtreesMagicVersion & 15)) {
-    return bad("unknown version " + std::to_string(magic & 15));
-  }
-  if (type < 1 || type > 2) return bad("unknown type " + std::to_string(type));
-  if (length > kMaxVtreesPayloadBytes) {
-    return bad("payload of " + std::to_string(length) + " bytes exceeds the limit");
-  }
-  if (length != r.remaining()) {
-    return bad("header says " + std::to_string(length) + " payload bytes, " +
-               std::to_string(r.remaining()) + " follow");
-  }
+  LODBAKE_ASSIGN_OR_RETURN(uint8_t type, message_type(kVtreesMessages, data, size));
   return static_cast<VtreesMessageType>(type);
 }
 

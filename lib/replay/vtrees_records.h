@@ -29,6 +29,7 @@
 #include "formats/mesh/vertex_trees.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/replay/message_family.h"
 
 namespace lodbake {
 
@@ -39,10 +40,17 @@ inline constexpr uint32_t kMaxVtreesPayloadBytes = 1u << 24;
 /// The most items one frame message holds; the server splits longer frames.
 inline constexpr uint32_t kMaxVtreesItems = 1u << 16;
 
+static_assert(kVtreesHeaderBytes == kMessageHeaderBytes);
+
 enum class VtreesMessageType : uint8_t {
   kTrees = 1,  ///< server -> client, first: the widths and the base records
   kFrame = 2,  ///< server -> client: items (records, list moves, trace updates)
 };
+inline constexpr uint8_t kVtreesLastMessageType = 2;
+/// The vtrees messages' framing, for the shared header check and for a
+/// transport that receives them (lib/replay/stream_transport.h).
+inline constexpr MessageFamily kVtreesMessages{"vtrees", kVtreesMagicVersion,
+                                               kVtreesLastMessageType, kMaxVtreesPayloadBytes};
 
 /// What every record's field widths follow from, sent once in kTrees.
 struct VtreesWidths {
