@@ -31,6 +31,9 @@
 #include <deque>
 #include <mutex>
 #include <new>
+#include <system_error>
+#include <thread>
+#include <vector>
 
 namespace lodbake {
 namespace {
@@ -356,6 +359,29 @@ Result<std::unique_ptr<StreamTransport>> TcpListener::accept(const TcpOptions& o
     set_nodelay(fd);
     return std::unique_ptr<StreamTransport>(std::make_unique<TcpTransport>(fd, options, receives));
   }
+}
+
+Status serve_connections(TcpListener* listener, size_t clients, const TcpOptions& tcp,
+                         const MessageFamily& receives, const ConnectionServer& serve) {
+  std::vector<std::thread> threads;
+  Status accept_status;
+  try {
+    for (size_t k = 0; k < clients; ++k) {
+      Result<std::unique_ptr<StreamTransport>> t = listener->accept(tcp, receives);
+      if (!t.is_ok()) {
+        accept_status = t.status();
+        break;
+      }
+      threads.emplace_back([&serve, k, transport = std::move(t).value()]() mutable {
+        serve(k, std::move(transport));
+      });
+    }
+  } catch (const std::system_error& e) {
+    accept_status = runtime_error(std::string("cannot start a server thread: ") + e.what());
+  }
+  for (std::thread& t : threads)
+    t.join();
+  return accept_status;
 }
 
 }  // namespace lodbake

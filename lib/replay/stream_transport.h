@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -131,5 +132,16 @@ class TcpListener {
   uint16_t port_ = 0;
   std::string host_;
 };
+
+/// Runs one connection's server side; it owns the transport.
+using ConnectionServer = std::function<void(size_t index, std::unique_ptr<StreamTransport>)>;
+
+/// Accepts `clients` connections on `listener`, their ends receiving
+/// `receives`, and runs serve(k, transport) for connection k on its own
+/// thread (serve must not throw); returns when every connection has ended.
+/// Fails only when a client does not connect within the accept timeout or
+/// a thread cannot start (after the connections already accepted ended).
+Status serve_connections(TcpListener* listener, size_t clients, const TcpOptions& tcp,
+                         const MessageFamily& receives, const ConnectionServer& serve);
 
 }  // namespace lodbake

@@ -496,4 +496,41 @@ Result<std::vector<VtreesItem>> decode_vtrees_frame(const uint8_t* data, size_t 
   }
 }
 
+Bytes encode_vtrees_scene(const BoundingSphere& sphere) {
+  Bytes payload;
+  ByteWriter w(&payload);
+  for (float c : sphere.center)
+    w.write(c);
+  w.write(sphere.radius);
+  return frame(VtreesMessageType::kScene, payload);
+}
+
+Result<BoundingSphere> decode_vtrees_scene(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, VtreesMessageType::kScene, "scene"));
+  if (r.remaining() != 16) return bad("a scene message has 16 payload bytes");
+  BoundingSphere s;
+  for (float& c : s.center) {
+    r.read(&c);
+    if (!std::isfinite(c)) return bad("the scene's centre is not finite");
+  }
+  r.read(&s.radius);
+  if (!(s.radius > 0) || !std::isfinite(s.radius)) return bad("the scene's radius is not positive");
+  return s;
+}
+
+Bytes encode_vtrees_end_of_answer(uint32_t messages) {
+  Bytes payload;
+  ByteWriter w(&payload);
+  w.write(messages);
+  return frame(VtreesMessageType::kEndOfAnswer, payload);
+}
+
+Result<uint32_t> decode_vtrees_end_of_answer(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r,
+                           open(data, size, VtreesMessageType::kEndOfAnswer, "end of answer"));
+  uint32_t messages = 0;
+  if (r.remaining() != 4 || !r.read(&messages)) return bad("end of answer is not 4 payload bytes");
+  return messages;
+}
+
 }  // namespace lodbake
