@@ -169,8 +169,16 @@ Result<VtreesClientSession> VtreesClientSession::start(StreamTransport* t,
     s.options_ = options;
     const uint64_t down0 = t->bytes_received();
     bool closed = false;
-    LODBAKE_ASSIGN_OR_RETURN(Bytes trees, t->receive(&closed));
+    Result<Bytes> first = t->receive(&closed);
+    if (!first.is_ok()) {
+      // A mode vtrees server speaks first; a silent one may be mode stream's.
+      return Status(first.status().kind(),
+                    "waiting for the trees message (a mode vtrees server "
+                    "sends it at once): " +
+                        first.status().message());
+    }
     if (closed) return io_error("the server closed the connection before the trees message");
+    const Bytes trees = std::move(first).value();
     const auto start = std::chrono::steady_clock::now();
     LODBAKE_ASSIGN_OR_RETURN(VtreesClient client, VtreesClient::create(trees.data(), trees.size()));
     s.trees_ms_ = ms_since(start);
