@@ -164,35 +164,12 @@ uint64_t vsplit_packet_bits(const VsplitPacket& p, const StreamIdWidths& widths)
 }
 
 Result<uint32_t> stream_payload_length(const uint8_t* header, size_t size, uint32_t max_payload) {
-  ByteReader r(header, size);
-  uint8_t magic = 0, type = 0;
-  uint32_t length = 0;
-  if (!r.read(&magic) || !r.read(&type) || !r.read(&length)) {
-    return bad("shorter than its " + std::to_string(kStreamHeaderBytes) + "-byte header");
-  }
-  if ((magic >> 4) != (kStreamMagicVersion >> 4)) return bad("bad magic");
-  if ((magic & 15) > (kStreamMagicVersion & 15)) {
-    return unsupported("stream message: version " + std::to_string(magic & 15) +
-                       " is newer than this reader's " + std::to_string(kStreamMagicVersion & 15));
-  }
-  if ((magic & 15) != (kStreamMagicVersion & 15)) {
-    return bad("unknown version " + std::to_string(magic & 15));
-  }
-  if (type < 1 || type > kStreamLastMessageType) return bad("unknown type " + std::to_string(type));
-  if (length > std::min(max_payload, kMaxStreamPayloadBytes)) {
-    return bad("payload of " + std::to_string(length) + " bytes exceeds the limit of " +
-               std::to_string(std::min(max_payload, kMaxStreamPayloadBytes)));
-  }
-  return length;
+  return message_payload_length(kStreamMessages, header, size, max_payload);
 }
 
 Result<StreamMessageType> stream_message_type(const uint8_t* data, size_t size) {
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t length, stream_payload_length(data, size));
-  if (length != size - kStreamHeaderBytes) {
-    return bad("header says " + std::to_string(length) + " payload bytes, " +
-               std::to_string(size - kStreamHeaderBytes) + " follow");
-  }
-  return static_cast<StreamMessageType>(data[1]);
+  LODBAKE_ASSIGN_OR_RETURN(uint8_t type, message_type(kStreamMessages, data, size));
+  return static_cast<StreamMessageType>(type);
 }
 
 Bytes encode_view_request(const ViewRequest& view) {

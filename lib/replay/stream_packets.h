@@ -30,6 +30,7 @@
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 #include "lib/replay/camera_path.h"
+#include "lib/replay/message_family.h"
 
 namespace lodbake {
 
@@ -38,6 +39,7 @@ inline constexpr size_t kStreamHeaderBytes = 6;
 /// The largest payload a decoder takes (64 MiB); the server splits longer
 /// answers into several vsplit messages.
 inline constexpr uint32_t kMaxStreamPayloadBytes = 1u << 26;
+static_assert(kStreamHeaderBytes == kMessageHeaderBytes);
 
 enum class StreamMessageType : uint8_t {
   kView = 1,         ///< client -> server: the viewing parameters
@@ -51,6 +53,10 @@ enum class StreamMessageType : uint8_t {
   kScene = 6,  ///< server -> client, after the base: the model's bounding sphere
 };
 inline constexpr uint8_t kStreamLastMessageType = 6;
+/// The stream messages' framing, for the shared header check and for a
+/// transport that receives them (lib/replay/stream_transport.h).
+inline constexpr MessageFamily kStreamMessages{"stream", kStreamMagicVersion,
+                                               kStreamLastMessageType, kMaxStreamPayloadBytes};
 
 /// The client's viewing parameters (the paper's Figure 3(a)).
 struct ViewRequest {

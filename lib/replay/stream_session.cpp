@@ -15,8 +15,6 @@
 
 #include <algorithm>
 #include <new>
-#include <system_error>
-#include <thread>
 #include <tuple>
 
 #include "lib/hierarchy/hierarchy_to_pm.h"
@@ -149,40 +147,26 @@ Result<std::vector<StreamServedClient>> serve_stream_clients(const StreamHierarc
                                                              const StreamServerOptions& options,
                                                              const TcpOptions& tcp) {
   std::vector<StreamServedClient> served(clients);
-  std::vector<std::thread> threads;
-  Status accept_status;
-  try {
-    for (size_t k = 0; k < clients; ++k) {
-      Result<std::unique_ptr<StreamTransport>> t = listener->accept(tcp);
-      if (!t.is_ok()) {
-        accept_status = t.status();
-        break;
-      }
-      threads.emplace_back(
-          [&db, &options, out = &served[k], transport = std::move(t).value()]() mutable {
-            try {
-              StreamServerConnection connection(db, options);
-              out->status = connection.serve(transport.get());
-              transport->close();
-              out->uplink_bytes = transport->bytes_received();
-              out->downlink_bytes = transport->bytes_sent();
-              out->started = connection.started();
-              out->requests = connection.requests();
-              out->resumed = connection.session().resumed();
-              out->sent = connection.session().sent();
-              out->packets = out->sent.size();
-              out->memory = connection.session().memory();
-            } catch (const std::bad_alloc&) {
-              out->status = runtime_error("out of memory serving a client");
-            }
-          });
-    }
-  } catch (const std::system_error& e) {
-    accept_status = runtime_error(std::string("cannot start a server thread: ") + e.what());
-  }
-  for (std::thread& t : threads)
-    t.join();
-  if (!accept_status.is_ok()) return accept_status;
+  LODBAKE_RETURN_IF_ERROR(serve_connections(
+      listener, clients, tcp, kStreamMessages,
+      [&db, &options, &served](size_t k, std::unique_ptr<StreamTransport> transport) {
+        StreamServedClient* out = &served[k];
+        try {
+          StreamServerConnection connection(db, options);
+          out->status = connection.serve(transport.get());
+          transport->close();
+          out->uplink_bytes = transport->bytes_received();
+          out->downlink_bytes = transport->bytes_sent();
+          out->started = connection.started();
+          out->requests = connection.requests();
+          out->resumed = connection.session().resumed();
+          out->sent = connection.session().sent();
+          out->packets = out->sent.size();
+          out->memory = connection.session().memory();
+        } catch (const std::bad_alloc&) {
+          out->status = runtime_error("out of memory serving a client");
+        }
+      }));
   return served;
 }
 

@@ -1,7 +1,9 @@
-// The stream transports (lib/replay/stream_transport.h). Choices:
-// - framing is the stream message header itself (magic/version, type,
-//   uint32 length): the receiver reads 6 bytes, refuses a bad header or a
-//   length over its limit before allocating, then reads the payload into a
+// The message transports (lib/replay/stream_transport.h). Choices:
+// - framing is the message header itself (magic/version, type, uint32
+//   length), checked against the family an end receives (a descriptor, not
+//   a template or a callback: the families differ only in data): the
+//   receiver reads 6 bytes, refuses a bad header, another family's magic or
+//   a length over its limit before allocating, then reads the payload into a
 //   buffer that grows as bytes arrive (at most 1 MiB ahead of them), so a
 //   peer that announces a large message and sends nothing costs nothing;
 // - plain POSIX sockets, IPv4 loopback only (the issue's "--serve PORT /
@@ -29,6 +31,9 @@
 #include <deque>
 #include <mutex>
 #include <new>
+#include <system_error>
+#include <thread>
+#include <vector>
 
 namespace lodbake {
 namespace {
@@ -44,8 +49,9 @@ struct Pipe {
 
 class MemoryTransport final : public StreamTransport {
  public:
-  MemoryTransport(std::shared_ptr<Pipe> pipe, int end, int timeout_ms)
-      : pipe_(std::move(pipe)), end_(end), timeout_ms_(timeout_ms) {}
+  MemoryTransport(std::shared_ptr<Pipe> pipe, int end, int timeout_ms,
+                  const MessageFamily& receives)
+      : StreamTransport(receives), pipe_(std::move(pipe)), end_(end), timeout_ms_(timeout_ms) {}
   ~MemoryTransport() override { close(); }
 
   Status send(const Bytes& message) override {
@@ -80,12 +86,11 @@ class MemoryTransport final : public StreamTransport {
     Bytes m = std::move(q.front());
     q.pop_front();
     lock.unlock();
-    LODBAKE_ASSIGN_OR_RETURN(uint32_t length,
-                             stream_payload_length(m.data(), m.size(), max_payload()));
-    if (m.size() != kStreamHeaderBytes + length) {
-      return invalid_input("stream message: header says " + std::to_string(length) +
-                           " payload bytes, " + std::to_string(m.size() - kStreamHeaderBytes) +
-                           " follow");
+    LODBAKE_ASSIGN_OR_RETURN(uint32_t length, checked_length(m.data(), m.size()));
+    if (m.size() != kMessageHeaderBytes + length) {
+      return invalid_input(std::string(receives().name) + " message: header says " +
+                           std::to_string(length) + " payload bytes, " +
+                           std::to_string(m.size() - kMessageHeaderBytes) + " follow");
     }
     count_received(m.size());
     return m;
@@ -126,7 +131,8 @@ bool wait_fd(int fd, short events, int timeout_ms) {
 
 class TcpTransport final : public StreamTransport {
  public:
-  TcpTransport(int fd, const TcpOptions& options) : fd_(fd), options_(options) {}
+  TcpTransport(int fd, const TcpOptions& options, const MessageFamily& receives)
+      : StreamTransport(receives), fd_(fd), options_(options) {}
   ~TcpTransport() override { close(); }
 
   Status send(const Bytes& message) override {
@@ -151,22 +157,21 @@ class TcpTransport final : public StreamTransport {
     *closed = false;
     if (fd_ < 0) return io_error("stream transport: the connection is closed");
     try {
-      Bytes m(kStreamHeaderBytes);
+      Bytes m(kMessageHeaderBytes);
       size_t got = 0;
-      LODBAKE_RETURN_IF_ERROR(read_into(&m, 0, kStreamHeaderBytes, &got));
+      LODBAKE_RETURN_IF_ERROR(read_into(&m, 0, kMessageHeaderBytes, &got));
       if (got == 0) {
         *closed = true;
         return Bytes();
       }
-      if (got < kStreamHeaderBytes) {
+      if (got < kMessageHeaderBytes) {
         return io_error("stream transport: the peer closed the connection inside a message header");
       }
-      LODBAKE_ASSIGN_OR_RETURN(uint32_t length,
-                               stream_payload_length(m.data(), m.size(), max_payload()));
+      LODBAKE_ASSIGN_OR_RETURN(uint32_t length, checked_length(m.data(), m.size()));
       // Grow with what arrives, not with what the header announces.
       constexpr size_t kStep = size_t{1} << 20;
-      size_t have = kStreamHeaderBytes;
-      const size_t total = kStreamHeaderBytes + size_t{length};
+      size_t have = kMessageHeaderBytes;
+      const size_t total = kMessageHeaderBytes + size_t{length};
       while (have < total) {
         const size_t chunk = std::min(kStep, total - have);
         m.resize(have + chunk);
@@ -180,7 +185,8 @@ class TcpTransport final : public StreamTransport {
       count_received(m.size());
       return m;
     } catch (const std::bad_alloc&) {
-      return runtime_error("out of memory receiving a stream message");
+      return runtime_error(std::string("out of memory receiving a ") + receives().name +
+                           " message");
     }
   }
 
@@ -238,10 +244,11 @@ void set_nodelay(int fd) {
 }  // namespace
 
 std::pair<std::unique_ptr<StreamTransport>, std::unique_ptr<StreamTransport>>
-make_memory_transport_pair(int timeout_ms) {
+make_memory_transport_pair(int timeout_ms, const MessageFamily& first_receives,
+                           const MessageFamily& second_receives) {
   auto pipe = std::make_shared<Pipe>();
-  return {std::make_unique<MemoryTransport>(pipe, 0, timeout_ms),
-          std::make_unique<MemoryTransport>(pipe, 1, timeout_ms)};
+  return {std::make_unique<MemoryTransport>(pipe, 0, timeout_ms, first_receives),
+          std::make_unique<MemoryTransport>(pipe, 1, timeout_ms, second_receives)};
 }
 
 Result<LoopbackAddress> parse_loopback_address(const std::string& text) {
@@ -271,7 +278,8 @@ Result<LoopbackAddress> parse_loopback_address(const std::string& text) {
 }
 
 Result<std::unique_ptr<StreamTransport>> tcp_connect(const LoopbackAddress& address,
-                                                     const TcpOptions& options) {
+                                                     const TcpOptions& options,
+                                                     const MessageFamily& receives) {
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (fd < 0) return io_error("socket: " + errno_text());
   const sockaddr_in sa = socket_address(address);
@@ -294,7 +302,7 @@ Result<std::unique_ptr<StreamTransport>> tcp_connect(const LoopbackAddress& addr
     return io_error("cannot connect to " + text_of(address) + ": " + why);
   }
   set_nodelay(fd);
-  return std::unique_ptr<StreamTransport>(std::make_unique<TcpTransport>(fd, options));
+  return std::unique_ptr<StreamTransport>(std::make_unique<TcpTransport>(fd, options, receives));
 }
 
 Result<TcpListener> TcpListener::listen(const LoopbackAddress& address, int backlog) {
@@ -334,7 +342,8 @@ TcpListener::~TcpListener() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-Result<std::unique_ptr<StreamTransport>> TcpListener::accept(const TcpOptions& options) {
+Result<std::unique_ptr<StreamTransport>> TcpListener::accept(const TcpOptions& options,
+                                                             const MessageFamily& receives) {
   for (;;) {
     if (!wait_fd(fd_, POLLIN, options.connect_timeout_ms)) {
       return io_error("no client connected to " + host_ + ":" + std::to_string(port_) + " within " +
@@ -348,8 +357,31 @@ Result<std::unique_ptr<StreamTransport>> TcpListener::accept(const TcpOptions& o
       return io_error("accept on " + host_ + ":" + std::to_string(port_) + ": " + errno_text());
     }
     set_nodelay(fd);
-    return std::unique_ptr<StreamTransport>(std::make_unique<TcpTransport>(fd, options));
+    return std::unique_ptr<StreamTransport>(std::make_unique<TcpTransport>(fd, options, receives));
   }
+}
+
+Status serve_connections(TcpListener* listener, size_t clients, const TcpOptions& tcp,
+                         const MessageFamily& receives, const ConnectionServer& serve) {
+  std::vector<std::thread> threads;
+  Status accept_status;
+  try {
+    for (size_t k = 0; k < clients; ++k) {
+      Result<std::unique_ptr<StreamTransport>> t = listener->accept(tcp, receives);
+      if (!t.is_ok()) {
+        accept_status = t.status();
+        break;
+      }
+      threads.emplace_back([&serve, k, transport = std::move(t).value()]() mutable {
+        serve(k, std::move(transport));
+      });
+    }
+  } catch (const std::system_error& e) {
+    accept_status = runtime_error(std::string("cannot start a server thread: ") + e.what());
+  }
+  for (std::thread& t : threads)
+    t.join();
+  return accept_status;
 }
 
 }  // namespace lodbake

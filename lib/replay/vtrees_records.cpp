@@ -294,28 +294,7 @@ uint64_t vtrees_record_bits(const VtreesNodeRecord& r, VertexTreeNodeKind kind,
 }
 
 Result<VtreesMessageType> vtrees_message_type(const uint8_t* data, size_t size) {
-  ByteReader r(data, size);
-  uint8_t magic = 0, type = 0;
-  uint32_t length = 0;
-  if (!r.read(&magic) || !r.read(&type) || !r.read(&length)) {
-    return bad("shorter than its " + std::to_string(kVtreesHeaderBytes) + "-byte header");
-  }
-  if ((magic >> 4) != (kVtreesMagicVersion >> 4)) return bad("bad magic");
-  if ((magic & 15) > (kVtreesMagicVersion & 15)) {
-    return unsupported("vtrees message: version " + std::to_string(magic & 15) +
-                       " is newer than this reader's " + std::to_string(kVtreesMagicVersion & 15));
-  }
-  if ((magic & 15) != (kVtreesMagicVersion & 15)) {
-    return bad("unknown version " + std::to_string(magic & 15));
-  }
-  if (type < 1 || type > 2) return bad("unknown type " + std::to_string(type));
-  if (length > kMaxVtreesPayloadBytes) {
-    return bad("payload of " + std::to_string(length) + " bytes exceeds the limit");
-  }
-  if (length != r.remaining()) {
-    return bad("header says " + std::to_string(length) + " payload bytes, " +
-               std::to_string(r.remaining()) + " follow");
-  }
+  LODBAKE_ASSIGN_OR_RETURN(uint8_t type, message_type(kVtreesMessages, data, size));
   return static_cast<VtreesMessageType>(type);
 }
 
@@ -515,6 +494,43 @@ Result<std::vector<VtreesItem>> decode_vtrees_frame(const uint8_t* data, size_t 
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory decoding a vtrees frame message");
   }
+}
+
+Bytes encode_vtrees_scene(const BoundingSphere& sphere) {
+  Bytes payload;
+  ByteWriter w(&payload);
+  for (float c : sphere.center)
+    w.write(c);
+  w.write(sphere.radius);
+  return frame(VtreesMessageType::kScene, payload);
+}
+
+Result<BoundingSphere> decode_vtrees_scene(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, VtreesMessageType::kScene, "scene"));
+  if (r.remaining() != 16) return bad("a scene message has 16 payload bytes");
+  BoundingSphere s;
+  for (float& c : s.center) {
+    r.read(&c);
+    if (!std::isfinite(c)) return bad("the scene's centre is not finite");
+  }
+  r.read(&s.radius);
+  if (!(s.radius > 0) || !std::isfinite(s.radius)) return bad("the scene's radius is not positive");
+  return s;
+}
+
+Bytes encode_vtrees_end_of_answer(uint32_t messages) {
+  Bytes payload;
+  ByteWriter w(&payload);
+  w.write(messages);
+  return frame(VtreesMessageType::kEndOfAnswer, payload);
+}
+
+Result<uint32_t> decode_vtrees_end_of_answer(const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(ByteReader r,
+                           open(data, size, VtreesMessageType::kEndOfAnswer, "end of answer"));
+  uint32_t messages = 0;
+  if (r.remaining() != 4 || !r.read(&messages)) return bad("end of answer is not 4 payload bytes");
+  return messages;
 }
 
 }  // namespace lodbake

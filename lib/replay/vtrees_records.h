@@ -29,6 +29,8 @@
 #include "formats/mesh/vertex_trees.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/replay/camera_path.h"
+#include "lib/replay/message_family.h"
 
 namespace lodbake {
 
@@ -39,10 +41,22 @@ inline constexpr uint32_t kMaxVtreesPayloadBytes = 1u << 24;
 /// The most items one frame message holds; the server splits longer frames.
 inline constexpr uint32_t kMaxVtreesItems = 1u << 16;
 
+static_assert(kVtreesHeaderBytes == kMessageHeaderBytes);
+
 enum class VtreesMessageType : uint8_t {
   kTrees = 1,  ///< server -> client, first: the widths and the base records
   kFrame = 2,  ///< server -> client: items (records, list moves, trace updates)
+  /// Over a connection (VtreesClientSession), server -> client after the
+  /// trees message: the model's bounding sphere, to place a camera path.
+  kScene = 3,
+  /// Over a connection, server -> client: the answer to a view is complete.
+  kEndOfAnswer = 4,
 };
+inline constexpr uint8_t kVtreesLastMessageType = 4;
+/// The vtrees messages' framing, for the shared header check and for a
+/// transport that receives them (lib/replay/stream_transport.h).
+inline constexpr MessageFamily kVtreesMessages{"vtrees", kVtreesMagicVersion,
+                                               kVtreesLastMessageType, kMaxVtreesPayloadBytes};
 
 /// What every record's field widths follow from, sent once in kTrees.
 struct VtreesWidths {
@@ -148,5 +162,15 @@ Result<Bytes> encode_vtrees_frame(const std::vector<VtreesItem>& items, const Vt
 /// is a split vertex and its parent below it; at most kMaxVtreesItems items.
 Result<std::vector<VtreesItem>> decode_vtrees_frame(const uint8_t* data, size_t size,
                                                     const VtreesWidths& widths);
+
+/// Payload: the bounding sphere's centre (3 float32) and radius (float32),
+/// as mode stream's scene message. The decoder refuses a non-finite value
+/// or a radius <= 0.
+Bytes encode_vtrees_scene(const BoundingSphere& sphere);
+Result<BoundingSphere> decode_vtrees_scene(const uint8_t* data, size_t size);
+
+/// Payload: uint32, the number of frame messages of the whole answer.
+Bytes encode_vtrees_end_of_answer(uint32_t messages);
+Result<uint32_t> decode_vtrees_end_of_answer(const uint8_t* data, size_t size);
 
 }  // namespace lodbake

@@ -61,6 +61,7 @@ Result<VtreesDatabase> VtreesDatabase::create(const VertexTrees& trees, const Ve
     VtreesDatabase db;
     db.trees = &trees;
     db.widths = vtrees_widths(trees);
+    db.sphere = bounding_sphere(h.position);
     db.data.resize(splits);
     db.position.resize(splits);
     for (size_t k = 0; k < splits; ++k) {

@@ -27,6 +27,9 @@ namespace lodbake {
 struct VtreesDatabase {
   const VertexTrees* trees = nullptr;
   VtreesWidths widths;
+  /// bounding_sphere() of every hierarchy node's position: what a client
+  /// places its camera path around (the scene message over a connection).
+  BoundingSphere sphere;
   /// Per split k: the refinement data of the hierarchy node split k splits
   /// and that node's position (the split vertex vs): qrefine()'s inputs.
   std::vector<NodeRefinement> data;

@@ -3,7 +3,8 @@
 // session's downlink: messages back to back, each as long as its header
 // says (the last one takes what remains). A first trees message starts a
 // client, and every later message is decoded under its widths and applied
-// to it; a first frame message is decoded under three fixed width contexts.
+// to it; a first frame message is decoded under three fixed width contexts;
+// scene and end-of-answer messages (a connection's) are decoded anywhere.
 // Whatever decodes must re-encode to the same bytes (one encoding per
 // message); the client may refuse anything, never crash.
 #include <cstdint>
@@ -44,6 +45,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       require(type.status().kind() == ErrorKind::kInvalidInput ||
                   type.status().kind() == ErrorKind::kUnsupported,
               "header refused with an unexpected kind");
+    } else if (type.value() == VtreesMessageType::kScene) {
+      Result<BoundingSphere> sphere = decode_vtrees_scene(data, length);
+      if (sphere.is_ok()) {
+        require_same_bytes(encode_vtrees_scene(sphere.value()), data, length, "scene round trip");
+      }
+    } else if (type.value() == VtreesMessageType::kEndOfAnswer) {
+      Result<uint32_t> count = decode_vtrees_end_of_answer(data, length);
+      if (count.is_ok()) {
+        require_same_bytes(encode_vtrees_end_of_answer(count.value()), data, length,
+                           "end of answer round trip");
+      }
     } else if (type.value() == VtreesMessageType::kTrees) {
       Result<VtreesTreesMessage> trees = decode_vtrees_trees(data, length);
       if (trees.is_ok()) {

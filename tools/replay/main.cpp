@@ -10,8 +10,10 @@
 // through run_camera_path(). Mode stream: BASE + VHIE + RFIN served to a
 // client over an in-memory channel (lib/replay/stream_session.h), through
 // run_stream(). Mode vtrees: BASE + VHIE + RFIN + VTRE, vertex-tree
-// transmission over the same channel (lib/replay/vtrees_session.h), through
-// run_vtrees().
+// transmission over an in-memory channel (lib/replay/vtrees_session.h),
+// through run_vtrees(). Both streaming modes also run over TCP on loopback
+// (--serve / --connect), sharing start_serving() and the client's frame
+// loop helpers.
 // Thin: decoding lives in formats/, the runtime in lib/replay.
 #include <algorithm>
 #include <charconv>
@@ -73,8 +75,9 @@ struct Request {
   // Mode sets.
   std::vector<double> percents = paper_recovery_percents();
   std::string spacing = "both";
-  // Mode stream over TCP: --serve PORT (a server for `clients` connections)
-  // or --connect ADDRESS (a client, no FILE); --clients K in one process.
+  // Modes stream and vtrees over TCP: --serve PORT (a server for `clients`
+  // connections) or --connect ADDRESS (a client, no FILE); mode stream:
+  // --clients K without --serve runs K clients in one process.
   std::optional<LoopbackAddress> serve;
   std::optional<LoopbackAddress> connect;
   size_t clients = 1;
@@ -982,6 +985,58 @@ std::vector<CameraFrame> turned_path(std::vector<CameraFrame> path, const Boundi
   return path;
 }
 
+// ---- shared by the streaming modes over TCP ----
+
+std::string address_text(const LoopbackAddress& a) {
+  return a.host + ":" + std::to_string(a.port);
+}
+
+// A client's failed frame, numbered.
+Status frame_failure(size_t i, const Status& status) {
+  return Status(status.kind(), "frame " + std::to_string(i) + ": " + status.message());
+}
+
+// "client 3      ": a served connection's line label.
+std::string client_label(size_t k) {
+  char label[32];
+  std::snprintf(label, sizeof label, "client %-6zu", k);
+  return label;
+}
+
+// --serve's opening: the listener on the requested port, its address as
+// stdout's first line (flushed: a script waits for it), and the server's
+// timeouts (a minute: clients start when they like).
+struct Serving {
+  std::optional<TcpListener> listener;
+  std::string address;
+  TcpOptions tcp;
+  std::chrono::steady_clock::time_point start;
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+// Empty when listening; else the exit code (the failure reported).
+std::optional<int> start_serving(const Tool& tool, const Request& request, Serving* out) {
+  Result<TcpListener> listener = TcpListener::listen(*request.serve);
+  if (!listener.is_ok()) return tool.fail(address_text(*request.serve), listener.status());
+  out->listener.emplace(std::move(listener).value());
+  out->address = out->listener->host() + ":" + std::to_string(out->listener->port());
+  std::cout << out->address << std::endl;
+  out->tcp.connect_timeout_ms = 60000;
+  out->tcp.io_timeout_ms = 60000;
+  out->start = std::chrono::steady_clock::now();
+  return std::nullopt;
+}
+
+// --connect's camera path, around the sphere the server sent.
+Result<std::vector<CameraFrame>> path_around(const Request& request, const BoundingSphere& sphere,
+                                             std::string* path_file) {
+  Session view_session;
+  view_session.sphere = sphere;
+  return read_path(request, view_session, path_file);
+}
+
 // --clients K (K > 1) in one process: K sessions on one database, client k
 // on the scan (even k) or orbit (odd k) path, or on --path, turned by
 // 360 k / K degrees; their frames interleaved, as simultaneous clients.
@@ -1118,22 +1173,12 @@ int run_stream_clients(const Tool& tool, const Request& request, const StreamDb&
 // own thread with its own session; the address on stdout's first line.
 int run_stream_serve(const Tool& tool, const Request& request, const StreamDb& loaded) {
   const StreamHierarchy& db = *loaded.db;
-  Result<TcpListener> listener = TcpListener::listen(*request.serve);
-  if (!listener.is_ok()) {
-    return tool.fail(request.serve->host + ":" + std::to_string(request.serve->port),
-                     listener.status());
-  }
-  const std::string address =
-      listener.value().host() + ":" + std::to_string(listener.value().port());
-  std::cout << address << std::endl;  // flushed: a script waits for it
-  TcpOptions tcp;
-  tcp.connect_timeout_ms = 60000;
-  tcp.io_timeout_ms = 60000;
-  const auto start = std::chrono::steady_clock::now();
-  Result<std::vector<StreamServedClient>> served =
-      serve_stream_clients(db, &listener.value(), request.clients, StreamServerOptions(), tcp);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Serving serving;
+  if (std::optional<int> failed = start_serving(tool, request, &serving)) return *failed;
+  const std::string& address = serving.address;
+  Result<std::vector<StreamServedClient>> served = serve_stream_clients(
+      db, &*serving.listener, request.clients, StreamServerOptions(), serving.tcp);
+  const double seconds = serving.seconds();
   if (!served.is_ok()) return tool.fail(address, served.status());
   uint64_t up = 0, down = 0;
   size_t packets = 0, window = 0, front = 0;
@@ -1161,9 +1206,7 @@ int run_stream_serve(const Tool& tool, const Request& request, const StreamDb& l
                        {"buffer_bytes", c.memory.buffer_bytes},
                        {"front_nodes", c.memory.front_nodes},
                        {"front_bytes", c.memory.front_bytes}}}});
-    char label[32];
-    std::snprintf(label, sizeof label, "client %-6zu", k);
-    text << label << " uplink " << c.uplink_bytes << " bytes (" << c.requests
+    text << client_label(k) << " uplink " << c.uplink_bytes << " bytes (" << c.requests
          << " requests), downlink " << c.downlink_bytes << " bytes (" << c.packets << " packets"
          << (c.resumed != 0 ? ", resumed holding " + std::to_string(c.resumed) + " splits" : "")
          << "); server window " << c.memory.window_bytes << " bytes (buffer "
@@ -1198,27 +1241,22 @@ int run_stream_serve(const Tool& tool, const Request& request, const StreamDb& l
 // --connect: a client on its camera path against a server; the base and
 // scene messages give it everything, so no FILE.
 int run_stream_connect(const Tool& tool, const Request& request) {
-  const std::string address = request.connect->host + ":" + std::to_string(request.connect->port);
+  const std::string address = address_text(*request.connect);
   Result<std::unique_ptr<StreamTransport>> t = tcp_connect(*request.connect);
   if (!t.is_ok()) return tool.fail(address, t.status());
   Result<StreamClientSession> started =
       StreamClientSession::start(t.value().get(), stream_options(request));
   if (!started.is_ok()) return tool.fail(address, started.status());
   StreamClientSession& session = started.value();
-  Session view_session;
-  view_session.sphere = session.sphere();
   std::string path_file;
-  Result<std::vector<CameraFrame>> read = read_path(request, view_session, &path_file);
+  Result<std::vector<CameraFrame>> read = path_around(request, session.sphere(), &path_file);
   if (!read.is_ok()) return tool.fail(path_file, read.status());
   const std::vector<CameraFrame> path = std::move(read).value();
   std::vector<StreamFrameStats> frames;
   Progress progress(tool, "streaming");
   for (size_t i = 0; i < path.size(); ++i) {
     Result<StreamFrameStats> f = session.frame(path[i]);
-    if (!f.is_ok()) {
-      return tool.fail(address, Status(f.status().kind(),
-                                       "frame " + std::to_string(i) + ": " + f.status().message()));
-    }
+    if (!f.is_ok()) return tool.fail(address, frame_failure(i, f.status()));
     if (request.validate) {
       Status checked = stream_frame_check(session.client(), f.value(), i);
       if (!checked.is_ok()) return tool.fail(address, checked);
@@ -1450,50 +1488,325 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
   return 0;
 }
 
+// Mode vtrees' database: the container's hierarchy, refinement data and
+// vertex trees.
+struct VtreesDb {
+  std::unique_ptr<VertexHierarchy> h;
+  std::unique_ptr<VertexTrees> trees;  // VtreesDatabase points at it
+  std::unique_ptr<VtreesDatabase> db;
+};
+
+Result<VtreesDb> load_vtrees_db(const Bytes& bytes) {
+  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
+  for (const char* tag : {kBaseTag, kVhieTag, kRfinTag, kVtreTag}) {
+    if (container.find(tag) == nullptr) {
+      return invalid_input(std::string("container has no ") + tag +
+                           " section; mode vtrees needs BASE + VHIE + RFIN + VTRE "
+                           "(lodbake-hierarchy --sections vhie,vtre)");
+    }
+  }
+  const Section* base = container.find(kBaseTag);
+  const Section* vhie = container.find(kVhieTag);
+  const Section* rfin = container.find(kRfinTag);
+  const Section* vtre = container.find(kVtreTag);
+  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
+  LODBAKE_ASSIGN_OR_RETURN(VertexHierarchy h,
+                           decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));
+  VtreesDb out;
+  out.h = std::make_unique<VertexHierarchy>(std::move(h));
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<RfinRecord> records,
+                           decode_rfin_records(rfin->data, rfin->size, *out.h));
+  // The same dequantized refinement data as mode stream's server.
+  LODBAKE_ASSIGN_OR_RETURN(StreamHierarchy refinement,
+                           StreamHierarchy::create(*out.h, std::move(records)));
+  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(vtre->data, vtre->size));
+  out.trees = std::make_unique<VertexTrees>(std::move(trees));
+  LODBAKE_ASSIGN_OR_RETURN(VtreesDatabase db,
+                           VtreesDatabase::create(*out.trees, *out.h, refinement.data));
+  out.db = std::make_unique<VtreesDatabase>(std::move(db));
+  return out;
+}
+
+VtreesReplayOptions vtrees_options(const Request& request) {
+  VtreesReplayOptions options;
+  options.viewport = request.options.viewport;
+  options.tolerance_pixels = request.options.tolerance_pixels;
+  return options;
+}
+
+// --csv rows of mode vtrees, in process or over TCP.
+Status write_vtrees_csv(const std::string& file, const std::vector<VtreesFrameStats>& frames) {
+  std::ostringstream csv;
+  csv << "frame,uplink_bytes,downlink_bytes,left_records,right_records,traces,trace_updates,"
+         "downs,ups,visible,triangles,reconstruct_ms,select_ms\n";
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const VtreesFrameStats& f = frames[i];
+    csv << i << ',' << f.uplink_bytes << ',' << f.downlink_bytes << ',' << f.left_records << ','
+        << f.right_records << ',' << f.traces << ',' << f.trace_updates << ',' << f.downs << ','
+        << f.ups << ',' << f.visible << ',' << f.triangles << ',' << f.reconstruct_ms << ','
+        << f.select_ms << '\n';
+  }
+  return write_file_atomic(file, csv.str());
+}
+
+// One vtrees client's frames and records added up (the opening included):
+// what the in-process report and the --connect report share.
+struct VtreesTotals {
+  uint64_t up = 0, down = 0;
+  size_t max_triangles = 0;
+  double triangles = 0, reconstruct_ms = 0, select_ms = 0;
+  double base_b = 0, left_b = 0, right_b = 0, child_b = 0;  // mean record bytes
+  uint64_t record_bits = 0;
+  double per_node_us = 0;
+};
+
+VtreesTotals vtrees_totals(const VtreesReceived& got, const std::vector<VtreesFrameStats>& frames,
+                           uint64_t start_down, double start_ms) {
+  VtreesTotals t;
+  t.down = start_down;
+  t.reconstruct_ms = start_ms;
+  for (const VtreesFrameStats& f : frames) {
+    t.up += f.uplink_bytes;
+    t.down += f.downlink_bytes;
+    t.triangles += static_cast<double>(f.triangles);
+    t.max_triangles = std::max(t.max_triangles, f.triangles);
+    t.reconstruct_ms += f.reconstruct_ms;
+    t.select_ms += f.select_ms;
+  }
+  t.triangles /= static_cast<double>(std::max<size_t>(frames.size(), 1));
+  auto mean_bytes = [](uint64_t bits, size_t count) {
+    return count == 0 ? 0.0 : static_cast<double>(bits) / 8 / static_cast<double>(count);
+  };
+  t.base_b = mean_bytes(got.base_bits, got.base_records);
+  t.left_b = mean_bytes(got.left_bits, got.left_records);
+  t.right_b = mean_bytes(got.right_bits, got.right_records);
+  t.child_b = mean_bytes(got.left_bits + got.right_bits, got.left_records + got.right_records);
+  t.record_bits = got.base_bits + got.left_bits + got.right_bits;
+  t.per_node_us =
+      got.left_records == 0
+          ? 0.0
+          : 1000 * t.reconstruct_ms / static_cast<double>(got.base_records + 2 * got.left_records);
+  return t;
+}
+
+// The report's "records", "moves" and "client" parts (JSON and text).
+nlohmann::json vtrees_records_json(const VtreesReceived& got, const VtreesTotals& t) {
+  return {{"base", {{"count", got.base_records}, {"mean_bytes", t.base_b}, {"paper_bytes", 22}}},
+          {"left", {{"count", got.left_records}, {"mean_bytes", t.left_b}}},
+          {"right", {{"count", got.right_records}, {"mean_bytes", t.right_b}}},
+          {"child_mean_bytes", t.child_b},
+          {"paper_child_bytes", 20},
+          {"traces", got.traces},
+          {"trace_bytes", static_cast<double>(got.trace_bits) / 8},
+          {"trace_updates", got.trace_updates}};
+}
+
+nlohmann::json vtrees_client_json(const VtreesClient& client, const VtreesTotals& t) {
+  return {{"nodes_held", client.nodes_held()},
+          {"triangles", {{"mean", t.triangles}, {"max", t.max_triangles}}},
+          {"reconstruct_ms", t.reconstruct_ms},
+          {"reconstruct_us_per_node", t.per_node_us},
+          {"select_ms", t.select_ms}};
+}
+
+// From "downlink" to "reconstruct".
+void print_vtrees_lines(const VtreesClient& client, const VtreesTotals& t, size_t node_count) {
+  const VtreesReceived& got = client.received();
+  std::cout << "uplink        " << t.up << " bytes, one view per frame\n";
+  std::cout << "downlink      " << t.down << " bytes in " << got.messages << " messages, "
+            << (t.record_bits + 7) / 8 << " of them node records\n";
+  std::cout << "records       base " << got.base_records << " x " << t.base_b
+            << " B (the paper 22), "
+            << "left " << got.left_records << " x " << t.left_b << " B, right " << got.right_records
+            << " x " << t.right_b << " B: child mean " << t.child_b << " B (the paper 20)\n";
+  std::cout << "trace-up      " << got.traces << " first transmitted parents in records ("
+            << static_cast<double>(got.trace_bits) / 8 << " B), " << got.trace_updates
+            << " updates\n";
+  std::cout << "list moves    " << got.left_records << " down at new nodes, " << got.downs
+            << " down and " << got.ups << " up over held nodes\n";
+  std::cout << "client        " << client.nodes_held() << " of " << node_count
+            << " nodes held, triangles mean " << t.triangles << ", max " << t.max_triangles << "\n";
+  std::cout << "reconstruct   " << t.reconstruct_ms << " ms in all (" << t.per_node_us
+            << " us per node), triangle selection " << t.select_ms << " ms in all\n";
+}
+
+// Whether the client's triangles over its own positions overlap or leave
+// holes (fronts the trees allow and the split DAG does not).
+bool vtrees_overlap(const VtreesClient& client, const std::vector<Triangle>& triangles) {
+  TriangleMesh mesh;
+  mesh.positions = client.positions();
+  mesh.triangles = triangles;
+  return !triangulation_problems(check_mesh(mesh)).empty();
+}
+
+// --serve: a TCP server on loopback for --clients connections, each on its
+// own thread with its own session (visible vertex list); the address on
+// stdout's first line. A record sent twice to one client is a validation
+// failure (exit 7).
+int run_vtrees_serve(const Tool& tool, const Request& request, const VtreesDb& loaded) {
+  Serving serving;
+  if (std::optional<int> failed = start_serving(tool, request, &serving)) return *failed;
+  const std::string& address = serving.address;
+  Result<std::vector<VtreesServedClient>> served = serve_vtrees_clients(
+      *loaded.db, &*serving.listener, request.clients, kMaxVtreesItems, serving.tcp);
+  const double seconds = serving.seconds();
+  if (!served.is_ok()) return tool.fail(address, served.status());
+  uint64_t up = 0, down = 0;
+  size_t records = 0, state = 0;
+  bool any_twice = false;
+  Status failed;
+  nlohmann::json lanes = nlohmann::json::array();
+  std::ostringstream text;
+  for (size_t k = 0; k < served.value().size(); ++k) {
+    const VtreesServedClient& c = served.value()[k];
+    std::vector<uint32_t> sent = c.sent_nodes;
+    std::sort(sent.begin(), sent.end());
+    const bool twice = std::adjacent_find(sent.begin(), sent.end()) != sent.end();
+    any_twice = any_twice || twice;
+    up += c.uplink_bytes;
+    down += c.downlink_bytes;
+    records += c.sent_nodes.size();
+    state += c.state_bytes;
+    if (failed.is_ok() && !c.status.is_ok()) failed = c.status;
+    if (failed.is_ok() && twice) {
+      failed = Status(ErrorKind::kValidation,
+                      "client " + std::to_string(k) + ": a node record was sent twice");
+    }
+    lanes.push_back({{"client", k},
+                     {"ok", c.status.is_ok()},
+                     {"error", c.status.message()},
+                     {"uplink_bytes", c.uplink_bytes},
+                     {"downlink_bytes", c.downlink_bytes},
+                     {"views", c.requests},
+                     {"messages", c.messages},
+                     {"records", c.sent_nodes.size()},
+                     {"visible", c.visible},
+                     {"server_state_bytes", c.state_bytes}});
+    text << client_label(k) << " uplink " << c.uplink_bytes << " bytes (" << c.requests
+         << " views), downlink " << c.downlink_bytes << " bytes (" << c.messages
+         << " frame messages, " << c.sent_nodes.size() << " node records); server state "
+         << c.state_bytes << " bytes, " << c.visible << " visible vertices"
+         << (c.status.is_ok() ? "" : "; ended: " + c.status.message()) << "\n";
+  }
+  if (tool.json()) {
+    tool.print_json({{"schema", kReplaySchema},
+                     {"input", request.input},
+                     {"mode", request.mode},
+                     {"served", address},
+                     {"seconds", seconds},
+                     {"clients", lanes},
+                     {"total",
+                      {{"uplink_bytes", up},
+                       {"downlink_bytes", down},
+                       {"records", records},
+                       {"server_state_bytes", state}}}});
+  } else {
+    std::cout << "served        " << request.input << ": mode vtrees on " << address << ", "
+              << served.value().size() << " clients in " << seconds << " s\n";
+    std::cout << text.str();
+    std::cout << "total         uplink " << up << " bytes, downlink " << down << " bytes, "
+              << records << " node records, "
+              << (any_twice ? "some sent twice" : "none sent twice to a client")
+              << "; server state " << state << " bytes\n";
+  }
+  if (!failed.is_ok()) return tool.fail(address, failed);
+  return 0;
+}
+
+// --connect: a vtrees client on its camera path against a server; the
+// trees and scene messages give it everything, so no FILE. --validate
+// checks what a client can alone: every answer complete and applied (the
+// client refuses a record twice or a move it cannot make) and counts the
+// frames whose triangles overlap.
+int run_vtrees_connect(const Tool& tool, const Request& request) {
+  const std::string address = address_text(*request.connect);
+  Result<std::unique_ptr<StreamTransport>> t =
+      tcp_connect(*request.connect, TcpOptions(), kVtreesMessages);
+  if (!t.is_ok()) return tool.fail(address, t.status());
+  Result<VtreesClientSession> started =
+      VtreesClientSession::start(t.value().get(), vtrees_options(request));
+  if (!started.is_ok()) return tool.fail(address, started.status());
+  VtreesClientSession& session = started.value();
+  std::string path_file;
+  Result<std::vector<CameraFrame>> read = path_around(request, session.sphere(), &path_file);
+  if (!read.is_ok()) return tool.fail(path_file, read.status());
+  const std::vector<CameraFrame> path = std::move(read).value();
+  std::vector<VtreesFrameStats> frames;
+  size_t overlap_frames = 0;
+  Progress progress(tool, "transmitting");
+  for (size_t i = 0; i < path.size(); ++i) {
+    Result<VtreesFrameStats> f = session.frame(path[i]);
+    if (!f.is_ok()) return tool.fail(address, frame_failure(i, f.status()));
+    frames.push_back(f.value());
+    if (request.validate && vtrees_overlap(session.client(), session.triangles())) ++overlap_frames;
+    progress.update(static_cast<double>(i + 1) / static_cast<double>(path.size()));
+  }
+  t.value()->close();
+  if (!request.csv.empty()) {
+    Status written = write_vtrees_csv(request.csv, frames);
+    if (!written.is_ok()) return tool.fail(request.csv, written);
+  }
+  const VtreesClient& client = session.client();
+  const VtreesWidths& w = client.widths();
+  const size_t node_count = size_t{w.base_count} + 2 * size_t{w.split_count};
+  const VtreesTotals tot = vtrees_totals(client.received(), frames, session.start_downlink_bytes(),
+                                         session.trees_reconstruct_ms());
+  if (tool.json()) {
+    tool.print_json(
+        {{"schema", kReplaySchema},
+         {"connect", address},
+         {"mode", request.mode},
+         {"path", request.path},
+         {"frames", frames.size()},
+         {"validated", request.validate},
+         {"tolerance_pixels", request.options.tolerance_pixels},
+         {"trees",
+          {{"nodes", node_count},
+           {"base_nodes", w.base_count},
+           {"splits", w.split_count},
+           {"id_bits", w.id_bits()}}},
+         {"uplink", {{"bytes", tot.up}, {"views", frames.size()}}},
+         {"downlink",
+          {{"bytes", tot.down},
+           {"trees_message_bytes", session.trees_bytes()},
+           {"record_bytes", (tot.record_bits + 7) / 8},
+           {"messages", client.received().messages}}},
+         {"records", vtrees_records_json(client.received(), tot)},
+         {"moves", {{"down", client.received().downs}, {"up", client.received().ups}}},
+         {"client", vtrees_client_json(client, tot)},
+         {"overlap_frames", request.validate ? nlohmann::json(overlap_frames) : nlohmann::json()}});
+    return 0;
+  }
+  std::cout << "replay        " << address << ": mode vtrees over TCP, path " << request.path
+            << ", " << frames.size() << " frames"
+            << (request.validate ? ", every answer validated" : "") << "\n";
+  std::cout << "trees         " << node_count << " nodes: " << w.base_count << " base, "
+            << w.split_count << " splits, " << w.id_bits() << "-bit ids\n";
+  print_vtrees_lines(client, tot, node_count);
+  if (request.validate) {
+    std::cout << "validate      every answer complete and applied, no record received twice; "
+              << overlap_frames << " of " << frames.size()
+              << " frames had overlapping or missing triangles (the server's list is checked "
+                 "in process only)\n";
+  }
+  return 0;
+}
+
 // Mode vtrees: vertex-tree transmission (To, Lau & Green 2001, section 5):
 // the server's visible vertex list moves along the camera path, the client
 // rebuilds the trees from the node records and selects its triangles.
 int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
-  Result<Container> container = read_container(bytes.data(), bytes.size());
-  if (!container.is_ok()) return tool.fail(request.input, container.status());
-  const char* missing = nullptr;
-  for (const char* tag : {kBaseTag, kVhieTag, kRfinTag, kVtreTag}) {
-    if (missing == nullptr && container.value().find(tag) == nullptr) missing = tag;
-  }
-  if (missing != nullptr) {
-    return tool.fail(request.input,
-                     invalid_input(std::string("container has no ") + missing +
-                                   " section; mode vtrees needs BASE + VHIE + RFIN + VTRE "
-                                   "(lodbake-hierarchy --sections vhie,vtre)"));
-  }
-  const Section* base = container.value().find(kBaseTag);
-  const Section* vhie = container.value().find(kVhieTag);
-  const Section* rfin = container.value().find(kRfinTag);
-  const Section* vtre = container.value().find(kVtreTag);
-  Result<TriangleMesh> base_mesh = decode_base(base->data, base->size);
-  if (!base_mesh.is_ok()) return tool.fail(request.input, base_mesh.status());
-  Result<VertexHierarchy> h = decode_vhie(vhie->data, vhie->size, std::move(base_mesh).value());
-  if (!h.is_ok()) return tool.fail(request.input, h.status());
-  Result<std::vector<RfinRecord>> records = decode_rfin_records(rfin->data, rfin->size, h.value());
-  if (!records.is_ok()) return tool.fail(request.input, records.status());
-  // The same dequantized refinement data as mode stream's server.
-  Result<StreamHierarchy> refinement =
-      StreamHierarchy::create(h.value(), std::move(records).value());
-  if (!refinement.is_ok()) return tool.fail(request.input, refinement.status());
-  Result<VertexTrees> trees = decode_vtre(vtre->data, vtre->size);
-  if (!trees.is_ok()) return tool.fail(request.input, trees.status());
-  Result<VtreesDatabase> db =
-      VtreesDatabase::create(trees.value(), h.value(), refinement.value().data);
-  if (!db.is_ok()) return tool.fail(request.input, db.status());
-  VtreesReplayOptions options;
-  options.viewport = request.options.viewport;
-  options.tolerance_pixels = request.options.tolerance_pixels;
-  Result<VtreesSession> created = VtreesSession::create(db.value(), options);
+  Result<VtreesDb> loaded = load_vtrees_db(bytes);
+  if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
+  if (request.serve) return run_vtrees_serve(tool, request, loaded.value());
+  const VertexTrees& trees = *loaded.value().trees;
+  const VtreesDatabase& db = *loaded.value().db;
+  Result<VtreesSession> created = VtreesSession::create(db, vtrees_options(request));
   if (!created.is_ok()) return tool.fail(request.input, created.status());
   VtreesSession& session = created.value();
 
   Session view_session;
-  view_session.sphere = bounding_sphere(h.value().position);
+  view_session.sphere = db.sphere;
   std::string path_file;
   Result<std::vector<CameraFrame>> read = read_path(request, view_session, &path_file);
   if (!read.is_ok()) return tool.fail(path_file, read.status());
@@ -1504,17 +1817,14 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
   Progress progress(tool, "transmitting");
   for (size_t i = 0; i < path.size(); ++i) {
     Result<VtreesFrameStats> f = session.frame(path[i], view_session.sphere);
-    if (!f.is_ok()) {
-      return tool.fail(request.input, Status(f.status().kind(), "frame " + std::to_string(i) +
-                                                                    ": " + f.status().message()));
-    }
+    if (!f.is_ok()) return tool.fail(request.input, frame_failure(i, f.status()));
     frames.push_back(f.value());
     if (request.validate) {
       // The client's reconstruction must be exact: its list is the server's
       // and its triangles are VisibleVertexList's on the full trees.
       const VisibleVertexList& list = session.server().list();
       std::string problem;
-      for (uint32_t v = 0; problem.empty() && v < trees.value().positions.size(); ++v) {
+      for (uint32_t v = 0; problem.empty() && v < trees.positions.size(); ++v) {
         if (session.client().visible_node(v) != list.visible_node(v))
           problem =
               "the client's visible node of vertex " + std::to_string(v) + " is not the server's";
@@ -1527,10 +1837,7 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
         return tool.fail(request.input, Status(ErrorKind::kValidation,
                                                "frame " + std::to_string(i) + ": " + problem));
       }
-      TriangleMesh mesh;
-      mesh.positions = session.client().positions();
-      mesh.triangles = session.triangles();
-      if (!triangulation_problems(check_mesh(mesh)).empty()) ++overlap_frames;
+      if (vtrees_overlap(session.client(), session.triangles())) ++overlap_frames;
     }
     progress.update(static_cast<double>(i + 1) / path.size());
   }
@@ -1545,47 +1852,14 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
   }
 
   if (!request.csv.empty()) {
-    std::ostringstream csv;
-    csv << "frame,uplink_bytes,downlink_bytes,left_records,right_records,traces,trace_updates,"
-           "downs,ups,visible,triangles,reconstruct_ms,select_ms\n";
-    for (size_t i = 0; i < frames.size(); ++i) {
-      const VtreesFrameStats& f = frames[i];
-      csv << i << ',' << f.uplink_bytes << ',' << f.downlink_bytes << ',' << f.left_records << ','
-          << f.right_records << ',' << f.traces << ',' << f.trace_updates << ',' << f.downs << ','
-          << f.ups << ',' << f.visible << ',' << f.triangles << ',' << f.reconstruct_ms << ','
-          << f.select_ms << '\n';
-    }
-    Status written = write_file_atomic(request.csv, csv.str());
+    Status written = write_vtrees_csv(request.csv, frames);
     if (!written.is_ok()) return tool.fail(request.csv, written);
   }
 
   const VtreesReceived& got = session.client().received();
-  uint64_t up = 0, down = session.trees_bytes();
-  size_t max_triangles = 0;
-  double triangles = 0, reconstruct_ms = session.trees_reconstruct_ms(), select_ms = 0;
-  for (const VtreesFrameStats& f : frames) {
-    up += f.uplink_bytes;
-    down += f.downlink_bytes;
-    triangles += static_cast<double>(f.triangles);
-    max_triangles = std::max(max_triangles, f.triangles);
-    reconstruct_ms += f.reconstruct_ms;
-    select_ms += f.select_ms;
-  }
-  triangles /= static_cast<double>(std::max<size_t>(frames.size(), 1));
-  auto mean_bytes = [](uint64_t bits, size_t count) {
-    return count == 0 ? 0.0 : static_cast<double>(bits) / 8 / static_cast<double>(count);
-  };
-  const double base_b = mean_bytes(got.base_bits, got.base_records);
-  const double left_b = mean_bytes(got.left_bits, got.left_records);
-  const double right_b = mean_bytes(got.right_bits, got.right_records);
-  const double child_b =
-      mean_bytes(got.left_bits + got.right_bits, got.left_records + got.right_records);
-  const uint64_t record_bits = got.base_bits + got.left_bits + got.right_bits;
-  const size_t splits = trees.value().split_count();
-  const double per_node_us =
-      got.left_records == 0
-          ? 0.0
-          : 1000 * reconstruct_ms / static_cast<double>(got.base_records + 2 * got.left_records);
+  const VtreesTotals tot =
+      vtrees_totals(got, frames, session.trees_bytes(), session.trees_reconstruct_ms());
+  const size_t splits = trees.split_count();
   if (tool.json()) {
     tool.print_json(
         {{"schema", kReplaySchema},
@@ -1602,32 +1876,19 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
          {"tolerance", request.tolerance},
          {"tolerance_pixels", request.options.tolerance_pixels},
          {"trees",
-          {{"nodes", trees.value().node_count()},
-           {"base_nodes", trees.value().base_vertex_count},
+          {{"nodes", trees.node_count()},
+           {"base_nodes", trees.base_vertex_count},
            {"splits", splits},
-           {"id_bits", db.value().widths.id_bits()}}},
-         {"uplink", {{"bytes", up}, {"views", frames.size()}}},
+           {"id_bits", db.widths.id_bits()}}},
+         {"uplink", {{"bytes", tot.up}, {"views", frames.size()}}},
          {"downlink",
-          {{"bytes", down},
+          {{"bytes", tot.down},
            {"trees_message_bytes", session.trees_bytes()},
-           {"record_bytes", (record_bits + 7) / 8},
+           {"record_bytes", (tot.record_bits + 7) / 8},
            {"messages", got.messages}}},
-         {"records",
-          {{"base", {{"count", got.base_records}, {"mean_bytes", base_b}, {"paper_bytes", 22}}},
-           {"left", {{"count", got.left_records}, {"mean_bytes", left_b}}},
-           {"right", {{"count", got.right_records}, {"mean_bytes", right_b}}},
-           {"child_mean_bytes", child_b},
-           {"paper_child_bytes", 20},
-           {"traces", got.traces},
-           {"trace_bytes", static_cast<double>(got.trace_bits) / 8},
-           {"trace_updates", got.trace_updates}}},
+         {"records", vtrees_records_json(got, tot)},
          {"moves", {{"down", got.downs}, {"up", got.ups}}},
-         {"client",
-          {{"nodes_held", session.client().nodes_held()},
-           {"triangles", {{"mean", triangles}, {"max", max_triangles}}},
-           {"reconstruct_ms", reconstruct_ms},
-           {"reconstruct_us_per_node", per_node_us},
-           {"select_ms", select_ms}}},
+         {"client", vtrees_client_json(session.client(), tot)},
          {"server_state_bytes", session.server().state_bytes()},
          {"overlap_frames", request.validate ? nlohmann::json(overlap_frames) : nlohmann::json()}});
     return 0;
@@ -1635,28 +1896,12 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
   std::cout << "replay        " << request.input << ": mode vtrees, path " << request.path << ", "
             << frames.size() << " frames" << (request.validate ? ", every frame validated" : "")
             << "\n";
-  std::cout << "trees         " << trees.value().node_count()
-            << " nodes: " << trees.value().base_vertex_count << " base, " << splits << " splits, "
-            << db.value().widths.id_bits() << "-bit ids\n";
+  std::cout << "trees         " << trees.node_count() << " nodes: " << trees.base_vertex_count
+            << " base, " << splits << " splits, " << db.widths.id_bits() << "-bit ids\n";
   std::cout << "view          " << request.options.viewport.width << "x"
             << request.options.viewport.height << ", fov " << request.fov_degrees
             << " deg, tolerance " << request.options.tolerance_pixels << " px\n";
-  std::cout << "uplink        " << up << " bytes, one view per frame\n";
-  std::cout << "downlink      " << down << " bytes in " << got.messages << " messages, "
-            << (record_bits + 7) / 8 << " of them node records\n";
-  std::cout << "records       base " << got.base_records << " x " << base_b << " B (the paper 22), "
-            << "left " << got.left_records << " x " << left_b << " B, right " << got.right_records
-            << " x " << right_b << " B: child mean " << child_b << " B (the paper 20)\n";
-  std::cout << "trace-up      " << got.traces << " first transmitted parents in records ("
-            << static_cast<double>(got.trace_bits) / 8 << " B), " << got.trace_updates
-            << " updates\n";
-  std::cout << "list moves    " << got.left_records << " down at new nodes, " << got.downs
-            << " down and " << got.ups << " up over held nodes\n";
-  std::cout << "client        " << session.client().nodes_held() << " of "
-            << trees.value().node_count() << " nodes held, triangles mean " << triangles << ", max "
-            << max_triangles << "\n";
-  std::cout << "reconstruct   " << reconstruct_ms << " ms in all (" << per_node_us
-            << " us per node), triangle selection " << select_ms << " ms in all\n";
+  print_vtrees_lines(session.client(), tot, trees.node_count());
   if (request.validate) {
     std::cout << "validate      the client's list and triangles were the server's every frame, "
                  "no record sent twice; "
@@ -1668,7 +1913,10 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
 }
 
 int run(const Tool& tool, const Request& request) {
-  if (request.connect) return run_stream_connect(tool, request);
+  if (request.connect) {
+    return request.mode == "vtrees" ? run_vtrees_connect(tool, request)
+                                    : run_stream_connect(tool, request);
+  }
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
   if (request.mode == "sets") return run_sets(tool, request, bytes.value());
@@ -1722,7 +1970,8 @@ int main(int argc, char** argv) {
   Tool tool(
       "lodbake-replay",
       "FILE.lbk [--mode vhier|dag|fan|sets|stream|vtrees] [--path scan|orbit|FILE] [options]\n"
-      "       lodbake-replay --mode stream --connect 127.0.0.1:PORT [--path ...] [options]",
+      "       lodbake-replay --mode stream|vtrees --connect 127.0.0.1:PORT [--path ...] "
+      "[options]",
       "Replays a camera path on a container's view-dependent structure and reports,\n"
       "per frame, the refinement operations, fronts, triangles and adapt time; or\n"
       "(mode sets) runs the SETS strip paper's LoD-recovery tests.\n"
@@ -1764,7 +2013,9 @@ int main(int argc, char** argv) {
       "of newly visible nodes with the trace-up of fan vertices the client lacks; the\n"
       "client rebuilds the trees and selects triangles by vertex states. Reports the\n"
       "records per kind and their bytes against the paper's, and the client's\n"
-      "reconstruct time.\n"
+      "reconstruct time. Over TCP on loopback as mode stream: FILE --serve PORT\n"
+      "[--clients K] serves K connections, each with its own visible vertex list, and\n"
+      "--connect 127.0.0.1:PORT (no FILE) runs a client on its camera path.\n"
       "Paths: 'scan' (180 frames: approach the model, then rise from its bottom to its\n"
       "top), 'orbit' (194 frames: approach, then circle it twice, speeding up), both\n"
       "relative to the bounding sphere, or a FILE: CSV with one row per frame (eye\n"
@@ -1838,14 +2089,14 @@ int main(int argc, char** argv) {
   std::string serve, connect;
   tool.options().add_options()(
       "serve", po::value<std::string>(&serve)->value_name("PORT"),
-      "stream: serve --clients connections over TCP on 127.0.0.1:PORT, then exit (0: a "
-      "free port; stdout's first line is the address)")(
+      "stream, vtrees: serve --clients connections over TCP on 127.0.0.1:PORT, then exit "
+      "(0: a free port; stdout's first line is the address)")(
       "connect", po::value<std::string>(&connect)->value_name("ADDR"),
-      "stream: run a client on its path against the server at 127.0.0.1:PORT (no FILE: "
-      "the server sends the base mesh and the bounding sphere)")(
+      "stream, vtrees: run a client on its path against the server at 127.0.0.1:PORT (no "
+      "FILE: the server sends the base mesh or base records and the bounding sphere)")(
       "clients", po::value<size_t>(&request.clients)->value_name("K"),
-      "stream: with --serve, the connections served (default 1); else K clients on one "
-      "server in one process (1 .. 256)");
+      "stream, vtrees: with --serve, the connections served (default 1); stream: else K "
+      "clients on one server in one process (1 .. 256)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (tool.has("connect")) {
@@ -1858,12 +2109,18 @@ int main(int argc, char** argv) {
     return *code;
   }
   if ((tool.has("serve") || tool.has("connect") || tool.has("clients")) &&
-      request.mode != "stream") {
+      request.mode != "stream" && request.mode != "vtrees") {
     return tool.usage_error(std::string("--") +
                             (tool.has("serve")     ? "serve"
                              : tool.has("connect") ? "connect"
                                                    : "clients") +
-                            " applies to --mode stream only");
+                            " applies to --mode stream or vtrees only");
+  }
+  if (request.mode == "vtrees" && tool.has("clients") && !tool.has("serve") &&
+      !tool.has("connect")) {
+    return tool.usage_error(
+        "--mode vtrees takes --clients with --serve only (K clients in one process: mode "
+        "stream)");
   }
   if (tool.has("serve") && tool.has("connect"))
     return tool.usage_error("--serve and --connect exclude each other");
