@@ -1944,14 +1944,15 @@ Result<std::vector<double>> parse_percents(const std::string& text) {
 }
 
 // "1.5" pixels or "0.1%" of the viewport height; nothing when malformed or
-// not > 0.
+// negative. 0 asks for every split the view allows (modes stream and vtrees:
+// every split).
 std::optional<float> tolerance_pixels(const std::string& text, uint32_t height) {
   const bool percent = !text.empty() && text.back() == '%';
   const std::string number = percent ? text.substr(0, text.size() - 1) : text;
   float value = 0;
   const auto parsed = std::from_chars(number.data(), number.data() + number.size(), value);
   if (number.empty() || parsed.ec != std::errc() || parsed.ptr != number.data() + number.size() ||
-      !(value > 0) || !std::isfinite(value)) {
+      !(value >= 0) || !std::isfinite(value)) {
     return std::nullopt;
   }
   if (percent) {
@@ -2032,8 +2033,9 @@ int main(int argc, char** argv) {
       "scan (default), orbit, or a CSV or JSON camera path FILE")(
       "tolerance", po::value<std::string>(&request.tolerance)->value_name("T"),
       "screen-space error tolerance: pixels of the viewport height (default 1), "
-      "or a percentage of it such as 0.1% (the DAG paper's setting)")(
-      "width", po::value<uint32_t>(&width)->value_name("W"), "viewport width (default 1024)")(
+      "or a percentage of it such as 0.1% (the DAG paper's setting); 0 asks for every "
+      "split the view allows")("width", po::value<uint32_t>(&width)->value_name("W"),
+                               "viewport width (default 1024)")(
       "height", po::value<uint32_t>(&height)->value_name("H"), "viewport height (default 768)")(
       "fov", po::value<float>(&request.fov_degrees)->value_name("DEG"),
       "vertical fov of the built-in paths (default 60)")(
@@ -2182,7 +2184,7 @@ int main(int argc, char** argv) {
   const std::optional<float> tolerance = tolerance_pixels(request.tolerance, height);
   if (!tolerance) {
     return tool.usage_error(
-        "--tolerance takes pixels > 0 or a percentage in (0, 100] such as "
+        "--tolerance takes pixels >= 0 or a percentage in [0, 100] such as "
         "0.1%, not '" +
         request.tolerance + "'");
   }
