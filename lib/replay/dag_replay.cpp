@@ -268,7 +268,16 @@ Result<DagFrameStats> DagReplay::adapt(const BoundingSphere& sphere, const Camer
     pixels_per_unit_at_1_ =
         options.viewport.height / (2 * std::tan(double{frame.fov_degrees} * kPi / 360));
     DagFrameStats stats;
-    const size_t n = options.max_changes;
+    // A warm start lets the first frame reach its cut in one go: the mesh
+    // a client would load before the route begins. Constant-time traversal
+    // counts visits, not changes, so that frame runs the linear traversal
+    // (which stops once a whole front needs nothing).
+    const bool warm = options.warm_start && frames_ == 0;
+    const size_t n = warm ? std::numeric_limits<size_t>::max() : options.max_changes;
+    const DagTraversal traversal = warm && options.traversal == DagTraversal::kConstantTime
+                                       ? DagTraversal::kLinear
+                                       : options.traversal;
+    ++frames_;
     switch (options.budget_mode) {
       case DagBudgetMode::kBudget:
         stats.budget_mode = true;
@@ -286,8 +295,8 @@ Result<DagFrameStats> DagReplay::adapt(const BoundingSphere& sphere, const Camer
     const size_t cap =
         stats.budget_mode ? options.triangle_budget : std::numeric_limits<size_t>::max();
     const float tol = options.tolerance_pixels;
-    LODBAKE_RETURN_IF_ERROR(traverse(Side::kCollapse, options.traversal, n, cap, tol, &stats));
-    LODBAKE_RETURN_IF_ERROR(traverse(Side::kSplit, options.traversal, n, cap, tol, &stats));
+    LODBAKE_RETURN_IF_ERROR(traverse(Side::kCollapse, traversal, n, cap, tol, &stats));
+    LODBAKE_RETURN_IF_ERROR(traverse(Side::kSplit, traversal, n, cap, tol, &stats));
     stats.split_front = fronts_.split_front().size();
     stats.collapse_front = fronts_.collapse_front().size();
     stats.triangles = triangles_;

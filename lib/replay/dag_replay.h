@@ -51,6 +51,9 @@ struct DagReplayOptions {
   size_t triangle_budget = 60000;
   DagTraversal traversal = DagTraversal::kPriority;
   DagBudgetMode budget_mode = DagBudgetMode::kAuto;
+  /// The first frame runs without the mesh-change limit N (the mesh a
+  /// client would load before the route starts); N holds from the second.
+  bool warm_start = false;
 };
 
 struct DagFrameStats {
@@ -152,6 +155,7 @@ class DagReplay {
   };
   std::vector<NodeBound> bounds_;
   size_t triangles_ = 0;
+  size_t frames_ = 0;  // adapt() calls so far
   FrontQueue split_queue_;
   FrontQueue collapse_queue_;
   // The current frame's view (set by adapt()).

@@ -236,6 +236,42 @@ TEST(DagReplay, PriorityNeverGrowsFromParentToChild) {
   EXPECT_GT(visible_children, 0u);
 }
 
+// A warm start takes every traversal to the fidelity cut of the first
+// frame at once (the still-view cut of TraversalsAgreeOnAStillView), then
+// holds N from the second frame.
+TEST(DagReplay, WarmStartReachesTheFirstFramesCutThenHoldsN) {
+  const ProgressiveMesh pm = front_test::test_pm("balanced:cgal_fandisk.off");
+  Result<VsplitDag> dag = build_vsplit_dag(pm);
+  ASSERT_TRUE(dag.is_ok());
+  const BoundingSphere sphere = sphere_of(pm);
+  const std::vector<CameraFrame> path = scan_path(sphere, 60);
+  DagReplayOptions options;
+  options.budget_mode = DagBudgetMode::kFree;
+  options.tolerance_pixels = 0.5f;
+  options.max_changes = 7;
+  options.warm_start = true;
+  std::vector<std::vector<uint8_t>> cuts;
+  for (DagTraversal traversal : kTraversals) {
+    SCOPED_TRACE(dag_traversal_name(traversal));
+    Result<DagReplay> replay = DagReplay::create(pm, dag.value());
+    ASSERT_TRUE(replay.is_ok());
+    options.traversal = traversal;
+    Result<DagFrameStats> first = replay.value().adapt(sphere, path[90], options);
+    ASSERT_TRUE(first.is_ok());
+    EXPECT_GT(first.value().splits, 50u);
+    EXPECT_EQ(split_flags(replay.value()),
+              fidelity_cut(replay.value(), dag.value(), options.tolerance_pixels));
+    cuts.push_back(split_flags(replay.value()));
+    Result<DagFrameStats> second = replay.value().adapt(sphere, path[10], options);
+    ASSERT_TRUE(second.is_ok());
+    EXPECT_LE(second.value().splits, 7u);
+    EXPECT_LE(second.value().collapses, 7u);
+    EXPECT_TRUE(replay.value().check().empty());
+  }
+  EXPECT_EQ(cuts[0], cuts[1]);
+  EXPECT_EQ(cuts[0], cuts[2]);
+}
+
 TEST(DagReplay, AccuracyCountsSameOrientedTriangles) {
   const std::vector<Triangle> reference = {{0, 1, 2}, {2, 1, 3}, {3, 4, 5}, {5, 4, 6}};
   EXPECT_EQ(cut_accuracy(reference, {{1, 2, 0}, {3, 2, 1}, {4, 5, 3}, {4, 6, 5}}), 1.0);

@@ -497,6 +497,7 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
   if (dag) {
     report["budget_mode"] = request.budget_mode;
     report["max_changes"] = request.dag.max_changes;
+    report["warm_start"] = request.dag.warm_start;
     report["triangle_budget"] = request.dag.triangle_budget;
     nlohmann::json list = nlohmann::json::array();
     for (size_t lane = 0; lane < lanes.size(); ++lane) {
@@ -615,7 +616,8 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
                 << l.budget_frames << " of " << frames.size() << " frames)";
     }
     std::cout << ", at most " << request.dag.max_changes
-              << (constant ? " nodes visited per traversal\n" : " changes per traversal\n");
+              << (constant ? " nodes visited per traversal" : " changes per traversal")
+              << (request.dag.warm_start ? " from the second frame (warm start)\n" : "\n");
     std::cout << "operations    " << l.splits << " splits, " << l.collapses << " collapses, "
               << l.visited << " nodes evaluated\n";
     std::cout << "fronts        |Fs| mean " << l.front_mean << ", max " << l.max_front

@@ -192,6 +192,9 @@ int main(int argc, char** argv) {
       "changes", po::value<size_t>(&request.dag.max_changes)->value_name("N"),
       "dag: at most N collapses and N splits per frame; constant-time: N nodes visited "
       "by each (default 300)")(
+      "warm-start", po::bool_switch(&request.dag.warm_start),
+      "dag: the first frame runs without the --changes limit (the mesh a client loads "
+      "before the route starts); the limit holds from the second frame")(
       "coarse", po::value<float>(&request.fan.coarse_fraction)->value_name("F"),
       "fan: one fan-merge / fan-split when the target is an end of the fine path at "
       "least max(1, ceil(F x children)) steps away, else merge-pointer steps (default "
@@ -331,6 +334,7 @@ int main(int argc, char** argv) {
                             "' is not one of auto, budget, free");
   }
   if (request.mode != "dag") {
+    if (request.dag.warm_start) return tool.usage_error("--warm-start applies to --mode dag only");
     for (const char* option : {"traversal", "budget-mode", "budget", "changes"}) {
       if (tool.has(option))
         return tool.usage_error(std::string("--") + option + " applies to --mode dag only");
