@@ -326,6 +326,19 @@ std::vector<CameraFrame> orbit_path(const BoundingSphere& s, float fov) {
   return path;
 }
 
+std::vector<CameraFrame> turned_about_vertical(std::vector<CameraFrame> path,
+                                               const BoundingSphere& sphere, float degrees) {
+  const float a = degrees * 3.14159265f / 180, c = std::cos(a), s = std::sin(a);
+  for (CameraFrame& f : path) {
+    for (Vec3f* p : {&f.eye, &f.target}) {
+      const float x = (*p)[0] - sphere.center[0], z = (*p)[2] - sphere.center[2];
+      (*p)[0] = sphere.center[0] + c * x + s * z;
+      (*p)[2] = sphere.center[2] - s * x + c * z;
+    }
+  }
+  return path;
+}
+
 Result<std::vector<CameraFrame>> builtin_path(const std::string& name, const BoundingSphere& s,
                                               float fov) {
   if (name == "scan") return scan_path(s, fov);

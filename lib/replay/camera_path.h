@@ -43,6 +43,11 @@ std::vector<CameraFrame> scan_path(const BoundingSphere& sphere, float fov_degre
 /// +y axis through the centre, angle growing quadratically (increasing
 /// speed) to two full turns.
 std::vector<CameraFrame> orbit_path(const BoundingSphere& sphere, float fov_degrees);
+/// `path` turned by `degrees` about the vertical (+y) axis through the
+/// sphere's centre: eyes and targets rotate, up vectors stay. The streaming
+/// modes' several clients use it to look at the model from around it.
+std::vector<CameraFrame> turned_about_vertical(std::vector<CameraFrame> path,
+                                               const BoundingSphere& sphere, float degrees);
 /// "scan" or "orbit"; kInvalidInput naming the choices otherwise.
 Result<std::vector<CameraFrame>> builtin_path(const std::string& name, const BoundingSphere& sphere,
                                               float fov_degrees);

@@ -38,17 +38,10 @@ struct Totals {
 };
 
 std::vector<CameraFrame> client_path(size_t k, size_t clients, const BoundingSphere& sphere) {
-  std::vector<CameraFrame> path = k % 2 == 0 ? scan_path(sphere, 60) : orbit_path(sphere, 60);
-  const float a = 2 * 3.14159265f * static_cast<float>(k) / static_cast<float>(clients);
-  const float c = std::cos(a), s = std::sin(a);
-  for (CameraFrame& f : path) {
-    for (Vec3f* p : {&f.eye, &f.target}) {
-      const float x = (*p)[0] - sphere.center[0], z = (*p)[2] - sphere.center[2];
-      (*p)[0] = sphere.center[0] + c * x + s * z;
-      (*p)[2] = sphere.center[2] - s * x + c * z;
-    }
-  }
-  return path;
+  // The turn of `lodbake-replay --mode stream --clients K`, to the bit.
+  const float degrees = 360.0f * static_cast<float>(k) / static_cast<float>(clients);
+  return turned_about_vertical(k % 2 == 0 ? scan_path(sphere, 60) : orbit_path(sphere, 60), sphere,
+                               degrees);
 }
 
 void add_frames(StreamClientSession& session, const std::vector<CameraFrame>& path, Totals* t) {

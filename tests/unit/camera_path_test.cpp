@@ -188,6 +188,25 @@ TEST(CameraPath, JsonRejectsMalformedFramesWithFrameNumbers) {
   }
 }
 
+// Turning a path about the vertical axis keeps every eye's height and
+// distance to the axis, turns it by the angle, and keeps up vectors.
+TEST(CameraPath, TurnedAboutVerticalRotatesEyesAndTargets) {
+  const BoundingSphere s = sample_sphere();
+  const std::vector<CameraFrame> path = orbit_path(s, 60);
+  const std::vector<CameraFrame> turned = turned_about_vertical(path, s, 90);
+  ASSERT_EQ(turned.size(), path.size());
+  for (size_t i = 0; i < path.size(); ++i) {
+    const float x = path[i].eye[0] - s.center[0], z = path[i].eye[2] - s.center[2];
+    EXPECT_NEAR(turned[i].eye[0] - s.center[0], z, 1e-4f);
+    EXPECT_NEAR(turned[i].eye[2] - s.center[2], -x, 1e-4f);
+    EXPECT_EQ(turned[i].eye[1], path[i].eye[1]);
+    EXPECT_EQ(turned[i].up, path[i].up);
+    EXPECT_EQ(turned[i].fov_degrees, path[i].fov_degrees);
+  }
+  const std::vector<CameraFrame> same = turned_about_vertical(path, s, 0);
+  EXPECT_EQ(same[5].eye, path[5].eye);
+}
+
 TEST(CameraPath, ViewParametersFrustumAndKappa) {
   CameraFrame f;
   f.eye = {0, 0, 10};

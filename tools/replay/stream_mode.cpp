@@ -130,18 +130,6 @@ Status write_stream_csv(const std::string& file, const std::vector<StreamFrameSt
 }
 
 // A camera path turned about the vertical axis through the sphere's centre.
-std::vector<CameraFrame> turned_path(std::vector<CameraFrame> path, const BoundingSphere& sphere,
-                                     float degrees) {
-  const float a = degrees * 3.14159265f / 180, c = std::cos(a), s = std::sin(a);
-  for (CameraFrame& f : path) {
-    for (Vec3f* p : {&f.eye, &f.target}) {
-      const float x = (*p)[0] - sphere.center[0], z = (*p)[2] - sphere.center[2];
-      (*p)[0] = sphere.center[0] + c * x + s * z;
-      (*p)[2] = sphere.center[2] - s * x + c * z;
-    }
-  }
-  return path;
-}
 // --clients K (K > 1) in one process: K sessions on one database, client k
 // on the scan (even k) or orbit (odd k) path, or on --path, turned by
 // 360 k / K degrees; their frames interleaved, as simultaneous clients.
@@ -163,7 +151,7 @@ int run_stream_clients(const Tool& tool, const Request& request, const StreamDb&
     Result<std::vector<CameraFrame>> read = read_path(lane, db.sphere, &path_file);
     if (!read.is_ok()) return tool.fail(path_file, read.status());
     degrees.push_back(360.0f * static_cast<float>(k) / static_cast<float>(k_count));
-    paths.push_back(turned_path(std::move(read).value(), db.sphere, degrees.back()));
+    paths.push_back(turned_about_vertical(std::move(read).value(), db.sphere, degrees.back()));
     names.push_back(lane.path);
   }
   std::vector<std::vector<StreamFrameStats>> frames(k_count);
