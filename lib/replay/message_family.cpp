@@ -4,6 +4,7 @@
 #include "lib/replay/message_family.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "formats/support/byte_reader.h"
@@ -45,6 +46,52 @@ Result<uint8_t> message_type(const MessageFamily& family, const uint8_t* data, s
                          std::to_string(size - kMessageHeaderBytes) + " follow");
   }
   return data[1];
+}
+
+Bytes frame_message(const MessageFamily& family, uint8_t type, const Bytes& payload) {
+  Bytes out;
+  out.reserve(kMessageHeaderBytes + payload.size());
+  ByteWriter w(&out);
+  w.write(family.magic_version);
+  w.write(type);
+  w.write(static_cast<uint32_t>(payload.size()));
+  out.insert(out.end(), payload.begin(), payload.end());
+  return out;
+}
+
+Result<ByteReader> open_message(const MessageFamily& family, const uint8_t* data, size_t size,
+                                uint8_t want, const char* what) {
+  LODBAKE_ASSIGN_OR_RETURN(uint8_t type, message_type(family, data, size));
+  if (type != want) {
+    return invalid_input(std::string(family.name) + " message: type " + std::to_string(type) +
+                         " where a " + what + " was expected");
+  }
+  return ByteReader(data + kMessageHeaderBytes, size - kMessageHeaderBytes);
+}
+
+Bytes sphere_payload(const BoundingSphere& sphere) {
+  Bytes payload;
+  payload.reserve(16);
+  ByteWriter w(&payload);
+  for (float c : sphere.center)
+    w.write(c);
+  w.write(sphere.radius);
+  return payload;
+}
+
+Result<BoundingSphere> decode_sphere_payload(const MessageFamily& family, ByteReader r) {
+  auto bad = [&](const char* why) {
+    return invalid_input(std::string(family.name) + " message: " + why);
+  };
+  if (r.remaining() != 16) return bad("a scene message has 16 payload bytes");
+  BoundingSphere s;
+  for (float& c : s.center) {
+    r.read(&c);
+    if (!std::isfinite(c)) return bad("the scene's centre is not finite");
+  }
+  r.read(&s.radius);
+  if (!(s.radius > 0) || !std::isfinite(s.radius)) return bad("the scene's radius is not positive");
+  return s;
 }
 
 }  // namespace lodbake

@@ -16,7 +16,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "formats/support/byte_reader.h"
+#include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/replay/camera_path.h"
 
 namespace lodbake {
 
@@ -46,5 +49,21 @@ Result<uint32_t> message_payload_length(const MessageFamily& family, const uint8
 /// The same for a whole message, whose length must be the rest of `size`;
 /// returns the type byte.
 Result<uint8_t> message_type(const MessageFamily& family, const uint8_t* data, size_t size);
+
+/// A whole message of `family`: the header for `type` and `payload`.
+Bytes frame_message(const MessageFamily& family, uint8_t type, const Bytes& payload);
+
+/// The payload of a whole message of `family` whose type must be `want`;
+/// otherwise "<name> message: type T where a <what> was expected".
+Result<ByteReader> open_message(const MessageFamily& family, const uint8_t* data, size_t size,
+                                uint8_t want, const char* what);
+
+/// The scene message's payload both families send a client first: the
+/// bounding sphere its camera paths are placed around, 16 bytes (centre,
+/// radius, float32 little-endian).
+Bytes sphere_payload(const BoundingSphere& sphere);
+/// Its strict decoder: exactly 16 bytes, a finite centre, a positive finite
+/// radius; refusals are "<name> message: ...".
+Result<BoundingSphere> decode_sphere_payload(const MessageFamily& family, ByteReader payload);
 
 }  // namespace lodbake

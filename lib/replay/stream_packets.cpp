@@ -103,25 +103,13 @@ bool read_record(BitReader* r, StreamNodeData* d, bool* bad_value) {
 }
 
 Bytes frame(StreamMessageType type, const Bytes& payload) {
-  Bytes out;
-  out.reserve(kStreamHeaderBytes + payload.size());
-  ByteWriter w(&out);
-  w.write(kStreamMagicVersion);
-  w.write(static_cast<uint8_t>(type));
-  w.write(static_cast<uint32_t>(payload.size()));
-  out.insert(out.end(), payload.begin(), payload.end());
-  return out;
+  return frame_message(kStreamMessages, static_cast<uint8_t>(type), payload);
 }
 
 // The payload of a message of type `want`, after stream_message_type().
 Result<ByteReader> open(const uint8_t* data, size_t size, StreamMessageType want,
                         const char* name) {
-  LODBAKE_ASSIGN_OR_RETURN(StreamMessageType type, stream_message_type(data, size));
-  if (type != want) {
-    return bad("type " + std::to_string(static_cast<int>(type)) + " where a " + name +
-               " was expected");
-  }
-  return ByteReader(data + kStreamHeaderBytes, size - kStreamHeaderBytes);
+  return open_message(kStreamMessages, data, size, static_cast<uint8_t>(want), name);
 }
 
 uint64_t min_packet_bits(const StreamIdWidths& widths) {
@@ -504,25 +492,12 @@ Result<std::vector<HierarchyNodeId>> decode_resume_message(const uint8_t* data, 
 }
 
 Bytes encode_scene_message(const BoundingSphere& sphere) {
-  Bytes payload;
-  ByteWriter w(&payload);
-  for (float c : sphere.center)
-    w.write(c);
-  w.write(sphere.radius);
-  return frame(StreamMessageType::kScene, payload);
+  return frame(StreamMessageType::kScene, sphere_payload(sphere));
 }
 
 Result<BoundingSphere> decode_scene_message(const uint8_t* data, size_t size) {
   LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, StreamMessageType::kScene, "scene"));
-  if (r.remaining() != 16) return bad("a scene message has 16 payload bytes");
-  BoundingSphere s;
-  for (float& c : s.center) {
-    r.read(&c);
-    if (!std::isfinite(c)) return bad("the scene's centre is not finite");
-  }
-  r.read(&s.radius);
-  if (!(s.radius > 0) || !std::isfinite(s.radius)) return bad("the scene's radius is not positive");
-  return s;
+  return decode_sphere_payload(kStreamMessages, r);
 }
 
 }  // namespace lodbake

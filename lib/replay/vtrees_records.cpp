@@ -55,24 +55,12 @@ bool fits(uint64_t value, int bits) {
 }
 
 Bytes frame(VtreesMessageType type, const Bytes& payload) {
-  Bytes out;
-  out.reserve(kVtreesHeaderBytes + payload.size());
-  ByteWriter w(&out);
-  w.write(kVtreesMagicVersion);
-  w.write(static_cast<uint8_t>(type));
-  w.write(static_cast<uint32_t>(payload.size()));
-  out.insert(out.end(), payload.begin(), payload.end());
-  return out;
+  return frame_message(kVtreesMessages, static_cast<uint8_t>(type), payload);
 }
 
 Result<ByteReader> open(const uint8_t* data, size_t size, VtreesMessageType want,
                         const char* name) {
-  LODBAKE_ASSIGN_OR_RETURN(VtreesMessageType type, vtrees_message_type(data, size));
-  if (type != want) {
-    return bad("type " + std::to_string(static_cast<int>(type)) + " where a " + name +
-               " was expected");
-  }
-  return ByteReader(data + kVtreesHeaderBytes, size - kVtreesHeaderBytes);
+  return open_message(kVtreesMessages, data, size, static_cast<uint8_t>(want), name);
 }
 
 bool valid_widths(const VtreesWidths& w) {
@@ -497,25 +485,12 @@ Result<std::vector<VtreesItem>> decode_vtrees_frame(const uint8_t* data, size_t 
 }
 
 Bytes encode_vtrees_scene(const BoundingSphere& sphere) {
-  Bytes payload;
-  ByteWriter w(&payload);
-  for (float c : sphere.center)
-    w.write(c);
-  w.write(sphere.radius);
-  return frame(VtreesMessageType::kScene, payload);
+  return frame(VtreesMessageType::kScene, sphere_payload(sphere));
 }
 
 Result<BoundingSphere> decode_vtrees_scene(const uint8_t* data, size_t size) {
   LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, VtreesMessageType::kScene, "scene"));
-  if (r.remaining() != 16) return bad("a scene message has 16 payload bytes");
-  BoundingSphere s;
-  for (float& c : s.center) {
-    r.read(&c);
-    if (!std::isfinite(c)) return bad("the scene's centre is not finite");
-  }
-  r.read(&s.radius);
-  if (!(s.radius > 0) || !std::isfinite(s.radius)) return bad("the scene's radius is not positive");
-  return s;
+  return decode_sphere_payload(kVtreesMessages, r);
 }
 
 Bytes encode_vtrees_end_of_answer(uint32_t messages) {
