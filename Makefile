@@ -113,7 +113,7 @@ HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
 STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
 bench: bench-deps build
 	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy \
-	  bench_dag bench_fan bench_strips bench_pack
+	  bench_dag bench_fan bench_strips bench_pack bench_stream
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
@@ -123,6 +123,8 @@ bench: bench-deps build
 	$(BUILD)/tests/bench/bench_strips --runs $(BENCH_RUNS) $(STRIPS_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_pack --runs $(BENCH_RUNS) $(PACK_BENCH_MESHES)
 	tests/bench/pack_sections.sh $(BUILD)/tools $(PACK_SECTIONS_MESHES)
+	$(BUILD)/tests/bench/bench_stream --runs $(BENCH_RUNS) --clients 16 \
+	  $(SHARED_DATA)/meshes/stanford_bun_zipper.ply
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
