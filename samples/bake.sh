@@ -7,8 +7,10 @@
 # and vertex trees, the fan-merge hierarchy, strips and the SETS graph and
 # validate them, print a summary of the sizes, and end by replaying the scan
 # camera path on the hierarchy, the split DAG (all three traversals) and the
-# fan hierarchy and the LoD-recovery tests on the SETS graph, every frame
-# validated, each printing its summary and drawing its charts.
+# fan hierarchy, the LoD-recovery tests on the SETS graph, and the streaming
+# of the hierarchy and of its vertex trees from a server to a client in one
+# process, every frame validated, each printing its summary (and the first
+# four their charts).
 #   LODBAKE_BIN=build/tools samples/bake.sh OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -81,5 +83,7 @@ step "10. replay the baked structures (lodbake-replay, every frame validated, ch
 "$bin/lodbake-replay" "$out/elephant-fan.lbk" --mode fan --path scan --validate --plot "$out/plots-fan"
 "$bin/lodbake-replay" "$out/elephant-sets.lbk" --mode sets --percent 1,3 --validate \
   --plot "$out/plots-sets"
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode stream --path scan --validate
+"$bin/lodbake-replay" "$out/elephant-hierarchy.lbk" --mode vtrees --path scan --validate
 echo
 echo "all steps passed; outputs in $out, charts in $out/plots-{vhier,dag,fan,sets}"
