@@ -290,12 +290,6 @@ class QuantizedPositions {
   std::vector<uint32_t> q_;
 };
 
-uint32_t float_bits(float f) {
-  uint32_t u = 0;
-  std::memcpy(&u, &f, 4);
-  return u;
-}
-
 Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
   LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));

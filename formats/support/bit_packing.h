@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace lodbake {
@@ -18,6 +19,19 @@ int bits_for_count(uint64_t count);
 /// returns UINT64_MAX when the product would not fit (callers compare it with
 /// the bytes that remain, so that value simply fails the check).
 uint64_t packed_size_bytes(uint64_t values, int bits);
+
+/// A float's IEEE-754 bit pattern, and back: bit-exact, for codecs that
+/// store floats in bit streams.
+inline uint32_t float_bits(float f) {
+  uint32_t u = 0;
+  std::memcpy(&u, &f, 4);
+  return u;
+}
+inline float bits_float(uint32_t u) {
+  float f = 0;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
 
 /// Appends values LSB-first to a byte vector: bit 0 of the first value is
 /// bit 0 of the first byte; each value's bits follow the previous value's

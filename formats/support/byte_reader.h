@@ -74,9 +74,11 @@ class ByteWriter {
   template <typename T>
   void write(T value) {
     static_assert(std::is_arithmetic<T>::value, "write() takes arithmetic types");
-    uint8_t raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    out_->insert(out_->end(), raw, raw + sizeof(T));
+    // Grown, then filled: a range insert into an empty vector, once inlined,
+    // trips g++ 12's -Wstringop-overflow (a false positive).
+    const size_t at = out_->size();
+    out_->resize(at + sizeof(T));
+    std::memcpy(out_->data() + at, &value, sizeof(T));
   }
   void write_bytes(const void* data, size_t count) {
     const auto* bytes = static_cast<const uint8_t*>(data);

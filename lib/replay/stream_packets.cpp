@@ -32,18 +32,6 @@ Status bad(const std::string& detail) {
   return invalid_input("stream message: " + detail);
 }
 
-uint32_t float_bits(float f) {
-  uint32_t u = 0;
-  std::memcpy(&u, &f, 4);
-  return u;
-}
-
-float bits_float(uint32_t u) {
-  float f = 0;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
-
 void write_wide(BitWriter* w, uint64_t value, int bits) {
   if (bits <= 32) {
     w->write(static_cast<uint32_t>(value), bits);

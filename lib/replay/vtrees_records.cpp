@@ -38,18 +38,6 @@ Status bad(const std::string& detail) {
   return invalid_input("vtrees message: " + detail);
 }
 
-uint32_t float_bits(float f) {
-  uint32_t u = 0;
-  std::memcpy(&u, &f, 4);
-  return u;
-}
-
-float bits_float(uint32_t u) {
-  float f = 0;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
-
 bool fits(uint64_t value, int bits) {
   return bits >= 64 || value < (uint64_t{1} << bits);
 }
