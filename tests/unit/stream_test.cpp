@@ -17,6 +17,7 @@
 #include "formats/support/bit_packing.h"
 #include "lib/replay/stream_session.h"
 #include "tests/unit/stream_test_support.h"
+#include "tests/unit/wire_corruption_support.h"
 
 namespace lodbake {
 namespace {
@@ -263,21 +264,8 @@ TEST(StreamPackets, RoundTripAndBitWidths) {
 TEST(StreamPackets, RejectsTruncationsHeaderBitFlipsAndTrailingBytes) {
   const Messages m = messages();
   for (const Bytes* message : {&m.view, &m.base, &m.vsplits, &m.end}) {
-    ASSERT_TRUE(decodes(m, *message, *message));
-    for (size_t n = 0; n < message->size(); ++n) {
-      const Bytes cut(message->begin(), message->begin() + static_cast<ptrdiff_t>(n));
-      EXPECT_FALSE(decodes(m, *message, cut)) << "accepted " << n << " of " << message->size();
-    }
-    for (size_t bit = 0; bit < kStreamHeaderBytes * 8; ++bit) {
-      Bytes flipped = *message;
-      flipped[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
-      EXPECT_FALSE(decodes(m, *message, flipped)) << "accepted a flip of header bit " << bit;
-    }
-    Bytes longer = *message;
-    longer.push_back(0);
-    EXPECT_FALSE(decodes(m, *message, longer));
-    longer[2] = static_cast<uint8_t>(longer[2] + 1);  // the length agrees, the payload does not
-    EXPECT_FALSE(decodes(m, *message, longer));
+    expect_refuses_corruptions(*message, kStreamHeaderBytes,
+                               [&](const Bytes& b) { return decodes(m, *message, b); });
   }
   // A newer version is unsupported, not malformed.
   Bytes newer = m.vsplits;

@@ -17,6 +17,7 @@
 #include "lib/replay/vtrees_session.h"
 #include "tests/unit/test_meshes.h"
 #include "tests/unit/vtrees_test_support.h"
+#include "tests/unit/wire_corruption_support.h"
 
 namespace lodbake {
 namespace {
@@ -211,21 +212,8 @@ TEST(VtreesRecords, RoundTripAndRecordSizes) {
 TEST(VtreesRecords, RejectsTruncationsHeaderBitFlipsAndTrailingBytes) {
   const Messages m = messages();
   for (const Bytes* message : {&m.trees, &m.frame, &m.mixed}) {
-    ASSERT_TRUE(decodes(m, *message, *message));
-    for (size_t n = 0; n < message->size(); ++n) {
-      const Bytes cut(message->begin(), message->begin() + static_cast<ptrdiff_t>(n));
-      EXPECT_FALSE(decodes(m, *message, cut)) << "accepted " << n << " of " << message->size();
-    }
-    for (size_t bit = 0; bit < kVtreesHeaderBytes * 8; ++bit) {
-      Bytes flipped = *message;
-      flipped[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
-      EXPECT_FALSE(decodes(m, *message, flipped)) << "accepted a flip of header bit " << bit;
-    }
-    Bytes longer = *message;
-    longer.push_back(0);
-    EXPECT_FALSE(decodes(m, *message, longer));
-    longer[2] = static_cast<uint8_t>(longer[2] + 1);  // the length agrees, the payload does not
-    EXPECT_FALSE(decodes(m, *message, longer));
+    expect_refuses_corruptions(*message, kVtreesHeaderBytes,
+                               [&](const Bytes& b) { return decodes(m, *message, b); });
   }
   // The trees message's fixed fields too: every bit of B, the widths and
   // the reserved bytes. S sets only the id width here; a flip of S that
