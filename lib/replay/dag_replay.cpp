@@ -11,9 +11,12 @@
 //   its descendants (both in reverse id order: children have larger ids).
 //   A node's error is its bound projected at the distance from the eye to
 //   its sphere (at least the near distance), in pixels; 0 when the sphere is
-//   outside the frustum. Both only shrink down the DAG, so a node that needs
-//   a split never sits under one that does not. No back-face test: there are
-//   no normal cones. NEED-APPLY: split while the error is at least the
+//   outside the frustum, or when its cone of normals (derived the same way
+//   from the normals of the triangles the node and its descendants create)
+//   faces away from every point of the sphere: the paper's experiments use
+//   out-of-view and back-facing simplification. Spheres, cones and bounds
+//   only shrink down the DAG, so a node that needs a split never sits under
+//   one that does not. NEED-APPLY: split while the error is at least the
 //   tolerance, collapse while it is below, so a node just split is never
 //   collapsed on the same view.
 // - The mode: kAuto is the client's rule of section 4, FREE while
@@ -109,38 +112,95 @@ Result<DagReplay> DagReplay::create(const ProgressiveMesh& pm, const VsplitDag& 
 }
 
 void DagReplay::derive_bounds() {
+  using V3 = std::array<double, 3>;
   const size_t nodes = pm_->splits.size();
   const size_t base_vertices = pm_->base.vertex_count();
-  auto position = [&](uint32_t v) -> const Vec3f& {
-    return v < base_vertices ? pm_->base.positions[v] : pm_->splits[v - base_vertices].vt_position;
+  auto sub = [](const V3& a, const V3& b) { return V3{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto dot = [](const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  auto len = [&](const V3& a) { return std::sqrt(dot(a, a)); };
+  auto angle = [&](const V3& a, const V3& b) {
+    const double l = len(a) * len(b);
+    return l > 0 ? std::acos(std::clamp(dot(a, b) / l, -1.0, 1.0)) : kPi;
   };
-  auto distance = [](const Vec3f& a, const Vec3f& b) {
-    double d2 = 0;
-    for (int i = 0; i < 3; ++i)
-      d2 += (double{a[i]} - b[i]) * (double{a[i]} - b[i]);
-    return std::sqrt(d2);
-  };
+  auto to_d = [](const Vec3f& p) { return V3{p[0], p[1], p[2]}; };
+  // Each split's own triangles as they are when it creates them (with
+  // optimal placement vs moves in later splits, which recreate its faces):
+  // the radius around vt holding them, and their cone of normals (axis the
+  // area-weighted normal sum, half-angle the widest angle to one of them).
+  std::vector<double> own_radius(nodes, 0), own_half_angle(nodes, 0);
+  std::vector<V3> normal_sum(nodes, V3{0, 0, 0});
+  {
+    std::vector<V3> at(base_vertices + nodes);
+    for (size_t v = 0; v < base_vertices; ++v)
+      at[v] = to_d(pm_->base.positions[v]);
+    std::vector<V3> normals;
+    for (size_t n = 0; n < nodes; ++n) {
+      const VertexSplit& s = pm_->splits[n];
+      at[s.vs] = to_d(s.vs_position);
+      const V3& centre = at[base_vertices + n] = to_d(s.vt_position);
+      normals.clear();
+      for (uint32_t t = lineage_.created_offsets[n]; t < lineage_.created_offsets[n + 1]; ++t) {
+        const Triangle& tri = lineage_.triangles[t];
+        for (uint32_t v : tri)
+          own_radius[n] = std::max(own_radius[n], len(sub(centre, at[v])));
+        const V3 e1 = sub(at[tri[1]], at[tri[0]]), e2 = sub(at[tri[2]], at[tri[0]]);
+        normals.push_back({e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                           e1[0] * e2[1] - e1[1] * e2[0]});
+        for (int i = 0; i < 3; ++i)
+          normal_sum[n][i] += normals.back()[i];
+      }
+      double a = 0;
+      for (const V3& fn : normals) {
+        if (len(fn) > 0) a = std::max(a, angle(normal_sum[n], fn));
+      }
+      own_half_angle[n] = len(normal_sum[n]) > 0 ? a : kPi;
+    }
+  }
+  // The closure over the descendants, in reverse id order (children have
+  // larger ids), as lib/hierarchy's refinement data bounds a subtree.
   bounds_.assign(nodes, NodeBound());
+  std::vector<double> half_angle(nodes, kPi);
   for (size_t k = nodes; k-- > 0;) {
     const uint32_t n = static_cast<uint32_t>(k);
-    const Vec3f& centre = pm_->splits[n].vt_position;
-    double r = 0;
+    const V3 centre = to_d(pm_->splits[n].vt_position);
+    const V3 own_axis = normal_sum[n];
+    double r = own_radius[n];
     float e = std::max(pm_->splits[n].error, 0.f);
-    for (uint32_t t = lineage_.created_offsets[n]; t < lineage_.created_offsets[n + 1]; ++t) {
-      for (uint32_t v : lineage_.triangles[t])
-        r = std::max(r, distance(centre, position(v)));
-    }
-    for (const uint32_t* c = fronts_.children_begin(n); c != fronts_.children_end(n); ++c) {
-      r = std::max(r, distance(centre, pm_->splits[*c].vt_position) + bounds_[*c].radius);
+    V3& sum = normal_sum[n];
+    const uint32_t* children_begin = fronts_.children_begin(n);
+    const uint32_t* children_end = fronts_.children_end(n);
+    for (const uint32_t* c = children_begin; c != children_end; ++c) {
+      r = std::max(r, len(sub(centre, to_d(pm_->splits[*c].vt_position))) + bounds_[*c].radius);
       e = std::max(e, bounds_[*c].error);
+      for (int i = 0; i < 3; ++i)
+        sum[i] += normal_sum[*c][i];
     }
+    double a = len(own_axis) > 0 ? angle(sum, own_axis) + own_half_angle[n] : 0;
+    for (const uint32_t* c = children_begin; c != children_end; ++c)
+      a = std::max(a, angle(sum, normal_sum[*c]) + half_angle[*c]);
+    half_angle[n] = len(sum) > 0 ? std::min(kPi, a) : kPi;
+    NodeBound& b = bounds_[n];
+    b.x = static_cast<float>(centre[0]);
+    b.y = static_cast<float>(centre[1]);
+    b.z = static_cast<float>(centre[2]);
     // Rounded up so that float storage keeps every child inside.
-    bounds_[n] = {centre[0], centre[1], centre[2], static_cast<float>(r * (1 + 1e-6)) + 1e-30f, e};
+    b.radius = static_cast<float>(r * (1 + 1e-6)) + 1e-30f;
+    b.error = e;
+    // A cone of pi/2 or more never faces away; stored a little wider than
+    // computed so that float rounding keeps every child's cone inside.
+    const double stored = half_angle[n] + 1e-5;
+    if (stored < kPi / 2) {
+      const double l = len(sum);
+      b.ax = static_cast<float>(sum[0] / l);
+      b.ay = static_cast<float>(sum[1] / l);
+      b.az = static_cast<float>(sum[2] / l);
+      b.sin_half_angle = static_cast<float>(std::sin(stored));
+    }
   }
 }
 
 // Every front node is evaluated every frame, in no memory order: one record
-// per node (one cache line holds three) is what the evaluation reads.
+// per node is what the evaluation reads.
 float DagReplay::priority(uint32_t node) const {
   const NodeBound& b = bounds_[node];
   const double x = b.x, y = b.y, z = b.z, r = b.radius;
@@ -148,8 +208,28 @@ float DagReplay::priority(uint32_t node) const {
     if (double{q[0]} * x + double{q[1]} * y + double{q[2]} * z + q[3] < -r) return 0;
   }
   const double dx = x - view_.eye[0], dy = y - view_.eye[1], dz = z - view_.eye[2];
-  const double d = std::max({std::sqrt(dx * dx + dy * dy + dz * dz) - r, near_distance_, 1e-12});
+  const double centre_distance = std::sqrt(dx * dx + dy * dy + dz * dz);
+  if (back_face_ && faces_away(b, dx, dy, dz, centre_distance)) return 0;
+  const double d = std::max({centre_distance - r, near_distance_, 1e-12});
   return static_cast<float>(double{b.error} / d * pixels_per_unit_at_1_);
+}
+
+// Every normal n of the cone and every point p of the sphere have
+// n . (p - eye) > 0 when the angle between the axis and the direction to
+// the centre (theta), the cone's half-angle (alpha) and the sphere's
+// angular radius seen from the eye (beta) sum to under pi/2; compared as
+// cos(theta + alpha + beta) > 0 without trigonometry.
+bool DagReplay::faces_away(const NodeBound& b, double dx, double dy, double dz, double distance) {
+  if (!(b.sin_half_angle < 1) || !(distance > b.radius)) return false;
+  const double cos_theta = (b.ax * dx + b.ay * dy + b.az * dz) / distance;
+  if (!(cos_theta > 0)) return false;
+  const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+  const double sin_alpha = b.sin_half_angle, cos_alpha = std::sqrt(1 - sin_alpha * sin_alpha);
+  const double sin_beta = b.radius / distance, cos_beta = std::sqrt(1 - sin_beta * sin_beta);
+  const double cos_gamma = cos_alpha * cos_beta - sin_alpha * sin_beta;  // gamma = alpha + beta
+  if (!(cos_gamma > 0)) return false;
+  const double sin_gamma = sin_alpha * cos_beta + cos_alpha * sin_beta;
+  return cos_theta * cos_gamma > sin_theta * sin_gamma;
 }
 
 Status DagReplay::apply(Side side, uint32_t node, std::vector<uint32_t>* entered) {
@@ -263,6 +343,7 @@ Result<DagFrameStats> DagReplay::adapt(const BoundingSphere& sphere, const Camer
   try {
     const auto start = std::chrono::steady_clock::now();
     near_distance_ = double{options.viewport.near_fraction} * sphere.radius;
+    back_face_ = options.back_face;
     view_ = view_parameters(frame, options.viewport, static_cast<float>(near_distance_),
                             options.tolerance_pixels);
     pixels_per_unit_at_1_ =

@@ -54,6 +54,9 @@ struct DagReplayOptions {
   /// The first frame runs without the mesh-change limit N (the mesh a
   /// client would load before the route starts); N holds from the second.
   bool warm_start = false;
+  /// Back-facing simplification (the paper's experiments use it): a node
+  /// whose cone of normals faces away from the eye needs no split.
+  bool back_face = true;
 };
 
 struct DagFrameStats {
@@ -150,9 +153,13 @@ class DagReplay {
   uint32_t max_added_ = 0;
   // Per node: the new vertex (the sphere's centre), bound_radius() and the
   // error bound priority() projects.
+  // The cone of normals: unit axis and sine of the half-angle; 2 when the
+  // cone is pi/2 or wider and never faces away.
   struct NodeBound {
     float x = 0, y = 0, z = 0, radius = 0, error = 0;
+    float ax = 0, ay = 0, az = 0, sin_half_angle = 2;
   };
+  static bool faces_away(const NodeBound& b, double dx, double dy, double dz, double distance);
   std::vector<NodeBound> bounds_;
   size_t triangles_ = 0;
   size_t frames_ = 0;  // adapt() calls so far
@@ -162,6 +169,7 @@ class DagReplay {
   ViewParameters view_;
   double pixels_per_unit_at_1_ = 0;  // height / (2 tan(fov/2))
   double near_distance_ = 0;
+  bool back_face_ = true;
 };
 
 /// The share of `reference`'s triangles that `other` also has, in [0, 1]

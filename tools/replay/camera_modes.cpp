@@ -498,6 +498,7 @@ int run_camera_path(const Tool& tool, const Request& request, const Bytes& bytes
     report["budget_mode"] = request.budget_mode;
     report["max_changes"] = request.dag.max_changes;
     report["warm_start"] = request.dag.warm_start;
+    report["back_face"] = request.dag.back_face;
     report["triangle_budget"] = request.dag.triangle_budget;
     nlohmann::json list = nlohmann::json::array();
     for (size_t lane = 0; lane < lanes.size(); ++lane) {

@@ -195,6 +195,9 @@ int main(int argc, char** argv) {
       "warm-start", po::bool_switch(&request.dag.warm_start),
       "dag: the first frame runs without the --changes limit (the mesh a client loads "
       "before the route starts); the limit holds from the second frame")(
+      "no-back-face", po::bool_switch(&request.dag_no_back_face),
+      "dag: no back-facing simplification (by default a node whose cone of normals "
+      "faces away from the eye is not split, as in the paper's experiments)")(
       "coarse", po::value<float>(&request.fan.coarse_fraction)->value_name("F"),
       "fan: one fan-merge / fan-split when the target is an end of the fine path at "
       "least max(1, ceil(F x children)) steps away, else merge-pointer steps (default "
@@ -333,8 +336,11 @@ int main(int argc, char** argv) {
     return tool.usage_error("--budget-mode '" + request.budget_mode +
                             "' is not one of auto, budget, free");
   }
+  request.dag.back_face = !request.dag_no_back_face;
   if (request.mode != "dag") {
     if (request.dag.warm_start) return tool.usage_error("--warm-start applies to --mode dag only");
+    if (request.dag_no_back_face)
+      return tool.usage_error("--no-back-face applies to --mode dag only");
     for (const char* option : {"traversal", "budget-mode", "budget", "changes"}) {
       if (tool.has(option))
         return tool.usage_error(std::string("--") + option + " applies to --mode dag only");

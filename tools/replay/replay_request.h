@@ -34,6 +34,7 @@ struct Request {
   bool validate = false;
   VhierReplayOptions options;
   DagReplayOptions dag;
+  bool dag_no_back_face = false;         // --no-back-face; sets dag.back_face
   std::vector<DagTraversal> traversals;  // dag: the lanes replayed
   FanReplayOptions fan;
   // Mode sets.
