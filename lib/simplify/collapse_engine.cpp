@@ -262,16 +262,12 @@ class Engine {
   EngineState run() {
     const uint64_t target = settings_.target_triangles;
     while (triangle_count_ > target) {
-      if (pass_ > 0) {
-        merge_quadrics();
-        apply_aliases();
-        rebuild_adjacency();
-      }
+      if (pass_ > 0) finish_pass(/*rebuild=*/true);
       list_candidates();
       candidates_.sort_upper();
       if (run_pass() == 0) break;
     }
-    apply_aliases();
+    finish_pass(/*rebuild=*/false);
     state_.stats.output_triangles = triangle_count_;
     for (size_t v = 0; v < vinfo_.size(); ++v)
       state_.positions[v] = vinfo_[v].position;
@@ -406,11 +402,46 @@ class Engine {
     }
   }
 
-  // The collapses of a pass leave the triangles as they were: a removed
-  // vertex is mapped to its survivor (alias_) and the triangles are rewritten
-  // here, in one sequential sweep, rather than at each collapse, whose faces
-  // lie scattered in memory. Faces holding a vertex twice died in the pass.
-  void apply_aliases() {
+  // Between two passes, in one sweep over the vertices and one over the
+  // triangles (each step needs only what the sweeps before it wrote):
+  // - the quadric sums of the pass's collapses. A pass locks both ends of a
+  //   collapse, so each survivor took exactly one vertex in it and no
+  //   quadric of a locked vertex is read until the next pass: the sums can
+  //   wait for this sweep in vertex order (vt's survivor is one of its
+  //   neighbours, nearby in the renumbered order) instead of costing the
+  //   walk two more quadrics, four cache lines, per collapse at random
+  //   places. Each sum is one addition, so the result is the same;
+  // - the triangles rewritten. The collapses of a pass leave them as they
+  //   were: a removed vertex is mapped to its survivor (alias_) and the
+  //   triangles are rewritten here, in one sequential sweep, rather than at
+  //   each collapse, whose faces lie scattered in memory. Faces holding a
+  //   vertex twice died in the pass;
+  // - fresh corner lists of the live triangles, in triangle order (the face
+  //   counts are exact, so the lists' places are known before the sweep).
+  //   Within a pass the lists of untouched vertices keep their dead faces
+  //   and name removed vertices, which alias_ maps to their survivors; the
+  //   lists of touched vertices are not read again until the next rebuild.
+  // The last pass is followed by the triangle rewrite alone (`rebuild`
+  // false).
+  void finish_pass(bool rebuild) {
+    const bool faces = rebuild && !seam_attrs_.empty();
+    if (rebuild) {
+      uint32_t sum = 0;
+      fill_.resize(vinfo_.size());
+      for (uint32_t v = 0; v < vinfo_.size(); ++v) {
+        if (locked_[v]) {
+          if (alias_[v] != v) quadric_[alias_[v]].q += quadric_[v].q;
+          locked_[v] = 0;
+        }
+        VertexInfo& info = vinfo_[v];
+        info.start = sum;
+        info.size = info.count;
+        fill_[v] = sum;
+        sum += info.count;
+      }
+      corners_.resize(sum);
+      if (faces) faces_.resize(sum);
+    }
     std::vector<Triangle>& tris = state_.triangles;
     size_t live = 0;
     for (uint32_t f : live_triangles_) {
@@ -423,6 +454,13 @@ class Engine {
         continue;
       }
       live_triangles_[live++] = f;
+      if (rebuild) {
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t slot = fill_[t[k]]++;
+          corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
+          if (faces) faces_[slot] = f;
+        }
+      }
       if (seam_attrs_.empty() || options_.permissive || t == old) continue;
       // Corners moved from vt take vs's (unique) value, so no new seam appears.
       for (int k = 0; k < 3; ++k) {
@@ -432,47 +470,6 @@ class Engine {
       }
     }
     live_triangles_.resize(live);
-  }
-
-  // The quadric sums of the pass's collapses. A pass locks both ends of a
-  // collapse, so each survivor took exactly one vertex in it and no quadric
-  // of a locked vertex is read until the next pass: the sums can wait for
-  // this sweep in vertex order (vt's survivor is one of its neighbours,
-  // nearby in the renumbered order) instead of costing the walk two more
-  // quadrics, four cache lines, per collapse at random places. Each sum is
-  // one addition, so the result is the same.
-  void merge_quadrics() {
-    for (uint32_t v = 0; v < vinfo_.size(); ++v) {
-      if (locked_[v] && alias_[v] != v) quadric_[alias_[v]].q += quadric_[v].q;
-    }
-  }
-
-  // Fresh corner lists of the live triangles, in triangle order. Within a
-  // pass the lists of untouched vertices keep their dead faces and name
-  // removed vertices, which alias_ maps to their survivors; the lists of
-  // touched vertices are not read again until the next rebuild.
-  void rebuild_adjacency() {
-    uint32_t sum = 0;
-    fill_.resize(vinfo_.size());
-    for (size_t v = 0; v < vinfo_.size(); ++v) {
-      VertexInfo& info = vinfo_[v];
-      info.start = sum;
-      info.size = info.count;
-      fill_[v] = sum;
-      sum += info.count;
-    }
-    corners_.resize(sum);
-    const bool faces = !seam_attrs_.empty();
-    if (faces) faces_.resize(sum);
-    for (uint32_t f : live_triangles_) {
-      const Triangle& t = state_.triangles[f];
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t slot = fill_[t[k]]++;
-        corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
-        if (faces) faces_[slot] = f;
-      }
-    }
-    std::memset(locked_.data(), 0, locked_.size());
   }
 
   // Walks the sorted candidates; returns the number of collapses made.
@@ -528,7 +525,7 @@ class Engine {
         __builtin_prefetch(&vinfo_[c.vt]);
         __builtin_prefetch(&vinfo_[c.vs]);
         prefetch_quadric(c.vt);
-        // vs's quadric is only read in optimal placement (see merge_quadrics()).
+        // vs's quadric is only read in optimal placement (see finish_pass()).
         if (options_.placement == Placement::kOptimal) prefetch_quadric(c.vs);
       }
     }
@@ -750,7 +747,7 @@ class Engine {
   // ---- the collapse ----
 
   // Merges vt into vs, as check() found it (wings vl_, vr_, shared_ faces).
-  // The triangles are rewritten at the next pass (apply_aliases).
+  // The triangles are rewritten at the next pass (finish_pass).
   void collapse(uint32_t vt, uint32_t vs, const Vec3f& p, double cost_value) {
     CollapseRecord rec;
     rec.vt = vt;
@@ -785,7 +782,7 @@ class Engine {
   }
 
   // The attribute values the corners moving from vt to vs take at the next
-  // apply_aliases(): those of vs, read from any live face of vs (vs is not on
+  // finish_pass(): those of vs, read from any live face of vs (vs is not on
   // a seam, so its corners agree).
   void record_seam_values(uint32_t vt, uint32_t vs) {
     const VertexInfo& info = vinfo_[vs];
@@ -832,7 +829,7 @@ class Engine {
   uint64_t triangle_count_ = 0;
 
   std::vector<VertexInfo> vinfo_;
-  // Per-vertex corner lists, rebuilt at each pass (see rebuild_adjacency);
+  // Per-vertex corner lists, rebuilt at each pass (see finish_pass);
   // faces_ holds the face of each corner, only kept for seam attributes.
   std::vector<Corner> corners_;
   std::vector<uint32_t> faces_;
