@@ -45,6 +45,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 #include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/quadric.h"
@@ -64,6 +65,13 @@ constexpr uint64_t kMinPassShare = 6;
 // collapse goal: many candidates are skipped because a neighbour was
 // collapsed first, so the goal's own cost would stop the pass too early.
 constexpr double kPassLimitFactor = 1.5;
+// The listing, in triangle order, asks for the vertex records and quadrics of the triangle this
+// many places ahead. The renumbered vertices follow the triangles, but the few thousand vertices
+// between a triangle's newest and oldest one (a scan line's worth) are more
+// than the hardware prefetcher follows: on the dragon the listing took 7 %
+// less time with it, measured with 4, 8, 16 and 32 (16 kept; the others
+// within 2 %).
+constexpr size_t kListAhead = 16;
 
 // One edge listed for a pass, in its cheaper direction: vt into vs.
 struct Candidate {
@@ -85,14 +93,23 @@ struct Candidate {
 // lower digit, listing order) in one go.
 class CandidateList {
  public:
-  void clear() { items_.clear(); }
+  // Empties the list for at most `max_count` candidates: growing by
+  // doubling would copy the first pass's list several times.
+  void clear(size_t max_count) {
+    items_.clear();
+    items_.reserve(max_count);
+  }
   void push_back(const Candidate& c) { items_.push_back(c); }
   size_t size() const { return items_.size(); }
 
   // Groups the candidates by the upper digit and leaves each group in
   // listing order.
   void sort_upper() {
-    scratch_.resize(items_.size());
+    if (scratch_capacity_ < items_.size()) {
+      // Not value-initialised: every element is written before it is read.
+      scratch_.reset(new Candidate[items_.size()]);
+      scratch_capacity_ = items_.size();
+    }
     std::fill(bucket_end_, bucket_end_ + kBuckets + 1, 0u);
     for (const Candidate& c : items_)
       ++bucket_end_[upper(c) + 1];
@@ -136,7 +153,7 @@ class CandidateList {
     const uint32_t begin = bucket_end_[next_bucket_];
     const uint32_t end = bucket_end_[next_bucket_ + 1];
     ++next_bucket_;
-    const Candidate* src = scratch_.data();
+    const Candidate* src = scratch_.get();
     Candidate* dst = items_.data();
     if (end - begin <= kSmallBucket) {
       for (uint32_t i = begin; i < end; ++i) {
@@ -163,7 +180,8 @@ class CandidateList {
   }
 
   std::vector<Candidate> items_;
-  std::vector<Candidate> scratch_;
+  std::unique_ptr<Candidate[]> scratch_;  // grouped by the upper digit
+  size_t scratch_capacity_ = 0;
   uint32_t bucket_end_[kBuckets + 1] = {};
   uint32_t next_bucket_ = 0;
   size_t sorted_end_ = 0;
@@ -214,17 +232,19 @@ bool values_differ(const MeshAttribute& attr, uint32_t a, uint32_t b) {
 
 class Engine {
  public:
-  Engine(const TriangleMesh& mesh, MeshTopology topology, const SimplifyOptions& options,
+  // The mesh's arrays become the state's (the walk keeps the positions in
+  // vinfo_, and the state's positions are written back at the end).
+  Engine(TriangleMesh mesh, MeshTopology topology, const SimplifyOptions& options,
          const EngineSettings& settings)
       : options_(options), settings_(settings) {
     const size_t n = mesh.positions.size();
-    state_.positions = mesh.positions;
-    state_.triangles = mesh.triangles;
-    state_.triangle_alive.assign(mesh.triangles.size(), 1);
+    state_.positions = std::move(mesh.positions);
+    state_.triangles = std::move(mesh.triangles);
+    state_.triangle_alive.assign(state_.triangles.size(), 1);
     state_.vertex_alive.assign(n, 1);
-    state_.normals = mesh.normals;
-    state_.texcoords = mesh.texcoords;
-    triangle_count_ = mesh.triangles.size();
+    state_.normals = std::move(mesh.normals);
+    state_.texcoords = std::move(mesh.texcoords);
+    triangle_count_ = state_.triangles.size();
     state_.stats.input_triangles = triangle_count_;
     // At most one collapse per vertex; growing the log by doubling would copy it.
     state_.log.reserve(n);
@@ -232,7 +252,7 @@ class Engine {
     vinfo_.resize(n);
     for (size_t v = 0; v < n; ++v) {
       VertexInfo& info = vinfo_[v];
-      info.position = mesh.positions[v];
+      info.position = state_.positions[v];
       info.start = topology.face_start[v];
       info.count = topology.face_start[v + 1] - topology.face_start[v];
       info.size = info.count;
@@ -246,8 +266,11 @@ class Engine {
     live_triangles_.resize(state_.triangles.size());
     for (uint32_t f = 0; f < live_triangles_.size(); ++f)
       live_triangles_[f] = f;
+    for (uint32_t v = 0; v < n; ++v) {
+      if (vinfo_[v].count > 0) live_vertices_.push_back(v);
+    }
 
-    setup_locks(mesh, topology);
+    setup_locks(topology);
     // The first pass's corner lists are the topology's.
     corners_ = std::move(topology.corners);
     if (!seam_attrs_.empty()) faces_ = std::move(topology.faces);
@@ -281,8 +304,9 @@ class Engine {
 
   // ---- setup ----
 
-  void setup_locks(const TriangleMesh& mesh, const MeshTopology& topology) {
-    const size_t n = mesh.positions.size();
+  void setup_locks(const MeshTopology& topology) {
+    const size_t n = vinfo_.size();
+    const std::vector<Triangle>& triangles = state_.triangles;
     if (options_.lock_border) {
       for (size_t v = 0; v < n; ++v) {
         if (is_set(v, kBoundary)) vinfo_[v].flags |= kNoRemove | kFixed;
@@ -292,19 +316,19 @@ class Engine {
     // A vertex whose corners carry different attribute values lies on a seam:
     // removing or moving it would drag one side's values across the other,
     // so without `permissive` it is locked entirely.
-    for (const MeshAttribute* attr : {&mesh.normals, &mesh.texcoords}) {
+    for (MeshAttribute* attr : {&state_.normals, &state_.texcoords}) {
       if (attr->binding != AttributeBinding::kPerCorner) continue;
-      seam_attrs_.push_back(attr == &mesh.normals ? &state_.normals : &state_.texcoords);
+      seam_attrs_.push_back(attr);
       seam_value_.emplace_back(n, 0);
       if (options_.permissive) continue;
       const std::vector<uint32_t>& start = topology.face_start;
       for (size_t v = 0; v < n; ++v) {
         if (start[v] == start[v + 1]) continue;
         const uint32_t first = topology.faces[start[v]];
-        const uint32_t ref = attr->corners[first][corner_of(mesh.triangles[first], v)];
+        const uint32_t ref = attr->corners[first][corner_of(triangles[first], v)];
         for (uint32_t i = start[v] + 1; i < start[v + 1]; ++i) {
           const uint32_t f = topology.faces[i];
-          if (values_differ(*attr, ref, attr->corners[f][corner_of(mesh.triangles[f], v)])) {
+          if (values_differ(*attr, ref, attr->corners[f][corner_of(triangles[f], v)])) {
             vinfo_[v].flags |= kNoRemove | kNoKeep | kFixed;
             break;
           }
@@ -383,8 +407,16 @@ class Engine {
   // for its edge when a precedes b or when b->a does not exist (a boundary
   // edge).
   void list_candidates() {
-    candidates_.clear();
-    for (uint32_t f : live_triangles_) {
+    candidates_.clear(3 * live_triangles_.size());
+    const size_t live = live_triangles_.size();
+    for (size_t i = 0; i < live; ++i) {
+      if (i + kListAhead < live) {
+        for (uint32_t v : state_.triangles[live_triangles_[i + kListAhead]]) {
+          __builtin_prefetch(&vinfo_[v]);
+          prefetch_quadric(v);
+        }
+      }
+      const uint32_t f = live_triangles_[i];
       const Triangle& t = state_.triangles[f];
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
@@ -426,19 +458,26 @@ class Engine {
   void finish_pass(bool rebuild) {
     const bool faces = rebuild && !seam_attrs_.empty();
     if (rebuild) {
+      // Only the vertices that had faces at the pass start: the others are
+      // never read again (at 1 % the last passes would sweep 100 times as
+      // many records as they use).
       uint32_t sum = 0;
       fill_.resize(vinfo_.size());
-      for (uint32_t v = 0; v < vinfo_.size(); ++v) {
+      size_t kept = 0;
+      for (const uint32_t v : live_vertices_) {
         if (locked_[v]) {
           if (alias_[v] != v) quadric_[alias_[v]].q += quadric_[v].q;
           locked_[v] = 0;
         }
         VertexInfo& info = vinfo_[v];
+        if (info.count == 0) continue;
+        live_vertices_[kept++] = v;
         info.start = sum;
         info.size = info.count;
         fill_[v] = sum;
         sum += info.count;
       }
+      live_vertices_.resize(kept);
       corners_.resize(sum);
       if (faces) faces_.resize(sum);
     }
@@ -846,6 +885,7 @@ class Engine {
   uint32_t vr_ = kNoVertex;
   uint32_t shared_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
+  std::vector<uint32_t> live_vertices_;   // those with faces, in order, filtered by finish_pass()
   CandidateList candidates_;
   uint32_t pass_ = 0;
   float max_cost_float_ = 0;  // settings_.max_cost rounded up to float
@@ -855,9 +895,9 @@ class Engine {
 
 }  // namespace
 
-EngineState run_collapse_engine(const TriangleMesh& mesh, MeshTopology topology,
+EngineState run_collapse_engine(TriangleMesh mesh, MeshTopology topology,
                                 const SimplifyOptions& options, const EngineSettings& settings) {
-  Engine engine(mesh, std::move(topology), options, settings);
+  Engine engine(std::move(mesh), std::move(topology), options, settings);
   return engine.run();
 }
 

@@ -67,7 +67,7 @@ bool small_fan_is_simple(const FanFace* fan, size_t k, bool* open) {
 
 }  // namespace
 
-Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
+Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces) {
   const size_t n = mesh.positions.size();
   const size_t m = mesh.triangles.size();
   if (n >= (size_t{1} << 31) || m >= (size_t{1} << 30)) {
@@ -100,7 +100,7 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
   }
   for (size_t v = 0; v < n; ++v)
     start[v + 1] += start[v];
-  topology->faces.resize(3 * m);
+  topology->faces.resize(with_faces ? 3 * m : 0);
   topology->corners.resize(3 * m);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
@@ -108,7 +108,7 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology) {
       const Triangle& tri = mesh.triangles[t];
       for (int k = 0; k < 3; ++k) {
         const uint32_t slot = fill[tri[k]]++;
-        topology->faces[slot] = static_cast<uint32_t>(t);
+        if (with_faces) topology->faces[slot] = static_cast<uint32_t>(t);
         topology->corners[slot] = {tri[(k + 1) % 3], tri[(k + 2) % 3]};
       }
     }
