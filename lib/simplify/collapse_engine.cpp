@@ -711,6 +711,9 @@ class Engine {
     // beat marking a vertex-sized array, whose writes miss the cache.
     ring_.clear();
     fan_.clear();
+    // A one-word filter of the ring: most of vs's neighbours are not in it,
+    // and one test then replaces a search of the whole ring.
+    uint64_t ring_filter = 0;
     const VertexInfo& info_t = vinfo_[vt];
     const bool vt_boundary = (info_t.flags & kBoundary) != 0;
     for (uint32_t i = info_t.start, end = info_t.start + info_t.size; i < end; ++i) {
@@ -719,7 +722,11 @@ class Engine {
       if (next == prev) continue;  // the face died in this pass
       fan_.push_back({next, prev});
       ring_.push_back(next);
-      if (vt_boundary) ring_.push_back(prev);
+      ring_filter |= uint64_t{1} << (next & 63);
+      if (vt_boundary) {
+        ring_.push_back(prev);
+        ring_filter |= uint64_t{1} << (prev & 63);
+      }
       if (prev == vs) {
         vl = next;  // the face (vs, vt, vl)
         ++shared;
@@ -753,7 +760,10 @@ class Engine {
       if (optimal) fan_s_.push_back({next, prev});
       for (uint32_t w : {next, prev}) {
         if (w == vt || w == vl || w == vr) continue;
-        if (std::find(ring_.begin(), ring_.end(), w) != ring_.end()) return Verdict::kLink;
+        if ((ring_filter >> (w & 63) & 1) != 0 &&
+            std::find(ring_.begin(), ring_.end(), w) != ring_.end()) {
+          return Verdict::kLink;
+        }
         if (!vs_boundary) break;  // inside, every neighbour is some face's next
       }
     }
