@@ -46,9 +46,11 @@ struct EngineState {
   SimplifyStats stats;
 };
 
-/// Runs the collapses on `mesh` (whose adjacency is `topology`).
-/// \pre build_topology(mesh) succeeded.
-EngineState run_collapse_engine(const TriangleMesh& mesh, MeshTopology topology,
+/// Runs the collapses on `mesh` (whose adjacency is `topology`; its arrays
+/// become the state's).
+/// \pre build_topology(mesh, &topology, with_faces) succeeded, with_faces
+/// true when `mesh` has a per-corner attribute.
+EngineState run_collapse_engine(TriangleMesh mesh, MeshTopology topology,
                                 const SimplifyOptions& options, const EngineSettings& settings);
 
 }  // namespace simplify_internal

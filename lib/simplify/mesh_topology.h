@@ -29,8 +29,9 @@ struct MeshTopology {
 /// triangle repeating a vertex, finite coordinates, every edge in at most two
 /// faces walked in opposite directions (consistent orientation), and the
 /// faces around each vertex forming a single fan (no non-manifold vertex).
-/// Fails with kInvalidInput naming the first offending element.
-Status build_topology(const TriangleMesh& mesh, MeshTopology* topology);
+/// Fails with kInvalidInput naming the first offending element. Without
+/// `with_faces`, MeshTopology::faces is left empty.
+Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces = true);
 
 }  // namespace simplify_internal
 }  // namespace lodbake

@@ -149,11 +149,15 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   // (vertex_order.h); the state is turned back to input ids afterwards.
   std::vector<uint32_t> order;
   const bool renumber = simplify_internal::locality_order(input, &order);
-  const TriangleMesh renumbered =
+  TriangleMesh renumbered =
       renumber ? simplify_internal::renumbered_mesh(input, order) : TriangleMesh();
   const TriangleMesh& work = renumber ? renumbered : input;
+  // The engine reads the faces of the corner lists only for per-corner
+  // attributes (seams).
+  const bool per_corner = input.normals.binding == AttributeBinding::kPerCorner ||
+                          input.texcoords.binding == AttributeBinding::kPerCorner;
   simplify_internal::MeshTopology topology;
-  const Status valid = simplify_internal::build_topology(work, &topology);
+  const Status valid = simplify_internal::build_topology(work, &topology, per_corner);
   if (!valid.is_ok()) {
     // Name the problem in input ids, and the first one in input order.
     simplify_internal::MeshTopology unused;
@@ -181,8 +185,9 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
     settings.max_cost = d * d;
   }
 
-  EngineState state =
-      simplify_internal::run_collapse_engine(work, std::move(topology), options, settings);
+  // The renumbered copy is not needed afterwards: the engine takes its arrays.
+  EngineState state = simplify_internal::run_collapse_engine(
+      renumber ? std::move(renumbered) : input, std::move(topology), options, settings);
   if (renumber) simplify_internal::restore_input_ids(order, &state);
   SimplifyResult result;
   result.stats = state.stats;
