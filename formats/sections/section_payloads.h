@@ -20,6 +20,12 @@ Result<Bytes> decode_base_stored(const Section& base);
 /// its decoded BASE mesh (needed by the compact codec).
 Result<Bytes> decode_vspl_stored(const Section& vspl, const TriangleMesh& base);
 
+/// The raw payload of a section of a kind that needs no other section to
+/// decode (raw, or compact for the kinds of compact_sections.h); a copy for
+/// raw. \return LBK-E020 for a codec the kind does not define; the codec
+/// decoder's LBK-E023.
+Result<Bytes> decode_stored_payload(const Section& section);
+
 /// Decodes the coded sections of `container` in place: afterwards each
 /// Section's data and size are its raw payload (owned by `*storage`, which
 /// must outlive the container's use); entries keep the stored codec and

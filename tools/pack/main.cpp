@@ -2,8 +2,9 @@
 // - a mesh: imports it, checks it (optionally repairs it) and writes a
 //   container with META and BASE;
 // - containers (.lbk, told by their magic): merges their sections, drops or
-//   keeps tags, and recodes BASE and VSPL (compact by default, Draco on
-//   request), printing each section's size before and after.
+//   keeps tags, and recodes BASE, VSPL and the kinds with a compact codec
+//   (compact by default, Draco on request), printing each section's size
+//   before and after.
 // Thin: import, check, repair, packing and encoding live in lib/ and formats/.
 #include <cstring>
 #include <filesystem>
@@ -233,9 +234,9 @@ int main(int argc, char** argv) {
             "are refused unless --repair fixes them; other problems are kept with a warning.\n"
             "\n"
             "With containers (.lbk) baked from the same input (META input hash): merges\n"
-            "their sections, drops or keeps tags, stores VSPL with the compact codec (or\n"
-            "raw with --raw) and BASE with Draco on --draco, copies other sections byte for\n"
-            "byte, and prints each section's size before and after. Same inputs and\n"
+            "their sections, drops or keeps tags, stores VSPL and VTRE with the compact\n"
+            "codec (or raw with --raw) and BASE with Draco on --draco, copies other sections\n"
+            "byte for byte, and prints each section's size before and after. Same inputs and\n"
             "options give the same bytes; packing a packed file again changes nothing.");
   PackOptions options;
   tool.options().add_options()("output,o",
@@ -255,7 +256,7 @@ int main(int argc, char** argv) {
       "cl", po::value<int>(&options.cl)->value_name("LEVEL"),
       "Draco compression level, 0..10 (default 7)")(
       "raw", po::bool_switch(&options.raw),
-      "containers: store VSPL raw instead of with the compact codec")(
+      "containers: store VSPL and VTRE raw instead of with the compact codec")(
       "drop", po::value<std::string>(&options.drop)->value_name("TAG,..."),
       "containers: leave out these sections")(
       "keep", po::value<std::string>(&options.keep)->value_name("TAG,..."),

@@ -1,0 +1,123 @@
+// Exp-Golomb streams of the compact section codecs (see the header). The
+// counting pass keeps, per context, how many values have each bit length;
+// the cost of order k is estimated from that histogram (a value of bit
+// length L costs about 2·max(L, k + 1) - k - 1 bits), which is exact but
+// for the rare carry of x + 2^k into a new bit and is only used to choose
+// k: the stream itself records the chosen order.
+#include "formats/sections/compact_coding.h"
+
+namespace lodbake {
+namespace {
+
+int bit_length(uint64_t x) {
+  int n = 0;
+  while (x != 0) {
+    ++n;
+    x >>= 1;
+  }
+  return n;
+}
+
+void write_wide(BitWriter* out, uint64_t value, int width) {
+  if (width > 32) {
+    out->write(static_cast<uint32_t>(value & 0xFFFFFFFFu), 32);
+    out->write(static_cast<uint32_t>(value >> 32), width - 32);
+  } else {
+    out->write(static_cast<uint32_t>(value), width);
+  }
+}
+
+bool read_wide(BitReader* in, int width, uint64_t* value) {
+  uint32_t low = 0;
+  uint32_t high = 0;
+  if (width > 32) {
+    if (!in->read(32, &low) || !in->read(width - 32, &high)) return false;
+  } else if (!in->read(width, &low)) {
+    return false;
+  }
+  *value = (uint64_t{high} << 32) | low;
+  return true;
+}
+
+}  // namespace
+
+CompactStreamWriter::CompactStreamWriter(int contexts)
+    : length_counts_(static_cast<size_t>(contexts), std::vector<uint64_t>(65, 0)),
+      orders_(static_cast<size_t>(contexts), 0) {}
+
+void CompactStreamWriter::golomb(int ctx, uint64_t value) {
+  if (out_ == nullptr) {
+    ++length_counts_[static_cast<size_t>(ctx)][static_cast<size_t>(bit_length(value))];
+    return;
+  }
+  const int k = orders_[static_cast<size_t>(ctx)];
+  const uint64_t y = value + (uint64_t{1} << k);
+  const int length = bit_length(y);
+  for (int i = 0; i < length - k - 1; ++i)
+    writer_.write(0, 1);
+  writer_.write(1, 1);
+  write_wide(&writer_, y & ((uint64_t{1} << (length - 1)) - 1), length - 1);
+}
+
+void CompactStreamWriter::bits(uint64_t value, int width) {
+  if (out_ != nullptr) write_wide(&writer_, value, width);
+}
+
+void CompactStreamWriter::start_writing(Bytes* out) {
+  for (size_t c = 0; c < orders_.size(); ++c) {
+    uint64_t best_cost = UINT64_MAX;
+    for (int k = 0; k <= kCompactMaxOrder; ++k) {
+      uint64_t cost = 0;
+      for (int length = 0; length <= 64; ++length) {
+        const uint64_t count = length_counts_[c][static_cast<size_t>(length)];
+        const int l = length > k + 1 ? length : k + 1;
+        cost += count * static_cast<uint64_t>(2 * l - k - 1);
+      }
+      if (cost < best_cost) {
+        best_cost = cost;
+        orders_[c] = k;
+      }
+    }
+    out->push_back(static_cast<uint8_t>(orders_[c]));
+  }
+  out_ = out;
+  writer_ = BitWriter(out);
+}
+
+void CompactStreamWriter::finish() {
+  writer_.finish();
+}
+
+bool CompactStreamReader::start(const uint8_t* data, size_t size, int contexts) {
+  if (size < static_cast<size_t>(contexts)) return false;
+  orders_.assign(data, data + contexts);
+  for (int k : orders_) {
+    if (k > kCompactMaxOrder) return false;
+  }
+  reader_ = BitReader(data + contexts, size - static_cast<size_t>(contexts));
+  size_ = size - static_cast<size_t>(contexts);
+  total_bits_ = uint64_t{size_} * 8;
+  return true;
+}
+
+bool CompactStreamReader::golomb(int ctx, uint64_t* value) {
+  int zeros = 0;
+  for (;;) {
+    uint32_t bit = 0;
+    if (!reader_.read(1, &bit)) return false;
+    if (bit == 1) break;
+    if (++zeros > kCompactMaxPrefix) return false;
+  }
+  const int low_bits = zeros + orders_[static_cast<size_t>(ctx)];
+  if (low_bits > 62) return false;
+  uint64_t low = 0;
+  if (!read_wide(&reader_, low_bits, &low)) return false;
+  *value = ((uint64_t{1} << low_bits) | low) - (uint64_t{1} << orders_[static_cast<size_t>(ctx)]);
+  return true;
+}
+
+bool CompactStreamReader::bits(int width, uint64_t* value) {
+  return read_wide(&reader_, width, value);
+}
+
+}  // namespace lodbake
