@@ -4,6 +4,7 @@
 #include "formats/sections/compact_sections.h"
 
 #include "formats/container/section_registry.h"
+#include "formats/sections/sets_compact.h"
 #include "formats/sections/vtre_compact.h"
 
 namespace lodbake {
@@ -17,6 +18,7 @@ struct CompactCodec {
 
 const CompactCodec kCodecs[] = {
     {kVtreTag, encode_vtre_compact, decode_vtre_compact},
+    {kSetsTag, encode_sets_compact, decode_sets_compact},
 };
 
 const CompactCodec* find(std::string_view tag) {

@@ -9,9 +9,10 @@
 //   of the same records are the same), as are the kinds with a compact
 //   codec; other kinds by codec and stored bytes. META is never compared:
 //   the output gets a new one.
-// - The kinds with a compact codec of their own (VTRE, ...) are written
-//   compact, or raw without options.compact; a valid raw payload the codec
-//   cannot reproduce (laid out unlike the reference writer) stays raw.
+// - The kinds with a compact codec of their own (VTRE, SETS, ...) are
+//   written compact, or raw without options.compact; a valid raw payload
+//   the codec cannot reproduce (laid out unlike the reference writer), or
+//   one the codec would not make smaller, stays raw.
 // - Kinds this file does not recode (anything else) are copied with their
 //   codec, flags and sizes, byte for byte: their own tools define their
 //   codecs, and a copy can never damage what pack does not understand.
@@ -379,11 +380,12 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       decoded_size = c.raw.size();
       stored = c.raw;
       if (options.compact) {
+        // Tiny payloads can grow by the codec's header: they stay raw.
         Result<Bytes> compact = encode_section_compact(tag, c.raw.data(), c.raw.size());
-        if (compact.is_ok()) {
+        if (compact.is_ok() && compact.value().size() < c.raw.size()) {
           stored = std::move(compact).value();
           codec = SectionCodec::kCompact;
-        } else if (compact.status().kind() != ErrorKind::kUnsupported) {
+        } else if (!compact.is_ok() && compact.status().kind() != ErrorKind::kUnsupported) {
           return compact.status();
         }
       }

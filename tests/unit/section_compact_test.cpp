@@ -16,10 +16,14 @@
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/compact_sections.h"
+#include "formats/sections/sets.h"
 #include "formats/sections/vtre.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
+#include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
+#include "lib/strips/sets_build.h"
+#include "lib/strips/stripify.h"
 #include "lib/vtrees/vertex_tree_builder.h"
 #include "simplify_test_meshes.h"
 #include "test_meshes.h"
@@ -58,6 +62,19 @@ ProgressiveMesh greedy_pm(const TriangleMesh& mesh) {
   return result.pm ? *result.pm : ProgressiveMesh{};
 }
 
+// lodbake-strips' SETS: the half-placement PM, its full mesh stripified.
+Bytes sets_of(const TriangleMesh& mesh) {
+  SimplifyOptions options;
+  options.record_pm = true;
+  options.placement = Placement::kHalf;
+  SimplifyResult simplified = take(simplify(mesh, options), "simplify");
+  if (!simplified.pm) return {};
+  const ProgressiveMesh& pm = *simplified.pm;
+  const TriangleMesh full = take(mesh_at_lod(pm, pm.full_vertex_count()), "full mesh");
+  const TriangleStrips strips = take(stripify(full), "strips");
+  return take(encode_sets(take(build_sets(strips, pm), "SETS")), "SETS");
+}
+
 struct Sample {
   std::string name;
   const char* tag;
@@ -91,6 +108,10 @@ std::vector<Sample> samples() {
                  return take(encode_vtre(take(build_vertex_trees(pm), "trees")), "VTRE");
                },
                true});
+  s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
+  s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
+  s.push_back(
+      {"SetsTetrahedron", kSetsTag, [] { return sets_of(test_meshes::tetrahedron()); }, true});
   return s;
 }
 
