@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "formats/support/bit_packing.h"
@@ -26,6 +27,15 @@ inline uint64_t zigzag64(int64_t d) {
 }
 inline int64_t unzigzag64(uint64_t z) {
   return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
+}
+
+/// The detail of a section error ("LBK-E023: section VHIE: depth 0" gives
+/// "depth 0"), for a codec that reports it under its own prefix.
+inline std::string section_error_detail(const std::string& message) {
+  if (message.compare(0, 5, "LBK-E") != 0) return message;
+  const size_t first = message.find(": ");
+  const size_t second = first == std::string::npos ? first : message.find(": ", first + 2);
+  return second == std::string::npos ? message : message.substr(second + 2);
 }
 
 /// Writes one compact stream: construct with the number of contexts, run

@@ -5,6 +5,7 @@
 
 #include "formats/container/section_registry.h"
 #include "formats/sections/sets_compact.h"
+#include "formats/sections/vhie_compact.h"
 #include "formats/sections/vtre_compact.h"
 
 namespace lodbake {
@@ -19,6 +20,7 @@ struct CompactCodec {
 const CompactCodec kCodecs[] = {
     {kVtreTag, encode_vtre_compact, decode_vtre_compact},
     {kSetsTag, encode_sets_compact, decode_sets_compact},
+    {kVhieTag, encode_vhie_compact, decode_vhie_compact},
 };
 
 const CompactCodec* find(std::string_view tag) {

@@ -17,6 +17,7 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/sets.h"
+#include "formats/sections/vhie.h"
 #include "formats/sections/vtre.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
@@ -60,6 +61,13 @@ ProgressiveMesh greedy_pm(const TriangleMesh& mesh) {
   options.record_pm = true;
   SimplifyResult result = take(simplify(mesh, options), "simplify");
   return result.pm ? *result.pm : ProgressiveMesh{};
+}
+
+// lodbake-hierarchy's VHIE.
+Bytes vhie_of(const TriangleMesh& mesh) {
+  const BalancedHierarchy built =
+      take(build_balanced_hierarchy(mesh, BalancedBuildOptions()), "hierarchy");
+  return take(encode_vhie(built.hierarchy), "VHIE");
 }
 
 // lodbake-strips' SETS: the half-placement PM, its full mesh stripified.
@@ -108,6 +116,10 @@ std::vector<Sample> samples() {
                  return take(encode_vtre(take(build_vertex_trees(pm), "trees")), "VTRE");
                },
                true});
+  s.push_back({"VhieElephant", kVhieTag, [] { return vhie_of(elephant()); }});
+  s.push_back({"VhieTorus", kVhieTag, [] { return vhie_of(test_meshes::torus(8, 6)); }, true});
+  s.push_back(
+      {"VhieTetrahedron", kVhieTag, [] { return vhie_of(test_meshes::tetrahedron()); }, true});
   s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
   s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
   s.push_back(
