@@ -4,6 +4,7 @@
 #include "formats/sections/compact_sections.h"
 
 #include "formats/container/section_registry.h"
+#include "formats/sections/rfin_compact.h"
 #include "formats/sections/sets_compact.h"
 #include "formats/sections/vhie_compact.h"
 #include "formats/sections/vtre_compact.h"
@@ -21,6 +22,7 @@ const CompactCodec kCodecs[] = {
     {kVtreTag, encode_vtre_compact, decode_vtre_compact},
     {kSetsTag, encode_sets_compact, decode_sets_compact},
     {kVhieTag, encode_vhie_compact, decode_vhie_compact},
+    {kRfinTag, encode_rfin_compact, decode_rfin_compact},
 };
 
 const CompactCodec* find(std::string_view tag) {

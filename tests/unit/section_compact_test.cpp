@@ -16,11 +16,13 @@
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/compact_sections.h"
+#include "formats/sections/rfin.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vtre.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
+#include "lib/hierarchy/refinement_data.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
 #include "lib/strips/sets_build.h"
@@ -68,6 +70,15 @@ Bytes vhie_of(const TriangleMesh& mesh) {
   const BalancedHierarchy built =
       take(build_balanced_hierarchy(mesh, BalancedBuildOptions()), "hierarchy");
   return take(encode_vhie(built.hierarchy), "VHIE");
+}
+
+// lodbake-hierarchy's RFIN.
+Bytes rfin_of(const TriangleMesh& mesh) {
+  const BalancedHierarchy built =
+      take(build_balanced_hierarchy(mesh, BalancedBuildOptions()), "hierarchy");
+  const std::vector<NodeRefinement> refinement =
+      take(compute_refinement_data(built.hierarchy, mesh), "refinement");
+  return take(encode_rfin(built.hierarchy, refinement), "RFIN");
 }
 
 // lodbake-strips' SETS: the half-placement PM, its full mesh stripified.
@@ -120,6 +131,10 @@ std::vector<Sample> samples() {
   s.push_back({"VhieTorus", kVhieTag, [] { return vhie_of(test_meshes::torus(8, 6)); }, true});
   s.push_back(
       {"VhieTetrahedron", kVhieTag, [] { return vhie_of(test_meshes::tetrahedron()); }, true});
+  s.push_back({"RfinElephant", kRfinTag, [] { return rfin_of(elephant()); }});
+  s.push_back({"RfinTorus", kRfinTag, [] { return rfin_of(test_meshes::torus(8, 6)); }, true});
+  s.push_back(
+      {"RfinTetrahedron", kRfinTag, [] { return rfin_of(test_meshes::tetrahedron()); }, true});
   s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
   s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
   s.push_back(
