@@ -1,5 +1,5 @@
 // Which codec each section kind defines (docs/format.md "Codecs"): BASE
-// raw or draco, VSPL raw or compact (against BASE), the kinds of
+// raw or draco, VSPL and FANH raw or compact (against BASE), the kinds of
 // compact_sections.h raw or compact (alone), every other kind raw only. A pack tool
 // that does not know a kind copies its bytes as they are, so a kind gains
 // codecs here without older tools mangling it.
@@ -14,6 +14,7 @@
 #include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/draco_codec.h"
+#include "formats/sections/fanh_compact.h"
 #include "formats/sections/vspl_compact.h"
 #include "formats/support/string_format.h"
 
@@ -52,6 +53,14 @@ Result<Bytes> decode_vspl_stored(const Section& section, const TriangleMesh& bas
   if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
     return undefined_codec(section);
   return decode_vspl_compact(section.data, section.size, base);
+}
+
+Result<Bytes> decode_fanh_stored(const Section& section, const TriangleMesh& base) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
+    return undefined_codec(section);
+  return decode_fanh_compact(section.data, section.size, base);
 }
 
 Result<Bytes> decode_stored_payload(const Section& section) {
@@ -94,15 +103,18 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
         LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
         continue;
       }
-      if (section.tag() != kVsplTag ||
+      const bool vspl = section.tag() == kVsplTag;
+      if ((!vspl && section.tag() != kFanhTag) ||
           section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
         return undefined_codec(section);
       if (base == nullptr) {
-        return container_error(ContainerError::kMissingSection,
-                               "section VSPL is compact, which needs the BASE section");
+        return container_error(
+            ContainerError::kMissingSection,
+            "section " + section.tag() + " is compact, which needs the BASE section");
       }
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
-      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_vspl_stored(section, base_mesh));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, vspl ? decode_vspl_stored(section, base_mesh)
+                                               : decode_fanh_stored(section, base_mesh));
       LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
     }
     return Status::ok();

@@ -9,8 +9,8 @@
 //   of the same records are the same), as are the kinds with a compact
 //   codec; other kinds by codec and stored bytes. META is never compared:
 //   the output gets a new one.
-// - The kinds with a compact codec of their own (VTRE, SETS, ...) are
-//   written compact, or raw without options.compact; a valid raw payload
+// - The kinds with a compact codec of their own (VTRE, SETS, VHIE, RFIN,
+//   and FANH against BASE) are written compact, or raw without options.compact; a valid raw payload
 //   the codec cannot reproduce (laid out unlike the reference writer), or
 //   one the codec would not make smaller, stays raw.
 // - Kinds this file does not recode (anything else) are copied with their
@@ -43,6 +43,7 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
+#include "formats/sections/fanh_compact.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
@@ -113,6 +114,7 @@ Result<Bytes> raw_payload(std::vector<InputFile>* files, size_t i, const Section
   if (section.tag() == kBaseTag) return decode_base_stored(section);
   if (has_standalone_compact_codec(section.tag())) return decode_stored_payload(section);
   LODBAKE_ASSIGN_OR_RETURN(const TriangleMesh* base, input_base(files, i));
+  if (section.tag() == kFanhTag) return decode_fanh_stored(section, *base);
   return decode_vspl_stored(section, *base);
 }
 
@@ -198,7 +200,8 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     *failed = i;
     for (const Section& section : files[i].container.sections) {
       const std::string& tag = section.tag();
-      const bool recoded = tag == kBaseTag || tag == kVsplTag || has_standalone_compact_codec(tag);
+      const bool recoded = tag == kBaseTag || tag == kVsplTag || tag == kFanhTag ||
+                           has_standalone_compact_codec(tag);
       auto it = chosen.find(tag);
       if (it == chosen.end()) {
         Chosen c{i, &section, {}};
@@ -374,14 +377,19 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
                               stored == Bytes(c.section->data, c.section->data + c.section->size)
                           ? "copied"
                           : "recoded";
-    } else if (has_standalone_compact_codec(tag)) {
+    } else if (has_standalone_compact_codec(tag) || tag == kFanhTag) {
       const Chosen& c = it->second;
       required = c.section->required();
       decoded_size = c.raw.size();
       stored = c.raw;
-      if (options.compact) {
+      // FANH's codec replays it over BASE's triangles, which recoding BASE
+      // never changes; without BASE in the output it stays raw.
+      const bool can_compact = tag != kFanhTag || written_base.has_value();
+      if (options.compact && can_compact) {
         // Tiny payloads can grow by the codec's header: they stay raw.
-        Result<Bytes> compact = encode_section_compact(tag, c.raw.data(), c.raw.size());
+        Result<Bytes> compact = tag == kFanhTag
+                                    ? encode_fanh_compact(c.raw.data(), c.raw.size(), *written_base)
+                                    : encode_section_compact(tag, c.raw.data(), c.raw.size());
         if (compact.is_ok() && compact.value().size() < c.raw.size()) {
           stored = std::move(compact).value();
           codec = SectionCodec::kCompact;

@@ -1,5 +1,5 @@
-// The compact codecs of the kinds that need no other section
-// (formats/sections/compact_sections.h, docs/format.md "Codecs"), each on
+// The compact codecs of VTRE, SETS, VHIE, RFIN (alone,
+// formats/sections/compact_sections.h) and FANH (against BASE), each on
 // real payloads written the way the tools write them: the round trip gives
 // the raw payload byte for byte, re-encoding is idempotent, the compact
 // bytes are smaller, and every truncation, trailing byte and bit flip is
@@ -16,10 +16,13 @@
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/compact_sections.h"
+#include "formats/sections/fanh.h"
+#include "formats/sections/fanh_compact.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vtre.h"
+#include "lib/fanmerge/fan_build.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
@@ -81,6 +84,12 @@ Bytes rfin_of(const TriangleMesh& mesh) {
   return take(encode_rfin(built.hierarchy, refinement), "RFIN");
 }
 
+// lodbake-fan's FANH (over the full mesh, which is its BASE).
+Bytes fanh_of(const TriangleMesh& mesh) {
+  return take(encode_fanh(take(build_fan_hierarchy(mesh, FanBuildOptions()), "fan").hierarchy),
+              "FANH");
+}
+
 // lodbake-strips' SETS: the half-placement PM, its full mesh stripified.
 Bytes sets_of(const TriangleMesh& mesh) {
   SimplifyOptions options;
@@ -99,6 +108,8 @@ struct Sample {
   const char* tag;
   std::function<Bytes()> raw;
   bool small = false;  // the exhaustive corruption checks run on these
+  // The BASE mesh, for the codecs that need one (FANH).
+  std::function<TriangleMesh()> base = nullptr;
 };
 
 void PrintTo(const Sample& sample, std::ostream* out) {
@@ -135,6 +146,10 @@ std::vector<Sample> samples() {
   s.push_back({"RfinTorus", kRfinTag, [] { return rfin_of(test_meshes::torus(8, 6)); }, true});
   s.push_back(
       {"RfinTetrahedron", kRfinTag, [] { return rfin_of(test_meshes::tetrahedron()); }, true});
+  s.push_back({"FanhElephant", kFanhTag, [] { return fanh_of(elephant()); }, false,
+               [] { return elephant(); }});
+  s.push_back({"FanhTorus", kFanhTag, [] { return fanh_of(test_meshes::torus(8, 6)); }, true,
+               [] { return test_meshes::torus(8, 6); }});
   s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
   s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
   s.push_back(
@@ -149,18 +164,34 @@ const Bytes& raw_of(const Sample& sample) {
   return it->second;
 }
 
+const TriangleMesh& base_of(const Sample& sample) {
+  static std::map<std::string, TriangleMesh> cache;
+  auto it = cache.find(sample.name);
+  if (it == cache.end()) it = cache.emplace(sample.name, sample.base()).first;
+  return it->second;
+}
+
+// The codec of `sample`'s kind: with its BASE for FANH, alone otherwise.
+Result<Bytes> encode_sample(const Sample& sample, const uint8_t* data, size_t size) {
+  if (sample.base) return encode_fanh_compact(data, size, base_of(sample));
+  EXPECT_TRUE(has_standalone_compact_codec(sample.tag));
+  return encode_section_compact(sample.tag, data, size);
+}
+Result<Bytes> decode_sample(const Sample& sample, const uint8_t* data, size_t size) {
+  if (sample.base) return decode_fanh_compact(data, size, base_of(sample));
+  return decode_section_compact(sample.tag, data, size);
+}
+
 class SectionCompact : public ::testing::TestWithParam<Sample> {};
 
 TEST_P(SectionCompact, RoundTripsByteForByteAndIsIdempotent) {
   const Sample& sample = GetParam();
   const Bytes& raw = raw_of(sample);
   ASSERT_FALSE(raw.empty());
-  ASSERT_TRUE(has_standalone_compact_codec(sample.tag));
-  const Bytes compact = take(encode_section_compact(sample.tag, raw.data(), raw.size()), "encode");
-  const Bytes back =
-      take(decode_section_compact(sample.tag, compact.data(), compact.size()), "decode");
+  const Bytes compact = take(encode_sample(sample, raw.data(), raw.size()), "encode");
+  const Bytes back = take(decode_sample(sample, compact.data(), compact.size()), "decode");
   EXPECT_EQ(back, raw);
-  EXPECT_EQ(take(encode_section_compact(sample.tag, back.data(), back.size()), "again"), compact);
+  EXPECT_EQ(take(encode_sample(sample, back.data(), back.size()), "again"), compact);
   if (raw.size() > 200) {
     EXPECT_LT(compact.size(), raw.size());
   }
@@ -172,9 +203,9 @@ class SectionCompactCorruption : public SectionCompact {};
 TEST_P(SectionCompactCorruption, RefusesEveryTruncationAndTrailingBytes) {
   const Sample& sample = GetParam();
   const Bytes& raw = raw_of(sample);
-  const Bytes compact = take(encode_section_compact(sample.tag, raw.data(), raw.size()), "encode");
+  const Bytes compact = take(encode_sample(sample, raw.data(), raw.size()), "encode");
   for (size_t n = 0; n < compact.size(); ++n) {
-    Result<Bytes> r = decode_section_compact(sample.tag, compact.data(), n);
+    Result<Bytes> r = decode_sample(sample, compact.data(), n);
     ASSERT_FALSE(r.is_ok()) << "accepted " << n << " of " << compact.size() << " bytes";
     EXPECT_EQ(r.status().code(), static_cast<int>(ContainerError::kMalformedSection))
         << r.status().message();
@@ -182,22 +213,22 @@ TEST_P(SectionCompactCorruption, RefusesEveryTruncationAndTrailingBytes) {
   for (uint8_t extra : {0, 1, 255}) {
     Bytes longer = compact;
     longer.push_back(extra);
-    EXPECT_FALSE(decode_section_compact(sample.tag, longer.data(), longer.size()).is_ok());
+    EXPECT_FALSE(decode_sample(sample, longer.data(), longer.size()).is_ok());
   }
   Bytes versioned = compact;
   versioned[0] = static_cast<uint8_t>(versioned[0] + 1);
-  EXPECT_FALSE(decode_section_compact(sample.tag, versioned.data(), versioned.size()).is_ok());
+  EXPECT_FALSE(decode_sample(sample, versioned.data(), versioned.size()).is_ok());
 }
 
 TEST_P(SectionCompactCorruption, BitFlipsAreRefusedOrDecodeToAValidPayload) {
   const Sample& sample = GetParam();
   const Bytes& raw = raw_of(sample);
-  const Bytes compact = take(encode_section_compact(sample.tag, raw.data(), raw.size()), "encode");
+  const Bytes compact = take(encode_sample(sample, raw.data(), raw.size()), "encode");
   size_t refused = 0;
   for (size_t bit = 0; bit < compact.size() * 8; ++bit) {
     Bytes flipped = compact;
     flipped[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
-    Result<Bytes> r = decode_section_compact(sample.tag, flipped.data(), flipped.size());
+    Result<Bytes> r = decode_sample(sample, flipped.data(), flipped.size());
     if (!r.is_ok()) {
       ++refused;
       EXPECT_EQ(r.status().code(), static_cast<int>(ContainerError::kMalformedSection))
@@ -205,10 +236,9 @@ TEST_P(SectionCompactCorruption, BitFlipsAreRefusedOrDecodeToAValidPayload) {
       continue;
     }
     // Another valid payload: it must re-encode and decode to itself.
-    Result<Bytes> again = encode_section_compact(sample.tag, r.value().data(), r.value().size());
+    Result<Bytes> again = encode_sample(sample, r.value().data(), r.value().size());
     ASSERT_TRUE(again.is_ok()) << "bit " << bit << ": " << again.status().message();
-    Result<Bytes> back =
-        decode_section_compact(sample.tag, again.value().data(), again.value().size());
+    Result<Bytes> back = decode_sample(sample, again.value().data(), again.value().size());
     ASSERT_TRUE(back.is_ok() && back.value() == r.value()) << "bit " << bit;
   }
   EXPECT_GT(refused, 0u);
