@@ -1,9 +1,10 @@
 // Exp-Golomb streams of the compact section codecs (see the header). The
 // counting pass keeps, per context, how many values have each bit length;
 // the cost of order k is estimated from that histogram (a value of bit
-// length L costs about 2·max(L, k + 1) - k - 1 bits), which is exact but
-// for the rare carry of x + 2^k into a new bit and is only used to choose
-// k: the stream itself records the chosen order.
+// length L costs 2·L' - k - 1 bits, L' the bit length of x + 2^k: k + 1
+// for L <= k, L + 1 for L = k + 1, L or L + 1 above), taking the low bits
+// as uniform. It is only used to choose k (the stream records the chosen
+// order, so a reader never repeats the estimate).
 #include "formats/sections/compact_coding.h"
 
 namespace lodbake {
@@ -64,14 +65,30 @@ void CompactStreamWriter::bits(uint64_t value, int width) {
 }
 
 void CompactStreamWriter::start_writing(Bytes* out) {
+  constexpr uint64_t kOne = uint64_t{1} << 16;  // costs in 1/65536 bits: integers, so
+                                                // the choice is the same on every platform
   for (size_t c = 0; c < orders_.size(); ++c) {
     uint64_t best_cost = UINT64_MAX;
     for (int k = 0; k <= kCompactMaxOrder; ++k) {
       uint64_t cost = 0;
       for (int length = 0; length <= 64; ++length) {
         const uint64_t count = length_counts_[c][static_cast<size_t>(length)];
-        const int l = length > k + 1 ? length : k + 1;
-        cost += count * static_cast<uint64_t>(2 * l - k - 1);
+        if (count == 0) continue;
+        // Bits of x + 2^k: k + 1 below 2^k; one more than x's own just
+        // above (always a carry); above that x's own, plus one for the
+        // carry of x's bits k..L-1 all ones, which a uniform x has with
+        // probability 2^(k - L + 1).
+        uint64_t bits = 0;
+        if (length <= k) {
+          bits = static_cast<uint64_t>(k + 1) * kOne;
+        } else if (length == k + 1) {
+          bits = static_cast<uint64_t>(2 * (length + 1) - k - 1) * kOne;
+        } else {
+          const int shift = length - k - 1;
+          bits = static_cast<uint64_t>(2 * length - k - 1) * kOne +
+                 (shift < 18 ? (2 * kOne) >> shift : 0);
+        }
+        cost += count * bits;
       }
       if (cost < best_cost) {
         best_cost = cost;
