@@ -1,6 +1,7 @@
-// The compact codecs (codec 1) of the section kinds whose coding needs no
-// other section (docs/format.md "Codecs"): VTRE, and the kinds added next
-// to it. VSPL's compact codec needs BASE and has its own entry points
+// The compact codecs (codec 1) of the section kinds other than VSPL
+// (docs/format.md "Codecs"): those that need no other section (VTRE, SETS,
+// VHIE, RFIN) and those coded against the container's BASE (FANH, STRP).
+// VSPL's compact codec, also against BASE, has its own entry points
 // (formats/sections/vspl_compact.h).
 #pragma once
 
@@ -8,6 +9,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "formats/mesh/triangle_mesh.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 
@@ -27,5 +29,19 @@ Result<Bytes> encode_section_compact(std::string_view tag, const uint8_t* raw, s
 /// \pre has_standalone_compact_codec(tag).
 /// \return the kind's decoder's result (LBK-E023 for malformed bytes).
 Result<Bytes> decode_section_compact(std::string_view tag, const uint8_t* data, size_t size);
+
+/// True when `tag` defines a compact codec coded against BASE's triangles
+/// (which recoding BASE never changes).
+bool has_base_compact_codec(std::string_view tag);
+
+/// As encode_section_compact(), against `base` (the decoded BASE mesh).
+/// \pre has_base_compact_codec(tag).
+Result<Bytes> encode_section_compact(std::string_view tag, const uint8_t* raw, size_t size,
+                                     const TriangleMesh& base);
+
+/// As decode_section_compact(), against `base`.
+/// \pre has_base_compact_codec(tag).
+Result<Bytes> decode_section_compact(std::string_view tag, const uint8_t* data, size_t size,
+                                     const TriangleMesh& base);
 
 }  // namespace lodbake

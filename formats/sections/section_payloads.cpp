@@ -1,5 +1,5 @@
 // Which codec each section kind defines (docs/format.md "Codecs"): BASE
-// raw or draco, VSPL and FANH raw or compact (against BASE), the kinds of
+// raw or draco, VSPL, FANH and STRP raw or compact (against BASE), the kinds of
 // compact_sections.h raw or compact (alone), every other kind raw only. A pack tool
 // that does not know a kind copies its bytes as they are, so a kind gains
 // codecs here without older tools mangling it.
@@ -14,7 +14,6 @@
 #include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/draco_codec.h"
-#include "formats/sections/fanh_compact.h"
 #include "formats/sections/vspl_compact.h"
 #include "formats/support/string_format.h"
 
@@ -55,12 +54,13 @@ Result<Bytes> decode_vspl_stored(const Section& section, const TriangleMesh& bas
   return decode_vspl_compact(section.data, section.size, base);
 }
 
-Result<Bytes> decode_fanh_stored(const Section& section, const TriangleMesh& base) {
+Result<Bytes> decode_with_base_stored(const Section& section, const TriangleMesh& base) {
   if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
     return Bytes(section.data, section.data + section.size);
-  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact) ||
+      !has_base_compact_codec(section.tag()))
     return undefined_codec(section);
-  return decode_fanh_compact(section.data, section.size, base);
+  return decode_section_compact(section.tag(), section.data, section.size, base);
 }
 
 Result<Bytes> decode_stored_payload(const Section& section) {
@@ -104,7 +104,7 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
         continue;
       }
       const bool vspl = section.tag() == kVsplTag;
-      if ((!vspl && section.tag() != kFanhTag) ||
+      if ((!vspl && !has_base_compact_codec(section.tag())) ||
           section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
         return undefined_codec(section);
       if (base == nullptr) {
@@ -114,7 +114,7 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
       }
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
       LODBAKE_ASSIGN_OR_RETURN(Bytes raw, vspl ? decode_vspl_stored(section, base_mesh)
-                                               : decode_fanh_stored(section, base_mesh));
+                                               : decode_with_base_stored(section, base_mesh));
       LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
     }
     return Status::ok();

@@ -10,9 +10,9 @@
 //   codec; other kinds by codec and stored bytes. META is never compared:
 //   the output gets a new one.
 // - The kinds with a compact codec of their own (VTRE, SETS, VHIE, RFIN,
-//   and FANH against BASE) are written compact, or raw without options.compact; a valid raw payload
-//   the codec cannot reproduce (laid out unlike the reference writer), or
-//   one the codec would not make smaller, stays raw.
+//   and FANH and STRP against BASE) are written compact, or raw without options.compact; a valid
+//   raw payload the codec cannot reproduce (laid out unlike the reference writer), or one the codec
+//   would not make smaller, stays raw.
 // - Kinds this file does not recode (anything else) are copied with their
 //   codec, flags and sizes, byte for byte: their own tools define their
 //   codecs, and a copy can never damage what pack does not understand.
@@ -43,7 +43,6 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
-#include "formats/sections/fanh_compact.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
@@ -114,7 +113,7 @@ Result<Bytes> raw_payload(std::vector<InputFile>* files, size_t i, const Section
   if (section.tag() == kBaseTag) return decode_base_stored(section);
   if (has_standalone_compact_codec(section.tag())) return decode_stored_payload(section);
   LODBAKE_ASSIGN_OR_RETURN(const TriangleMesh* base, input_base(files, i));
-  if (section.tag() == kFanhTag) return decode_fanh_stored(section, *base);
+  if (has_base_compact_codec(section.tag())) return decode_with_base_stored(section, *base);
   return decode_vspl_stored(section, *base);
 }
 
@@ -200,7 +199,7 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     *failed = i;
     for (const Section& section : files[i].container.sections) {
       const std::string& tag = section.tag();
-      const bool recoded = tag == kBaseTag || tag == kVsplTag || tag == kFanhTag ||
+      const bool recoded = tag == kBaseTag || tag == kVsplTag || has_base_compact_codec(tag) ||
                            has_standalone_compact_codec(tag);
       auto it = chosen.find(tag);
       if (it == chosen.end()) {
@@ -377,19 +376,20 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
                               stored == Bytes(c.section->data, c.section->data + c.section->size)
                           ? "copied"
                           : "recoded";
-    } else if (has_standalone_compact_codec(tag) || tag == kFanhTag) {
+    } else if (has_standalone_compact_codec(tag) || has_base_compact_codec(tag)) {
       const Chosen& c = it->second;
       required = c.section->required();
       decoded_size = c.raw.size();
       stored = c.raw;
-      // FANH's codec replays it over BASE's triangles, which recoding BASE
-      // never changes; without BASE in the output it stays raw.
-      const bool can_compact = tag != kFanhTag || written_base.has_value();
+      // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
+      // never changes; without BASE in the output they stay raw.
+      const bool with_base = has_base_compact_codec(tag);
+      const bool can_compact = !with_base || written_base.has_value();
       if (options.compact && can_compact) {
         // Tiny payloads can grow by the codec's header: they stay raw.
-        Result<Bytes> compact = tag == kFanhTag
-                                    ? encode_fanh_compact(c.raw.data(), c.raw.size(), *written_base)
-                                    : encode_section_compact(tag, c.raw.data(), c.raw.size());
+        Result<Bytes> compact =
+            with_base ? encode_section_compact(tag, c.raw.data(), c.raw.size(), *written_base)
+                      : encode_section_compact(tag, c.raw.data(), c.raw.size());
         if (compact.is_ok() && compact.value().size() < c.raw.size()) {
           stored = std::move(compact).value();
           codec = SectionCodec::kCompact;

@@ -26,7 +26,6 @@
 #include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/draco_codec.h"
-#include "formats/sections/fanh_compact.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl_compact.h"
 #include "formats/support/file_io.h"
@@ -62,15 +61,17 @@ int run_file(const std::string& path, int runs) {
     double encode = 0, decode = 0;
     bool ok = true;
     if (codec == static_cast<uint16_t>(SectionCodec::kCompact)) {
-      // VSPL and FANH code against the decoded BASE, the others alone.
+      // VSPL, FANH and STRP code against the decoded BASE, the others alone.
       auto encode_one = [&]() -> Result<Bytes> {
         if (s.tag() == kVsplTag) return encode_vspl_compact(raw.data, raw.size, base);
-        if (s.tag() == kFanhTag) return encode_fanh_compact(raw.data, raw.size, base);
+        if (has_base_compact_codec(s.tag()))
+          return encode_section_compact(s.tag(), raw.data, raw.size, base);
         return encode_section_compact(s.tag(), raw.data, raw.size);
       };
       auto decode_one = [&]() -> Result<Bytes> {
         if (s.tag() == kVsplTag) return decode_vspl_compact(s.data, s.size, base);
-        if (s.tag() == kFanhTag) return decode_fanh_compact(s.data, s.size, base);
+        if (has_base_compact_codec(s.tag()))
+          return decode_section_compact(s.tag(), s.data, s.size, base);
         return decode_section_compact(s.tag(), s.data, s.size);
       };
       encode = bench::median_seconds(runs, [&] {

@@ -7,8 +7,8 @@
 // packing:
 // - the sections pack does not recode are copied byte for byte (codec,
 //   flags and sizes too) and decode to the same structure; those with a
-//   compact codec of their own (VTRE, SETS, VHIE, RFIN; FANH against
-//   BASE) are stored compact, smaller,
+//   compact codec of their own (VTRE, SETS, VHIE, RFIN; FANH and STRP
+//   against BASE) are stored compact, smaller,
 //   and decode to the same raw payload byte for byte;
 // - BASE and VSPL keep every vertex, triangle and split id, with positions
 //   within the stated quantization error (docs/format.md sections 11 and
@@ -353,7 +353,7 @@ TEST_P(PackEverySection, KeepsIdsCopiesByteForByteValidatesAndIsIdempotent) {
     const Section* packed = after.stored.find(s.tag());
     ASSERT_NE(packed, nullptr) << s.tag();
     if (s.tag() == kMetaTag || s.tag() == kBaseTag || s.tag() == kVsplTag) continue;
-    if (has_standalone_compact_codec(s.tag()) || s.tag() == kFanhTag) {
+    if (has_standalone_compact_codec(s.tag()) || has_base_compact_codec(s.tag())) {
       // Recoded compact: the raw payload every reader sees is the same bytes.
       EXPECT_EQ(packed->entry.codec, static_cast<uint16_t>(SectionCodec::kCompact)) << s.tag();
       EXPECT_LT(packed->entry.stored_size, s.entry.stored_size) << s.tag();

@@ -1,5 +1,5 @@
-// The compact codecs of VTRE, SETS, VHIE, RFIN (alone,
-// formats/sections/compact_sections.h) and FANH (against BASE), each on
+// The compact codecs of formats/sections/compact_sections.h (VTRE, SETS,
+// VHIE, RFIN alone; FANH and STRP against BASE), each on
 // real payloads written the way the tools write them: the round trip gives
 // the raw payload byte for byte, re-encoding is idempotent, the compact
 // bytes are smaller, and every truncation, trailing byte and bit flip is
@@ -17,9 +17,9 @@
 #include "formats/container/section_registry.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/fanh.h"
-#include "formats/sections/fanh_compact.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/sets.h"
+#include "formats/sections/strp.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vtre.h"
 #include "lib/fanmerge/fan_build.h"
@@ -90,6 +90,11 @@ Bytes fanh_of(const TriangleMesh& mesh) {
               "FANH");
 }
 
+// lodbake-strips --strips-only's STRP (over the full mesh, its BASE).
+Bytes strp_of(const TriangleMesh& mesh) {
+  return take(encode_strp(take(stripify(mesh), "strips")), "STRP");
+}
+
 // lodbake-strips' SETS: the half-placement PM, its full mesh stripified.
 Bytes sets_of(const TriangleMesh& mesh) {
   SimplifyOptions options;
@@ -150,6 +155,12 @@ std::vector<Sample> samples() {
                [] { return elephant(); }});
   s.push_back({"FanhTorus", kFanhTag, [] { return fanh_of(test_meshes::torus(8, 6)); }, true,
                [] { return test_meshes::torus(8, 6); }});
+  s.push_back({"StrpElephant", kStrpTag, [] { return strp_of(elephant()); }, false,
+               [] { return elephant(); }});
+  s.push_back({"StrpTorus", kStrpTag, [] { return strp_of(test_meshes::torus(8, 6)); }, true,
+               [] { return test_meshes::torus(8, 6); }});
+  s.push_back({"StrpMoebius", kStrpTag, [] { return strp_of(test_meshes::moebius_band(12)); }, true,
+               [] { return test_meshes::moebius_band(12); }});
   s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
   s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
   s.push_back(
@@ -171,14 +182,17 @@ const TriangleMesh& base_of(const Sample& sample) {
   return it->second;
 }
 
-// The codec of `sample`'s kind: with its BASE for FANH, alone otherwise.
+// The codec of `sample`'s kind: with its BASE for FANH and STRP, alone otherwise.
 Result<Bytes> encode_sample(const Sample& sample, const uint8_t* data, size_t size) {
-  if (sample.base) return encode_fanh_compact(data, size, base_of(sample));
+  if (sample.base) {
+    EXPECT_TRUE(has_base_compact_codec(sample.tag));
+    return encode_section_compact(sample.tag, data, size, base_of(sample));
+  }
   EXPECT_TRUE(has_standalone_compact_codec(sample.tag));
   return encode_section_compact(sample.tag, data, size);
 }
 Result<Bytes> decode_sample(const Sample& sample, const uint8_t* data, size_t size) {
-  if (sample.base) return decode_fanh_compact(data, size, base_of(sample));
+  if (sample.base) return decode_section_compact(sample.tag, data, size, base_of(sample));
   return decode_section_compact(sample.tag, data, size);
 }
 
