@@ -4,6 +4,7 @@
 #include "formats/sections/compact_sections.h"
 
 #include "formats/container/section_registry.h"
+#include "formats/sections/dage_compact.h"
 #include "formats/sections/fanh_compact.h"
 #include "formats/sections/rfin_compact.h"
 #include "formats/sections/sets_compact.h"
@@ -25,6 +26,7 @@ const CompactCodec kCodecs[] = {
     {kSetsTag, encode_sets_compact, decode_sets_compact},
     {kVhieTag, encode_vhie_compact, decode_vhie_compact},
     {kRfinTag, encode_rfin_compact, decode_rfin_compact},
+    {kDageTag, encode_dage_compact, decode_dage_compact},
 };
 
 struct BaseCompactCodec {

@@ -1,5 +1,5 @@
 // The compact codecs of formats/sections/compact_sections.h (VTRE, SETS,
-// VHIE, RFIN alone; FANH and STRP against BASE), each on
+// VHIE, RFIN, DAGE alone; FANH and STRP against BASE), each on
 // real payloads written the way the tools write them: the round trip gives
 // the raw payload byte for byte, re-encoding is idempotent, the compact
 // bytes are smaller, and every truncation, trailing byte and bit flip is
@@ -16,12 +16,14 @@
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/compact_sections.h"
+#include "formats/sections/dage.h"
 #include "formats/sections/fanh.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/strp.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vtre.h"
+#include "lib/dag/vsplit_dag_builder.h"
 #include "lib/fanmerge/fan_build.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
@@ -161,6 +163,17 @@ std::vector<Sample> samples() {
                [] { return test_meshes::torus(8, 6); }});
   s.push_back({"StrpMoebius", kStrpTag, [] { return strp_of(test_meshes::moebius_band(12)); }, true,
                [] { return test_meshes::moebius_band(12); }});
+  s.push_back({"DageHierarchyElephant", kDageTag, [] {
+                 return take(encode_dage(take(build_vsplit_dag(hierarchy_pm(elephant())), "DAG")),
+                             "DAGE");
+               }});
+  s.push_back({"DageGreedyTorus", kDageTag,
+               [] {
+                 return take(encode_dage(take(
+                                 build_vsplit_dag(greedy_pm(test_meshes::torus(10, 7))), "DAG")),
+                             "DAGE");
+               },
+               true});
   s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
   s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
   s.push_back(
