@@ -14,11 +14,16 @@
 #include <vector>
 
 #include "formats/container/container_errors.h"
+#include "formats/container/container_reader.h"
+#include "formats/container/container_writer.h"
+#include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/fanh.h"
 #include "formats/sections/rfin.h"
+#include "formats/sections/section_payloads.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/strp.h"
 #include "formats/sections/vhie.h"
@@ -288,6 +293,82 @@ TEST(SectionCompactCodecs, KeepRawPayloadsTheyCannotReproduceOrRead) {
   Result<Bytes> bad = encode_section_compact(kVtreTag, wide.data(), wide.size());
   ASSERT_FALSE(bad.is_ok());
   EXPECT_EQ(bad.status().kind(), ErrorKind::kInvalidInput);
+}
+
+// The container paths: a compact section decodes to its raw payload where
+// it sits; its entry's decoded size must match (E021); a codec the kind
+// does not define is E020; a codec against BASE without BASE is E024.
+TEST(SectionCompactContainers, DecodeInPlaceAndRefuseWhatTheyCannot) {
+  const TriangleMesh mesh = test_meshes::torus(8, 6);
+  const Bytes base = take(encode_base(mesh, BaseEncodeOptions()), "BASE");
+  const Bytes strp = strp_of(mesh);
+  const Bytes strp_compact =
+      take(encode_section_compact(kStrpTag, strp.data(), strp.size(), mesh), "compact STRP");
+  const std::vector<Sample> all = samples();
+  const Sample* torus_trees = nullptr;
+  for (const Sample& sample : all) {
+    if (sample.name == "VtreGreedyTorus") torus_trees = &sample;
+  }
+  ASSERT_NE(torus_trees, nullptr);
+  const Bytes vtre = raw_of(*torus_trees);
+  const Bytes vtre_compact =
+      take(encode_section_compact(kVtreTag, vtre.data(), vtre.size()), "compact VTRE");
+  auto decode = [](const Bytes& file, std::vector<Bytes>* storage, Container* out) {
+    Result<Container> c = read_container(file.data(), file.size());
+    EXPECT_TRUE(c.is_ok()) << c.status().message();
+    if (!c.is_ok()) return c.status();
+    *out = std::move(c).value();
+    return decode_section_codecs(out, storage);
+  };
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(w.add_section(kBaseTag, base, true).is_ok());
+    ASSERT_TRUE(
+        w.add_stored_section(kStrpTag, strp_compact, SectionCodec::kCompact, strp.size(), true)
+            .is_ok());
+    ASSERT_TRUE(
+        w.add_stored_section(kVtreTag, vtre_compact, SectionCodec::kCompact, vtre.size(), false)
+            .is_ok());
+    const Bytes file = take(w.finish(), "container");
+    std::vector<Bytes> storage;
+    Container c;
+    ASSERT_TRUE(decode(file, &storage, &c).is_ok());
+    const Section* s = c.find(kStrpTag);
+    const Section* t = c.find(kVtreTag);
+    ASSERT_TRUE(s != nullptr && t != nullptr);
+    EXPECT_EQ(Bytes(s->data, s->data + s->size), strp);
+    EXPECT_EQ(Bytes(t->data, t->data + t->size), vtre);
+    EXPECT_EQ(t->entry.stored_size, vtre_compact.size());
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kVtreTag, vtre_compact, SectionCodec::kCompact, vtre.size() + 1, false)
+            .is_ok());
+    std::vector<Bytes> storage;
+    Container c;
+    EXPECT_EQ(decode(take(w.finish(), "container"), &storage, &c).code(), 21);
+  }
+  if (draco_codec_built()) {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kVtreTag, vtre_compact, SectionCodec::kDraco, vtre.size(), false)
+            .is_ok());
+    std::vector<Bytes> storage;
+    Container c;
+    const Status status = decode(take(w.finish(), "container"), &storage, &c);
+    EXPECT_EQ(status.code(), 20);
+    EXPECT_EQ(status.kind(), ErrorKind::kUnsupported);
+  }
+  {
+    ContainerWriter w;
+    ASSERT_TRUE(
+        w.add_stored_section(kStrpTag, strp_compact, SectionCodec::kCompact, strp.size(), true)
+            .is_ok());
+    std::vector<Bytes> storage;
+    Container c;
+    EXPECT_EQ(decode(take(w.finish(), "container"), &storage, &c).code(), 24);
+  }
 }
 
 std::string sample_name(const ::testing::TestParamInfo<Sample>& param) {
