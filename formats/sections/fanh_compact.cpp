@@ -48,6 +48,7 @@ namespace {
 enum Context : int { kError, kChildCount, kLinkVertex, kListCount, kTriangle, kContextCount };
 
 constexpr size_t kMaxPredictedStar = 64;
+constexpr size_t kMaxList = 256;
 constexpr size_t kNeighbourTriangles = 64;
 
 Status bad_compact(const std::string& detail) {
@@ -61,7 +62,7 @@ class Replay {
       : corners_(base.triangles), incident_(base.vertex_count()) {
     for (uint32_t t = 0; t < corners_.size(); ++t) {
       for (uint32_t v : corners_[t])
-        incident_[v].push_back(t);
+        if (incident_[v].size() < kMaxList) incident_[v].push_back(t);
     }
   }
 
@@ -106,7 +107,9 @@ class Replay {
       for (uint32_t& x : corners_[t])
         if (x == u) x = v;
       remove(u, t);
-      incident_[v].push_back(t);
+      // Capped (as in the constructor), so that hostile lists cannot make
+      // every removal scan far; a list this long is never predicted from.
+      if (incident_[v].size() < kMaxList) incident_[v].push_back(t);
     }
   }
 

@@ -51,18 +51,22 @@ enum Context : int {
   kContextCount
 };
 
+constexpr size_t kCandidateSuccessors = 64;
+
 Status bad_compact(const std::string& detail) {
   return malformed_section(kSetsTag, "compact: " + detail);
 }
 
 // The labels a successor run of a node predicts (see the file comment):
-// distinct V - u - 1 for its successors' vertices u, between `previous`
+// distinct V - u - 1 for its first successors' vertices u, between `previous`
 // (exclusive, -1 before the first) and the last label (exclusive).
 void label_candidates(const uint32_t* successors, size_t count, const SetsGraph& g,
                       int64_t previous, std::vector<uint32_t>* out) {
   out->clear();
   const int64_t last = int64_t{g.lod_count} - 1;
-  for (size_t i = 0; i < count; ++i) {
+  // Only the first kCandidateSuccessors successors: the distinct-value
+  // check is quadratic, and hostile runs may be long.
+  for (size_t i = 0; i < count && i < kCandidateSuccessors; ++i) {
     if (successors[i] == kSetsEnd) continue;
     const int64_t c = int64_t{g.vertex_count} - g.node_vertex[successors[i]] - 1;
     if (c <= previous || c >= last) continue;

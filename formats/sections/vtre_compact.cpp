@@ -90,11 +90,13 @@ class KnownFans {
              const uint32_t* right, size_t right_count) {
     set(vs, right, right_count);
     set(vt, left, left_count);
-    for (size_t i = 0; i < left_count; ++i) {
+    // Only the first kMaxKnown entries of each fan: hostile fans of any
+    // length then cost a constant per split.
+    for (size_t i = 0; i < left_count && i < kMaxKnown; ++i) {
       const uint32_t w = left[i];
       if (w == vs) continue;
       bool wing = false;
-      for (size_t j = 0; j < right_count && !wing; ++j)
+      for (size_t j = 0; j < right_count && j < kMaxKnown && !wing; ++j)
         wing = right[j] == w;
       std::vector<uint32_t>& fan = fans_[w];
       size_t at = 0;
