@@ -9,10 +9,12 @@
 //   of the same records are the same), as are the kinds with a compact
 //   codec; other kinds by codec and stored bytes. META is never compared:
 //   the output gets a new one.
-// - The kinds with a compact codec of their own (VTRE, SETS, VHIE, RFIN,
-//   and FANH and STRP against BASE) are written compact, or raw without options.compact; a valid
-//   raw payload the codec cannot reproduce (laid out unlike the reference writer), or one the codec
-//   would not make smaller, stays raw.
+// - The kinds with a compact codec of their own (VHIE, RFIN, DAGE, VTRE,
+//   SETS, and FANH and STRP against BASE) are written compact, or raw
+//   without options.compact. A valid raw payload the codec cannot
+//   reproduce (laid out unlike the reference writer), or one the codec
+//   would not make smaller, stays raw; a malformed one is an error, as for
+//   BASE and VSPL.
 // - Kinds this file does not recode (anything else) are copied with their
 //   codec, flags and sizes, byte for byte: their own tools define their
 //   codecs, and a copy can never damage what pack does not understand.
