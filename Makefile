@@ -113,7 +113,7 @@ HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
 STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
 bench: bench-deps build
 	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy \
-	  bench_dag bench_fan bench_strips bench_pack bench_stream
+	  bench_dag bench_fan bench_strips bench_pack bench_section_codecs bench_stream
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)

@@ -1,5 +1,6 @@
 // Which codec each section kind defines (docs/format.md "Codecs"): BASE
-// raw or draco, VSPL raw or compact, every other kind raw only. A pack tool
+// raw or draco, VSPL, FANH and STRP raw or compact (against BASE), the kinds of
+// compact_sections.h raw or compact (alone), every other kind raw only. A pack tool
 // that does not know a kind copies its bytes as they are, so a kind gains
 // codecs here without older tools mangling it.
 #include "formats/sections/section_payloads.h"
@@ -11,6 +12,7 @@
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/compact_sections.h"
 #include "formats/sections/draco_codec.h"
 #include "formats/sections/vspl_compact.h"
 #include "formats/support/string_format.h"
@@ -52,6 +54,24 @@ Result<Bytes> decode_vspl_stored(const Section& section, const TriangleMesh& bas
   return decode_vspl_compact(section.data, section.size, base);
 }
 
+Result<Bytes> decode_with_base_stored(const Section& section, const TriangleMesh& base) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact) ||
+      !has_base_compact_codec(section.tag()))
+    return undefined_codec(section);
+  return decode_section_compact(section.tag(), section.data, section.size, base);
+}
+
+Result<Bytes> decode_stored_payload(const Section& section) {
+  if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+    return Bytes(section.data, section.data + section.size);
+  if (section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact) ||
+      !has_standalone_compact_codec(section.tag()))
+    return undefined_codec(section);
+  return decode_section_compact(section.tag(), section.data, section.size);
+}
+
 Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) {
   try {
     storage->reserve(storage->size() + container->sections.size());
@@ -78,15 +98,23 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
     for (Section& section : container->sections) {
       if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw) || &section == base)
         continue;
-      if (section.tag() != kVsplTag ||
+      if (has_standalone_compact_codec(section.tag())) {
+        LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_stored_payload(section));
+        LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
+        continue;
+      }
+      const bool vspl = section.tag() == kVsplTag;
+      if ((!vspl && !has_base_compact_codec(section.tag())) ||
           section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
         return undefined_codec(section);
       if (base == nullptr) {
-        return container_error(ContainerError::kMissingSection,
-                               "section VSPL is compact, which needs the BASE section");
+        return container_error(
+            ContainerError::kMissingSection,
+            "section " + section.tag() + " is compact, which needs the BASE section");
       }
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
-      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_vspl_stored(section, base_mesh));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, vspl ? decode_vspl_stored(section, base_mesh)
+                                               : decode_with_base_stored(section, base_mesh));
       LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
     }
     return Status::ok();

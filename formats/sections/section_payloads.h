@@ -20,13 +20,24 @@ Result<Bytes> decode_base_stored(const Section& base);
 /// its decoded BASE mesh (needed by the compact codec).
 Result<Bytes> decode_vspl_stored(const Section& vspl, const TriangleMesh& base);
 
+/// The raw payload of a section of a kind whose compact codec is coded
+/// against BASE (FANH, STRP: compact_sections.h), stored with any codec,
+/// against its decoded BASE mesh.
+Result<Bytes> decode_with_base_stored(const Section& section, const TriangleMesh& base);
+
+/// The raw payload of a section of a kind that needs no other section to
+/// decode (raw, or compact for the kinds of compact_sections.h); a copy for
+/// raw. \return LBK-E020 for a codec the kind does not define; the codec
+/// decoder's LBK-E023.
+Result<Bytes> decode_stored_payload(const Section& section);
+
 /// Decodes the coded sections of `container` in place: afterwards each
 /// Section's data and size are its raw payload (owned by `*storage`, which
 /// must outlive the container's use); entries keep the stored codec and
-/// sizes. BASE is decoded before VSPL, whose compact codec needs it.
+/// sizes. BASE is decoded before VSPL, FANH and STRP, whose compact codecs need it.
 /// \return LBK-E020 (kUnsupported) for a codec this build cannot decode or
 ///         that is not defined for the section's kind; the codec decoder's
-///         LBK-E023; LBK-E024 when a compact VSPL has no BASE; LBK-E021 when
+///         LBK-E023; LBK-E024 when a compact VSPL, FANH or STRP has no BASE; LBK-E021 when
 ///         the decoded payload's size differs from the entry's decoded size.
 Status decode_section_codecs(Container* container, std::vector<Bytes>* storage);
 

@@ -1,16 +1,23 @@
 // Repacking containers (issue 7): merge sections of several files baked from
-// one input, drop or keep tags, recode BASE and VSPL.
+// one input, drop or keep tags, recode BASE, VSPL and the kinds with a
+// compact codec of their own (formats/sections/compact_sections.h).
 //
 // Choices:
 // - Inputs must agree on META's input SHA-256 when there are several (one
 //   input needs no META). A tag found in two inputs must have the same
 //   payload: BASE and VSPL are compared decoded (a compact and a raw VSPL
-//   of the same records are the same), other kinds by codec and stored
-//   bytes. META is never compared: the output gets a new one.
-// - Kinds this file does not recode (anything but META, BASE, VSPL) are
-//   copied with their codec, flags and sizes, byte for byte: their own tools
-//   define their codecs, and a copy can never damage what pack does not
-//   understand.
+//   of the same records are the same), as are the kinds with a compact
+//   codec; other kinds by codec and stored bytes. META is never compared:
+//   the output gets a new one.
+// - The kinds with a compact codec of their own (VHIE, RFIN, DAGE, VTRE,
+//   SETS, and FANH and STRP against BASE) are written compact, or raw
+//   without options.compact. A valid raw payload the codec cannot
+//   reproduce (laid out unlike the reference writer), or one the codec
+//   would not make smaller, stays raw; a malformed one is an error, as for
+//   BASE and VSPL.
+// - Kinds this file does not recode (anything else) are copied with their
+//   codec, flags and sizes, byte for byte: their own tools define their
+//   codecs, and a copy can never damage what pack does not understand.
 // - Idempotence: a BASE already stored as requested (same codec and Draco
 //   options, or raw with the requested quantization) is copied, never
 //   re-quantized, because quantizing dequantized values again need not give
@@ -37,6 +44,7 @@
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/compact_sections.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
@@ -105,7 +113,9 @@ Result<const TriangleMesh*> input_base(std::vector<InputFile>* files, size_t i) 
 
 Result<Bytes> raw_payload(std::vector<InputFile>* files, size_t i, const Section& section) {
   if (section.tag() == kBaseTag) return decode_base_stored(section);
+  if (has_standalone_compact_codec(section.tag())) return decode_stored_payload(section);
   LODBAKE_ASSIGN_OR_RETURN(const TriangleMesh* base, input_base(files, i));
+  if (has_base_compact_codec(section.tag())) return decode_with_base_stored(section, *base);
   return decode_vspl_stored(section, *base);
 }
 
@@ -191,7 +201,8 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     *failed = i;
     for (const Section& section : files[i].container.sections) {
       const std::string& tag = section.tag();
-      const bool recoded = tag == kBaseTag || tag == kVsplTag;
+      const bool recoded = tag == kBaseTag || tag == kVsplTag || has_base_compact_codec(tag) ||
+                           has_standalone_compact_codec(tag);
       auto it = chosen.find(tag);
       if (it == chosen.end()) {
         Chosen c{i, &section, {}};
@@ -362,6 +373,31 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
         codec = SectionCodec::kCompact;
       } else {
         stored = std::move(raw);
+      }
+      report.action = c.section->entry.codec == static_cast<uint16_t>(codec) &&
+                              stored == Bytes(c.section->data, c.section->data + c.section->size)
+                          ? "copied"
+                          : "recoded";
+    } else if (has_standalone_compact_codec(tag) || has_base_compact_codec(tag)) {
+      const Chosen& c = it->second;
+      required = c.section->required();
+      decoded_size = c.raw.size();
+      stored = c.raw;
+      // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
+      // never changes; without BASE in the output they stay raw.
+      const bool with_base = has_base_compact_codec(tag);
+      const bool can_compact = !with_base || written_base.has_value();
+      if (options.compact && can_compact) {
+        // Tiny payloads can grow by the codec's header: they stay raw.
+        Result<Bytes> compact =
+            with_base ? encode_section_compact(tag, c.raw.data(), c.raw.size(), *written_base)
+                      : encode_section_compact(tag, c.raw.data(), c.raw.size());
+        if (compact.is_ok() && compact.value().size() < c.raw.size()) {
+          stored = std::move(compact).value();
+          codec = SectionCodec::kCompact;
+        } else if (!compact.is_ok() && compact.status().kind() != ErrorKind::kUnsupported) {
+          return compact.status();
+        }
       }
       report.action = c.section->entry.codec == static_cast<uint16_t>(codec) &&
                               stored == Bytes(c.section->data, c.section->data + c.section->size)

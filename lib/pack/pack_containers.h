@@ -1,6 +1,6 @@
 // Repacking lodbake containers: merge the sections of several containers
 // baked from the same input, drop or keep sections, and recode the section
-// kinds lodbake-pack knows (BASE, VSPL) compactly or with Draco. What
+// kinds lodbake-pack knows (BASE, VSPL, VTRE, ...) compactly or with Draco. What
 // `lodbake-pack A.lbk [B.lbk ...] -o OUT.lbk` runs; memory in, memory out.
 #pragma once
 
@@ -25,7 +25,8 @@ struct RepackOptions {
   /// Quantize float32 (or differently quantized) BASE and VSPL positions to
   /// this many bits (1..30); 0 keeps the positions' encoding.
   int quantize_bits = 0;
-  /// Store VSPL with the compact codec (else raw).
+  /// Store VSPL and the kinds of formats/sections/compact_sections.h with
+  /// the compact codec (else raw).
   bool compact = true;
   /// Store BASE with the Draco codec (`draco` options); a float32 VSPL is
   /// then quantized to draco.quantization_bits unless quantize_bits is set.
@@ -62,17 +63,20 @@ struct PackResult {
 /// Merges, filters and recodes `inputs` into one container. Deterministic:
 /// the output is a function of the inputs' sections and the options, with
 /// META first, then BASE, VSPL, then the other sections in the order they
-/// first appear. Sections of a kind this function does not recode are
-/// copied byte for byte (codec and sizes included). A BASE already stored
-/// as requested is copied, so packing a packed file with the same options
-/// gives the same bytes. The output META records lodbake-pack, `options`,
-/// the common input, the union of the inputs' counts, and the inputs'
-/// provenance ("sources": tool, version and options of each, flattened
-/// through earlier packs).
-/// \return kInvalidInput when an input is not a valid container, inputs
-///         disagree on the input hash, a tag occurs in two inputs with
-///         different contents, counts disagree, or VSPL would be written
-///         without BASE; kUnsupported for a codec this build lacks.
+/// first appear. Sections of the kinds with a compact codec
+/// (formats/sections/compact_sections.h) are written compact (or raw),
+/// their raw payloads unchanged; sections of a kind this function does not
+/// recode are copied byte for byte (codec and sizes included). A BASE
+/// already stored as requested is copied, so packing a packed file with the
+/// same options gives the same bytes. The output META records
+/// lodbake-pack, `options`, the common input, the union of the inputs'
+/// counts, and the inputs' provenance ("sources": tool, version and options
+/// of each, flattened through earlier packs).
+/// \return kInvalidInput when an input is not a valid container or holds a
+///         malformed section of a kind it recodes, inputs disagree on the
+///         input hash, a tag occurs in two inputs with different contents,
+///         counts disagree, or VSPL would be written without BASE;
+///         kUnsupported for a codec this build lacks.
 /// `meta_options` is what the output META records as the options (the
 /// tool's own spelling). When the failure concerns one input, its index is
 /// stored in `*failed_input` (else inputs.size()), so a tool can name it.

@@ -2,8 +2,9 @@
 // - a mesh: imports it, checks it (optionally repairs it) and writes a
 //   container with META and BASE;
 // - containers (.lbk, told by their magic): merges their sections, drops or
-//   keeps tags, and recodes BASE and VSPL (compact by default, Draco on
-//   request), printing each section's size before and after.
+//   keeps tags, rewrites META and recodes the other kinds lodbake defines
+//   (compact by default, BASE with Draco on request), printing each
+//   section's size before and after.
 // Thin: import, check, repair, packing and encoding live in lib/ and formats/.
 #include <cstring>
 #include <filesystem>
@@ -233,10 +234,11 @@ int main(int argc, char** argv) {
             "are refused unless --repair fixes them; other problems are kept with a warning.\n"
             "\n"
             "With containers (.lbk) baked from the same input (META input hash): merges\n"
-            "their sections, drops or keeps tags, stores VSPL with the compact codec (or\n"
-            "raw with --raw) and BASE with Draco on --draco, copies other sections byte for\n"
-            "byte, and prints each section's size before and after. Same inputs and\n"
-            "options give the same bytes; packing a packed file again changes nothing.");
+            "their sections, drops or keeps tags, stores VSPL, VHIE, RFIN, DAGE, VTRE, FANH,\n"
+            "STRP and SETS with their lossless compact codecs (or raw with --raw) and BASE\n"
+            "with Draco on --draco, copies other sections byte for byte, and prints each\n"
+            "section's size before and after. Same inputs and options give the same bytes;\n"
+            "packing a packed file again changes nothing.");
   PackOptions options;
   tool.options().add_options()("output,o",
                                po::value<std::string>(&options.output)->value_name("OUT"),
@@ -255,7 +257,7 @@ int main(int argc, char** argv) {
       "cl", po::value<int>(&options.cl)->value_name("LEVEL"),
       "Draco compression level, 0..10 (default 7)")(
       "raw", po::bool_switch(&options.raw),
-      "containers: store VSPL raw instead of with the compact codec")(
+      "containers: store every section raw instead of with its compact codec")(
       "drop", po::value<std::string>(&options.drop)->value_name("TAG,..."),
       "containers: leave out these sections")(
       "keep", po::value<std::string>(&options.keep)->value_name("TAG,..."),

@@ -1,0 +1,94 @@
+// The entropy coding shared by the compact codecs of VTRE, SETS, VHIE and
+// RFIN (docs/format.md "Codecs"): one LSB-first bit stream (section 11's bit
+// packing) of fixed-width fields and Exp-Golomb codes, each code in a
+// *context* whose order k the encoder chooses and stores first, one byte
+// per context. Writers run their walk twice over the same data: the first
+// pass only counts (to choose the orders), the second writes, so no symbol
+// list is kept in memory.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "formats/support/bit_packing.h"
+#include "formats/support/file_io.h"
+
+namespace lodbake {
+
+/// The largest Exp-Golomb order a compact stream may name.
+inline constexpr int kCompactMaxOrder = 32;
+/// The longest zero prefix a reader accepts: values below 2^40 · 2^k.
+inline constexpr int kCompactMaxPrefix = 40;
+
+inline uint64_t zigzag64(int64_t d) {
+  return (static_cast<uint64_t>(d) << 1) ^ static_cast<uint64_t>(d >> 63);
+}
+inline int64_t unzigzag64(uint64_t z) {
+  return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
+}
+
+/// The detail of a section error ("LBK-E023: section VHIE: depth 0" gives
+/// "depth 0"), for a codec that reports it under its own prefix.
+inline std::string section_error_detail(const std::string& message) {
+  if (message.compare(0, 5, "LBK-E") != 0) return message;
+  const size_t first = message.find(": ");
+  const size_t second = first == std::string::npos ? first : message.find(": ", first + 2);
+  return second == std::string::npos ? message : message.substr(second + 2);
+}
+
+/// Writes one compact stream: construct with the number of contexts, run
+/// the walk (counting pass), call start_writing(), run the same walk again,
+/// then finish(). golomb() and bits() take the same values in both passes.
+class CompactStreamWriter {
+ public:
+  explicit CompactStreamWriter(int contexts);
+
+  /// Exp-Golomb code of `value` in context `ctx`. \pre value < 2^62.
+  void golomb(int ctx, uint64_t value);
+  /// `value` in `width` bits (0..64). \pre value < 2^width.
+  void bits(uint64_t value, int width);
+
+  /// Chooses each context's order from the counting pass and appends the
+  /// order bytes to `out`; later calls write the stream after them.
+  void start_writing(Bytes* out);
+  /// Pads the stream to a whole byte.
+  void finish();
+
+  bool writing() const { return out_ != nullptr; }
+
+ private:
+  std::vector<std::vector<uint64_t>> length_counts_;  // per context: values by bit length
+  std::vector<int> orders_;
+  Bytes* out_ = nullptr;
+  BitWriter writer_{nullptr};
+};
+
+/// Reads a compact stream written by CompactStreamWriter. Every read
+/// returns false, without reading past the span, on a truncated or
+/// malformed code.
+class CompactStreamReader {
+ public:
+  /// Reads the `contexts` order bytes. \return false when they are missing
+  /// or an order exceeds kCompactMaxOrder.
+  bool start(const uint8_t* data, size_t size, int contexts);
+
+  bool golomb(int ctx, uint64_t* value);
+  bool bits(int width, uint64_t* value);
+
+  /// Bits not read yet: a lower bound for counts (each code takes >= 1 bit).
+  uint64_t bits_left() const { return total_bits_ - reader_.bits_consumed(); }
+  /// True when the rest of the last byte is zero and no byte follows.
+  bool at_clean_end() const {
+    return reader_.padding_is_zero() && reader_.bytes_consumed() == size_;
+  }
+
+ private:
+  std::vector<int> orders_;
+  BitReader reader_{nullptr, 0};
+  size_t size_ = 0;
+  uint64_t total_bits_ = 0;
+};
+
+}  // namespace lodbake

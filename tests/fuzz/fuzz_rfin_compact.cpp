@@ -1,0 +1,9 @@
+// Fuzz target for the compact RFIN decoder (codec 1). Input: a compact
+// RFIN payload (the corpus holds real ones written by lodbake-pack).
+#include "formats/container/section_registry.h"
+#include "tests/fuzz/fuzz_compact_section.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  lodbake::fuzz::check_compact_section(lodbake::kRfinTag, data, size);
+  return 0;
+}
