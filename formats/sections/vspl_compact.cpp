@@ -1,53 +1,69 @@
 // Compact VSPL (codec 1): a lossless recoding of a raw VSPL payload, layout
 // in docs/format.md "Compact VSPL". Progressive-mesh coding after Hoppe
-// 1996 ("Progressive meshes", section 5: vs as an index, wings relative to
-// vs, positions predicted from vs), without replaying the connectivity.
+// 1996 ("Progressive meshes", section 5: vs as an index, wings by their
+// place around vs, positions predicted from the neighbourhood) and Hoppe
+// 1998 ("Efficient implementation of progressive meshes": the wings as a
+// fan offset), entropy coded with the LZMA range coder
+// (formats/support/range_coder.h).
 //
-// Choices, measured on the Stanford bunny's full PM (34795 splits):
-// - vs stays a bits(n) index: QEM order makes it uniform over the mesh
-//   (entropy of n - vs: 13.96 bits at log2 n = 13.66), so coding it
-//   relative to anything saves nothing.
-// - Wings relative to vs as raw ids (vl - vs) have an entropy of 14 bits:
-//   ids carry no locality. Instead each vertex keeps a list of vertices it
-//   is known to neighbour (the base mesh's edges, then every split's new
-//   edges vs-vt, vt-vl, vt-vr), in insertion order, capped at 64 entries
-//   (255 gave the same sizes on the bunny and the dragon, with longer
-//   scans). A wing found in vs's list costs 1 + bits(list size) bits,
-//   otherwise 1 + bits(n + 1). On the bunny 63% are found in lists of 7 on
-//   average: about 8.3 bits per wing instead of 14. Replaying the connectivity would
-//   find every wing (Hoppe's ~5 bits) but needs the replay in the reader;
-//   the lists need no mesh and cannot fail on hostile records.
-// - Quantized positions, in the section's own box and bits (a base vertex's
-//   float position is quantized into that box first, clamped): vt minus the
-//   midpoint of its wings vl and vr (vs's position when a wing is missing),
-//   a stored vs minus vs's position before the split; zigzag, then
-//   Exp-Golomb of the order k that is smallest for each axis (k stored).
-//   Mean log2(|residual| + 1) per coordinate on the bunny at 14 bits: 5.57
-//   predicting from vs, 5.28 by the parallelogram vl + vr - vs, 5.20 from
-//   the centroid of vs, vl, vr, 5.03 from the wings' midpoint. QEM collapses
-//   short edges in any direction, so vt is not where a regular mesh's
-//   parallelogram puts it.
-//   Float32 positions are copied: they cannot be predicted losslessly
-//   without a float residual coder, and packing quantizes them on request.
-// - Errors (float32, exact): the difference of each error's bit pattern
-//   from the previous one, zigzag, Exp-Golomb with the best k. Collapse
-//   costs are not monotone, but neighbours share exponent bits.
-// - Normals, texture coordinates and the permutation are copied unchanged.
-// - One interleaved bit stream, record after record, so the decoder needs
-//   no per-part sizes: it checks the tail's exact size after the stream.
+// Layout version 2, measured on the Stanford bunny's full PM (34780 splits,
+// 14-bit positions; bits per split):
+// - vs: uniform over n costs log2 n (13.66 against bits(n)'s 16); vs is
+//   rarely a vertex created in the last quarter of the splits (bins of
+//   vs / n have an entropy of 4.65 bits out of 5), so its 64th of [0, n) is
+//   coded adaptively: 13.22. Neither the previous vs nor recent splits'
+//   vertices predict it (a vs is among the last 64 records' vertices in
+//   0.07% of the splits).
+// - Wings: the connectivity is replayed (formats/mesh/split_connectivity.h),
+//   vl is coded by its index in vs's current fan and vr by its offset back
+//   from vl (the faces that move), adaptive per fan size and closedness:
+//   4.74, against 17.8 for version 1's known-neighbour lists. Every wing of
+//   a real PM is in its fan.
+// - Positions (quantized): vt from the centroid of its fan after the split
+//   (22.63, against 24.76 from the wings' midpoint of version 1; weighting
+//   the midpoint in, or leaving vs out, was worse), residual contexts by the
+//   spread of the fan along each axis (22.11), and the axis most aligned
+//   with the fan's Newell normal coded last, predicted on the tangent plane
+//   from the other two residuals (21.27). Conditioning the last axis on the
+//   first two residuals, or adapting faster (1/16), gained nothing.
+// - Errors (float32, exact): the signed difference of each error's bit
+//   pattern from the previous one, in the context of the previous
+//   difference's size: 13.75 (version 1: 14.7). Collapse costs are not
+//   monotone, but neighbours in the order share exponent bits.
+// - Permutation: each split vertex's input id predicted by vs's (vs and vt
+//   are neighbours in the full mesh, and input files number neighbours
+//   close together), in the context of how far the wings' input ids are
+//   from vs's: 10.62 per vertex, against bits(F) = 16 verbatim. The median
+//   of vs, vl and vr predicted worse (11.27 without that context).
+// - Float32 positions, normals and texture coordinates are copied: they
+//   cannot be predicted losslessly without a float residual coder, and
+//   packing quantizes positions on request.
+// - Adaptive models need a few hundred splits to learn: on the 31-split
+//   golden grid version 2 is larger than version 1, so the writer keeps the
+//   smaller of the two.
+//
+// Layout version 1 (read, and written when smaller): vs in bits(n), wings
+// by their index in lists of vertices each vertex is known to neighbour
+// (the base mesh's edges, then every split's new edges, capped at 64),
+// positions predicted from the wings' midpoint, Exp-Golomb codes with the
+// best order per part, the permutation verbatim.
 #include "formats/sections/vspl_compact.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstring>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
+#include "formats/mesh/split_connectivity.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/bit_packing.h"
 #include "formats/support/byte_reader.h"
 #include "formats/support/quantization.h"
+#include "formats/support/range_coder.h"
 #include "formats/support/string_format.h"
 
 namespace lodbake {
@@ -290,7 +306,7 @@ class QuantizedPositions {
   std::vector<uint32_t> q_;
 };
 
-Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
+Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
   LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
   Fixed f;
@@ -333,7 +349,7 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
 
   Bytes out;
   ByteWriter writer(&out);
-  writer.write(kVsplCompactVersion);
+  writer.write(uint8_t{1});
   writer.write_bytes(raw, f.bytes);
   int order[3] = {0, 0, 0};
   if (f.quantized) {
@@ -389,12 +405,7 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
   return out;
 }
 
-Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleMesh& base) {
-  if (size < 1) return bad_compact("payload is empty");
-  if (data[0] != kVsplCompactVersion) {
-    return bad_compact(string_printf("layout version %u is unknown (this reader knows %u)", data[0],
-                                     kVsplCompactVersion));
-  }
+Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& base) {
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, &f));
   if (f.base != base.vertex_count()) {
@@ -532,11 +543,579 @@ Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleM
   return out;
 }
 
+// ---------------------------------------------------------------------------
+// Layout version 2 (see the file comment).
+
+constexpr uint32_t kWingNone = 62;    // first-wing and lone-wing symbol: no such wing
+constexpr uint32_t kWingEscape = 63;  // any wing symbol: the id follows, uniform in [0, n)
+constexpr uint32_t kOffsetNone = 0;   // second-wing offset symbol: no vr
+constexpr size_t kFanContexts = 64;
+constexpr size_t kScaleContexts = 32;
+constexpr size_t kErrorContexts = 33;
+constexpr size_t kPermutationContexts = 34;
+
+// Context of a fan: closed rings and open fans (boundaries) apart, then the
+// neighbour count, which sets the spread of a uniform wing.
+size_t fan_context(bool closed, size_t count) {
+  return (closed ? 0 : 32) + std::min<size_t>(count, 31);
+}
+
+// Context of the second wing: its offset is below the ring size in a closed
+// fan, below vl's place in an open one.
+size_t offset_context(bool closed, size_t count, size_t vl_index) {
+  return closed ? std::min<size_t>(count, 31) : 32 + std::min<size_t>(vl_index, 31);
+}
+
+struct Models {
+  Models()
+      : vs_buckets(6),
+        first(kFanContexts, BitTreeModel(6)),
+        offset(kFanContexts, BitTreeModel(6)),
+        alone(kFanContexts, BitTreeModel(6)),
+        position(6 * kScaleContexts),
+        error(kErrorContexts),
+        permutation(kPermutationContexts) {}
+  BitTreeModel vs_buckets;
+  std::vector<BitTreeModel> first;
+  std::vector<BitTreeModel> offset;
+  std::vector<BitTreeModel> alone;
+  AdaptiveSignedModel position;
+  AdaptiveSignedModel error;
+  AdaptiveSignedModel permutation;
+};
+
+// The scale context of a split's residuals: the bit length of the largest
+// coordinate distance between its wings (or between vs and its one wing),
+// since a split's offsets grow with the size of the edges around it.
+size_t scale_context(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr) {
+  const uint32_t a = vl == kNoVertex ? vs : vl;
+  const uint32_t b = vr == kNoVertex ? vs : vr;
+  uint32_t largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const uint32_t p = q.get(a, axis);
+    const uint32_t r = q.get(b, axis);
+    largest = std::max(largest, p > r ? p - r : r - p);
+  }
+  return std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(largest)),
+                          kScaleContexts - 1);
+}
+
+// vt's prediction, once the split is applied to `mesh`. The centroid of
+// vt's neighbours (vs, the wings and the fan between them): a smooth
+// surface passes near the average of a vertex's neighbours. The two axes
+// least aligned with the fan's normal are coded first; the third is then
+// predicted on the fan's tangent plane through the centroid, since the
+// offset from the centroid is mostly tangential. Without a fan (hostile
+// records), version 1's rule from the wings. Integer arithmetic only, so
+// every platform predicts alike.
+struct VtPrediction {
+  int64_t centroid[3] = {};
+  size_t spread[3] = {};  // per axis: bit length of the neighbours' widest offset
+  int order[3] = {0, 1, 2};
+  int64_t normal[3] = {};  // fan normal, scaled below 2^16 per axis; 0 without a plane
+  // The prediction of coordinate order[c], given the residuals of the
+  // coordinates coded before it.
+  int64_t predict(int c, const int64_t residual[3]) const {
+    const int axis = order[c];
+    if (c < 2 || normal[axis] == 0) return centroid[axis];
+    const int64_t num =
+        -(normal[order[0]] * residual[order[0]] + normal[order[1]] * residual[order[1]]);
+    const int64_t den = normal[axis];
+    // Rounded to nearest, ties away from zero.
+    const int64_t q = (2 * (num < 0 ? -num : num) + den) / (2 * den);
+    return centroid[axis] + (num < 0 ? -q : q);
+  }
+  // The context of coordinate order[c]: its axis's spread.
+  size_t context(int c) const { return static_cast<size_t>(c) * kScaleContexts + spread[order[c]]; }
+};
+
+int shift_below(uint64_t magnitude, int bits) {
+  int shift = 0;
+  while ((magnitude >> shift) >= (uint64_t{1} << bits))
+    ++shift;
+  return shift;
+}
+
+VtPrediction predict_vt_v2(const QuantizedPositions& q, const SplitConnectivity& mesh, uint32_t vs,
+                           uint32_t vl, uint32_t vr, std::vector<uint32_t>* ring) {
+  VtPrediction p;
+  const bool closed = mesh.neighbours(mesh.vertex_count() - 1, ring);
+  if (ring->empty()) {
+    for (int a = 0; a < 3; ++a) {
+      p.centroid[a] = q.predict_vt(vs, vl, vr, a);
+      p.spread[a] = kScaleContexts - 1;
+    }
+    return p;
+  }
+  const int64_t count = static_cast<int64_t>(ring->size());
+  uint64_t widest_all = 0;
+  for (int a = 0; a < 3; ++a) {
+    int64_t sum = 0;
+    for (uint32_t v : *ring)
+      sum += q.get(v, a);
+    p.centroid[a] = (sum + count / 2) / count;
+    uint64_t widest = 0;
+    for (uint32_t v : *ring) {
+      const int64_t d = int64_t{q.get(v, a)} - p.centroid[a];
+      widest = std::max(widest, static_cast<uint64_t>(d < 0 ? -d : d));
+    }
+    widest_all = std::max(widest_all, widest);
+    p.spread[a] = std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(widest)),
+                                   kScaleContexts - 1);
+  }
+  // Newell's normal of the fan polygon, offsets scaled below 2^20 so that
+  // the sums of products stay far inside 64 bits.
+  const int shift = shift_below(widest_all, 20);
+  int64_t n[3] = {0, 0, 0};
+  const size_t edges = closed ? ring->size() : ring->size() - 1;
+  for (size_t i = 0; i < edges; ++i) {
+    const uint32_t u = (*ring)[i];
+    const uint32_t w = (*ring)[(i + 1) % ring->size()];
+    int64_t du[3];
+    int64_t dw[3];
+    for (int a = 0; a < 3; ++a) {
+      du[a] = (int64_t{q.get(u, a)} - p.centroid[a]) / (int64_t{1} << shift);
+      dw[a] = (int64_t{q.get(w, a)} - p.centroid[a]) / (int64_t{1} << shift);
+    }
+    n[0] += du[1] * dw[2] - du[2] * dw[1];
+    n[1] += du[2] * dw[0] - du[0] * dw[2];
+    n[2] += du[0] * dw[1] - du[1] * dw[0];
+  }
+  uint64_t largest = 0;
+  int dominant = 0;
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t m = static_cast<uint64_t>(n[a] < 0 ? -n[a] : n[a]);
+    if (m > largest) {
+      largest = m;
+      dominant = a;
+    }
+  }
+  if (largest == 0) return p;
+  const int normal_shift = shift_below(largest, 16);
+  const int64_t sign = n[dominant] < 0 ? -1 : 1;
+  for (int a = 0; a < 3; ++a)
+    p.normal[a] = sign * n[a] / (int64_t{1} << normal_shift);
+  if (p.normal[dominant] == 0) {
+    for (int64_t& c : p.normal)
+      c = 0;
+    return p;
+  }
+  int k = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (a != dominant) p.order[k++] = a;
+  }
+  p.order[2] = dominant;
+  return p;
+}
+
+size_t error_context(int64_t previous_delta) {
+  const uint64_t m = previous_delta < 0 ? uint64_t{0} - static_cast<uint64_t>(previous_delta)
+                                        : static_cast<uint64_t>(previous_delta);
+  return std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(m)), kErrorContexts - 1);
+}
+
+// The permutation predicts a base vertex's input id from the previous
+// vertex's (+1), a split vertex's from vs's: vs and vt are neighbours in
+// the full mesh, and input files number neighbours close together.
+// Contexts: base vertices, then split vertices by the bit length of the
+// previous split vertex's difference.
+size_t permutation_context(bool split, int64_t previous_delta) {
+  if (!split) return 0;
+  return 1 + std::min<size_t>(static_cast<size_t>(error_context(previous_delta)),
+                              kPermutationContexts - 2);
+}
+
+int64_t permutation_spread(int64_t x, int64_t y, int64_t z) {
+  return std::max(std::abs(y - x), std::abs(z - x));
+}
+
+// vs by the 64th of [0, n) it falls in (adaptive: recently created
+// vertices are rarely split soon, so the top 64ths are rare), then
+// uniformly within that 64th. Below 128 vertices a 64th may hold one id or
+// none, so vs is uniform there: either way each record narrows the coder's
+// range by at least one bit, which bounds the record count by the bytes.
+constexpr uint32_t kVsBucketsFrom = 128;
+uint32_t vs_bucket_start(uint64_t bucket, uint64_t n) {
+  return static_cast<uint32_t>((bucket * n + 63) / 64);
+}
+
+void encode_vs(RangeEncoder* rc, BitTreeModel* buckets, uint32_t vs, uint32_t n) {
+  if (n < kVsBucketsFrom) {
+    rc->encode_uniform(vs, n);
+    return;
+  }
+  const uint32_t bucket = static_cast<uint32_t>(uint64_t{vs} * 64 / n);
+  buckets->encode(rc, bucket);
+  const uint32_t start = vs_bucket_start(bucket, n);
+  rc->encode_uniform(vs - start, vs_bucket_start(bucket + 1, n) - start);
+}
+
+bool decode_vs(RangeDecoder* rc, BitTreeModel* buckets, uint32_t n, uint32_t* vs) {
+  if (n < kVsBucketsFrom) return rc->decode_uniform(n, vs);
+  const uint32_t bucket = buckets->decode(rc);
+  const uint32_t start = vs_bucket_start(bucket, n);
+  uint32_t offset = 0;
+  if (!rc->decode_uniform(vs_bucket_start(bucket + 1, n) - start, &offset)) return false;
+  *vs = start + offset;
+  return true;
+}
+
+size_t index_in(const std::vector<uint32_t>& ring, uint32_t v) {
+  if (v == kNoVertex) return ring.size();
+  return static_cast<size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
+}
+
+uint64_t verbatim_bytes(const Fixed& f) {
+  const uint64_t r = f.splits;
+  const uint64_t per_split = (f.flags & kVsplStoresVsPositions) != 0 ? 24 : 12;
+  uint64_t bytes = f.quantized ? 0 : per_split * r;
+  if ((f.flags & kVsplStoresNormals) != 0) bytes += 12 * r;
+  if ((f.flags & kVsplStoresTexcoords) != 0) bytes += 8 * r;
+  return bytes;
+}
+
+Status check_base_triangles(const TriangleMesh& base) {
+  for (const Triangle& t : base.triangles) {
+    for (uint32_t v : t) {
+      if (v >= base.vertex_count()) return bad_compact("a base triangle index is out of range");
+    }
+  }
+  return Status::ok();
+}
+
+Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
+                        VsplCompactStats* stats) {
+  LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
+  LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
+  Fixed f;
+  LODBAKE_RETURN_IF_ERROR(read_fixed(raw, raw_size, &f));
+  LODBAKE_RETURN_IF_ERROR(check_base_triangles(base));
+  const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
+  const size_t per_split = with_vs ? 6 : 3;
+  const std::vector<VertexSplit>& splits = section.splits;
+  VsplCompactStats local;
+  VsplCompactStats& cost = stats != nullptr ? *stats : local;
+  cost = VsplCompactStats{};
+
+  Bytes out;
+  ByteWriter writer(&out);
+  writer.write(uint8_t{2});
+  writer.write_bytes(raw, f.bytes);
+  const size_t verbatim_start = out.size();
+  if (!f.quantized) writer.write_bytes(raw + parts.positions_offset, parts.positions_bytes);
+  const uint64_t attributes = verbatim_bytes(f) - (f.quantized ? 0 : parts.positions_bytes);
+  writer.write_bytes(raw + parts.tail_offset, static_cast<size_t>(attributes));
+  cost.verbatim_bytes = out.size() - verbatim_start;
+
+  RangeEncoder rc(&out);
+  Models m;
+  SplitConnectivity mesh(f.base, base.triangles);
+  std::vector<QuantizedPositions> q;
+  if (f.quantized) q.emplace_back(f, base.positions);
+  BitReader ints(raw + parts.positions_offset, parts.positions_bytes);
+  std::vector<uint32_t> ring;
+  uint32_t previous_error = 0;
+  int64_t previous_delta = 0;
+  double mark = 0;
+  auto spend = [&](double* part) {
+    *part += rc.cost_bits() - mark;
+    mark = rc.cost_bits();
+  };
+  for (size_t i = 0; i < splits.size(); ++i) {
+    const VertexSplit& s = splits[i];
+    const uint32_t n = f.base + static_cast<uint32_t>(i);
+    encode_vs(&rc, &m.vs_buckets, s.vs, n);
+    spend(&cost.vs_bits);
+
+    const bool closed = mesh.neighbours(s.vs, &ring);
+    const size_t count = ring.size();
+    const size_t il = index_in(ring, s.vl);
+    const uint32_t first = s.vl == kNoVertex                         ? kWingNone
+                           : il < std::min<size_t>(count, kWingNone) ? static_cast<uint32_t>(il)
+                                                                     : kWingEscape;
+    m.first[fan_context(closed, count)].encode(&rc, first);
+    if (first == kWingEscape) rc.encode_uniform(s.vl, n);
+    const size_t ir = index_in(ring, s.vr);
+    if (first < kWingNone) {
+      // vr by its offset back from vl along the fan: the faces that move.
+      uint32_t symbol = kWingEscape;
+      if (s.vr == kNoVertex) {
+        symbol = kOffsetNone;
+      } else if (ir < count) {
+        const size_t k = closed ? (il + count - ir) % count : (ir < il ? il - ir : 0);
+        if (k >= 1 && k < kWingNone) symbol = static_cast<uint32_t>(k);
+      }
+      m.offset[offset_context(closed, count, il)].encode(&rc, symbol);
+      if (symbol == kWingEscape) rc.encode_uniform(s.vr, n);
+    } else {
+      const uint32_t symbol = s.vr == kNoVertex                         ? kWingNone
+                              : ir < std::min<size_t>(count, kWingNone) ? static_cast<uint32_t>(ir)
+                                                                        : kWingEscape;
+      m.alone[fan_context(closed, count)].encode(&rc, symbol);
+      if (symbol == kWingEscape) rc.encode_uniform(s.vr, n);
+    }
+    spend(&cost.wing_bits);
+    mesh.split(s.vs, s.vl, s.vr);
+
+    if (f.quantized) {
+      QuantizedPositions& qp = q.front();
+      const size_t scale = scale_context(qp, s.vs, s.vl, s.vr);
+      const VtPrediction p = predict_vt_v2(qp, mesh, s.vs, s.vl, s.vr, &ring);
+      uint32_t value[6] = {};
+      for (size_t c = 0; c < per_split; ++c)
+        ints.read(f.bits, &value[c]);
+      int64_t residual[3] = {};
+      for (int c = 0; c < 3; ++c) {
+        const int a = p.order[c];
+        residual[a] = int64_t{value[a]} - p.predict(c, residual);
+        m.position.encode(&rc, p.context(c), residual[a]);
+      }
+      for (size_t c = 3; c < per_split; ++c) {
+        const int a = static_cast<int>(c % 3);
+        m.position.encode(&rc, c * kScaleContexts + scale,
+                          int64_t{value[c]} - int64_t{qp.get(s.vs, a)});
+      }
+      if (with_vs) {
+        for (int a = 0; a < 3; ++a)
+          qp.set(s.vs, a, value[3 + a]);
+      }
+      qp.append(value);
+      spend(&cost.position_bits);
+    }
+
+    const uint32_t bits = float_bits(s.error);
+    const int64_t delta = int64_t{bits} - int64_t{previous_error};
+    m.error.encode(&rc, error_context(previous_delta), delta);
+    previous_error = bits;
+    previous_delta = delta;
+    spend(&cost.error_bits);
+  }
+  if ((f.flags & kVsplStoresPermutation) != 0) {
+    const std::vector<uint32_t>& input = section.input_vertex;
+    int64_t previous = 0;
+    for (size_t v = 0; v < input.size(); ++v) {
+      const bool split = v >= f.base;
+      int64_t predicted = v == 0 ? 0 : int64_t{input[v - 1]} + 1;
+      if (split) {
+        const VertexSplit& sp = splits[v - f.base];
+        predicted = input[sp.vs];
+        previous = permutation_spread(input[sp.vs], input[sp.vl == kNoVertex ? sp.vs : sp.vl],
+                                      input[sp.vr == kNoVertex ? sp.vs : sp.vr]);
+      }
+      const int64_t delta = int64_t{input[v]} - predicted;
+      m.permutation.encode(&rc, permutation_context(split, previous), delta);
+    }
+    spend(&cost.permutation_bits);
+  }
+  rc.finish();
+  return out;
+}
+
+Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& base) {
+  Fixed f;
+  LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, &f));
+  if (f.base != base.vertex_count()) {
+    return bad_compact(string_printf("base vertex count %u, but the base mesh has %zu vertices",
+                                     f.base, base.vertex_count()));
+  }
+  const uint64_t r = f.splits;
+  if (uint64_t{f.base} + r > UINT32_MAX)
+    return bad_compact("base vertices and splits make more than 2^32 - 1 vertices");
+  if (r != 0 && f.base < 2) return bad_compact("splits over a base of fewer than 2 vertices");
+  const size_t pos = 1 + f.bytes;
+  const uint64_t verbatim = verbatim_bytes(f);
+  if (verbatim > size - pos) {
+    return bad_compact(string_printf("%u splits need %" PRIu64 " verbatim bytes, %zu remain",
+                                     f.splits, verbatim, size - pos));
+  }
+  const uint8_t* stream = data + pos + verbatim;
+  const size_t stream_size = size - pos - static_cast<size_t>(verbatim);
+  // Each record codes vs uniformly among n >= 2 vertices, which narrows the
+  // coder's range by at least one bit, and the range gains 8 bits per byte
+  // read: a stream of S bytes holds fewer than 8 S records.
+  if (r > 8 * uint64_t{stream_size}) {
+    return bad_compact(
+        string_printf("%u splits cannot fit in a stream of %zu bytes", f.splits, stream_size));
+  }
+  LODBAKE_RETURN_IF_ERROR(check_base_triangles(base));
+  const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
+  const size_t per_split = with_vs ? 6 : 3;
+
+  RangeDecoder rc(stream, stream_size);
+  if (!rc.valid_start()) return bad_compact("the range-coded stream has no valid start");
+  Bytes topology;
+  Bytes positions;
+  Bytes errors;
+  BitWriter topology_out(&topology);
+  BitWriter positions_out(&positions);
+  ByteWriter errors_out(&errors);
+  Models m;
+  SplitConnectivity mesh(f.base, base.triangles);
+  std::vector<QuantizedPositions> q;
+  if (f.quantized) q.emplace_back(f, base.positions);
+  std::vector<uint32_t> ring;
+  std::vector<Triangle> split_vertices;  // vs, vl, vr of each record
+  uint32_t previous_error = 0;
+  int64_t previous_delta = 0;
+  for (uint32_t i = 0; i < f.splits; ++i) {
+    const uint32_t n = f.base + i;
+    const std::string where = string_printf("split %u: ", i);
+    uint32_t vs = 0;
+    if (!decode_vs(&rc, &m.vs_buckets, n, &vs)) return bad_compact(where + "vs out of range");
+
+    const bool closed = mesh.neighbours(vs, &ring);
+    const size_t count = ring.size();
+    uint32_t vl = kNoVertex;
+    uint32_t vr = kNoVertex;
+    const uint32_t first = m.first[fan_context(closed, count)].decode(&rc);
+    if (first == kWingEscape) {
+      if (!rc.decode_uniform(n, &vl)) return bad_compact(where + "vl out of range");
+    } else if (first < kWingNone) {
+      if (first >= count) return bad_compact(where + "vl's place is outside vs's fan");
+      vl = ring[first];
+    }
+    if (first < kWingNone) {
+      const uint32_t k = m.offset[offset_context(closed, count, first)].decode(&rc);
+      if (k == kWingEscape) {
+        if (!rc.decode_uniform(n, &vr)) return bad_compact(where + "vr out of range");
+      } else if (k != kOffsetNone) {
+        if (k == kWingNone || k >= count || (!closed && k > first))
+          return bad_compact(where + "vr's offset from vl is outside vs's fan");
+        vr = ring[closed ? (first + count - k) % count : first - k];
+      }
+    } else {
+      const uint32_t symbol = m.alone[fan_context(closed, count)].decode(&rc);
+      if (symbol == kWingEscape) {
+        if (!rc.decode_uniform(n, &vr)) return bad_compact(where + "vr out of range");
+      } else if (symbol < kWingNone) {
+        if (symbol >= count) return bad_compact(where + "vr's place is outside vs's fan");
+        vr = ring[symbol];
+      }
+    }
+    if (vl == kNoVertex && vr == kNoVertex) return bad_compact(where + "both wings are missing");
+    if (vl == vs || vr == vs || (vl == vr && vl != kNoVertex))
+      return bad_compact(where + "a repeated vertex");
+    topology_out.write(vs, bits_for_count(n));
+    topology_out.write(vl == kNoVertex ? n : vl, bits_for_count(uint64_t{n} + 1));
+    topology_out.write(vr == kNoVertex ? n : vr, bits_for_count(uint64_t{n} + 1));
+    mesh.split(vs, vl, vr);
+
+    if (f.quantized) {
+      QuantizedPositions& qp = q.front();
+      const size_t scale = scale_context(qp, vs, vl, vr);
+      const VtPrediction p = predict_vt_v2(qp, mesh, vs, vl, vr, &ring);
+      uint32_t value[6] = {};
+      int64_t residual[3] = {};
+      for (size_t c = 0; c < per_split; ++c) {
+        const int a = c < 3 ? p.order[c] : static_cast<int>(c % 3);
+        const size_t context = c < 3 ? p.context(static_cast<int>(c)) : c * kScaleContexts + scale;
+        int64_t decoded = 0;
+        if (!m.position.decode(&rc, context, &decoded))
+          return bad_compact(where + "a position residual code is out of range");
+        const int64_t predicted =
+            c < 3 ? p.predict(static_cast<int>(c), residual) : int64_t{qp.get(vs, a)};
+        if (c < 3) residual[a] = decoded;
+        const int64_t v = predicted + decoded;
+        if (v < 0 || v > int64_t{qp.steps()}) {
+          return bad_compact(where + string_printf("position coordinate %" PRId64 " outside 0..%u",
+                                                   v, qp.steps()));
+        }
+        value[c < 3 ? a : c] = static_cast<uint32_t>(v);
+      }
+      for (size_t c = 0; c < per_split; ++c)
+        positions_out.write(value[c], f.bits);
+      if (with_vs) {
+        for (int a = 0; a < 3; ++a)
+          qp.set(vs, a, value[3 + a]);
+      }
+      qp.append(value);
+    }
+
+    int64_t delta = 0;
+    if (!m.error.decode(&rc, error_context(previous_delta), &delta))
+      return bad_compact(where + "an error code is out of range");
+    const int64_t bits = int64_t{previous_error} + delta;
+    if (bits < 0 || bits > int64_t{UINT32_MAX})
+      return bad_compact(where + "error bits out of range");
+    previous_error = static_cast<uint32_t>(bits);
+    previous_delta = delta;
+    errors_out.write(previous_error);
+    split_vertices.push_back({vs, vl, vr});
+    if (rc.overrun()) return bad_compact(where + "the stream ends inside the record");
+  }
+  topology_out.finish();
+  positions_out.finish();
+
+  Bytes permutation;
+  if ((f.flags & kVsplStoresPermutation) != 0) {
+    const uint64_t full = uint64_t{f.base} + r;
+    const int width = bits_for_count(full);
+    std::vector<uint32_t> input;
+    input.reserve(static_cast<size_t>(full));
+    BitWriter permutation_out(&permutation);
+    int64_t previous = 0;
+    for (uint64_t v = 0; v < full; ++v) {
+      const bool split = v >= f.base;
+      int64_t predicted = v == 0 ? 0 : int64_t{input[v - 1]} + 1;
+      if (split) {
+        const Triangle& t = split_vertices[v - f.base];
+        predicted = input[t[0]];
+        previous = permutation_spread(input[t[0]], input[t[1] == kNoVertex ? t[0] : t[1]],
+                                      input[t[2] == kNoVertex ? t[0] : t[2]]);
+      }
+      int64_t delta = 0;
+      if (!m.permutation.decode(&rc, permutation_context(split, previous), &delta))
+        return bad_compact("a permutation code is out of range");
+      const int64_t value = predicted + delta;
+      if (value < 0 || static_cast<uint64_t>(value) >= full) {
+        return bad_compact(string_printf("input vertex %" PRId64 " of vertex %" PRIu64
+                                         " outside 0..%" PRIu64,
+                                         value, v, full - 1));
+      }
+
+      input.push_back(static_cast<uint32_t>(value));
+      permutation_out.write(static_cast<uint32_t>(value), width);
+      if (rc.overrun()) return bad_compact("the stream ends inside the permutation");
+    }
+    permutation_out.finish();
+  }
+  if (!rc.at_end()) {
+    return bad_compact(rc.overrun() ? "the range-coded stream ends early"
+                                    : "bytes follow the range-coded stream");
+  }
+
+  const uint64_t float_bytes = f.quantized ? 0 : 4 * per_split * r;
+  const uint8_t* verbatim_data = data + pos;
+  Bytes out;
+  out.reserve(f.bytes + topology.size() + positions.size() + errors.size() + verbatim +
+              permutation.size());
+  out.insert(out.end(), data + 1, data + 1 + f.bytes);
+  out.insert(out.end(), topology.begin(), topology.end());
+  if (f.quantized) {
+    out.insert(out.end(), positions.begin(), positions.end());
+  } else {
+    out.insert(out.end(), verbatim_data, verbatim_data + float_bytes);
+  }
+  out.insert(out.end(), errors.begin(), errors.end());
+  out.insert(out.end(), verbatim_data + float_bytes, verbatim_data + verbatim);
+  out.insert(out.end(), permutation.begin(), permutation.end());
+  return out;
+}
+
 }  // namespace
 
-Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
+Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
+                                  const VsplCompactOptions& options) {
   try {
-    return encode_unchecked(raw, raw_size, base);
+    if (options.version == 1) return encode_v1(raw, raw_size, base);
+    if (options.version == 2) return encode_v2(raw, raw_size, base, options.stats);
+    if (options.version == 0) {
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v2, encode_v2(raw, raw_size, base, options.stats));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v1, encode_v1(raw, raw_size, base));
+      return v1.size() < v2.size() ? v1 : v2;
+    }
+    return invalid_input(
+        string_printf("cannot encode compact VSPL: layout version %u is unknown", options.version));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact VSPL");
   }
@@ -544,7 +1123,11 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
 
 Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const TriangleMesh& base) {
   try {
-    return decode_unchecked(data, size, base);
+    if (size < 1) return bad_compact("payload is empty");
+    if (data[0] == 1) return decode_v1(data, size, base);
+    if (data[0] == 2) return decode_v2(data, size, base);
+    return bad_compact(
+        string_printf("layout version %u is unknown (this reader knows 1 and 2)", data[0]));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact VSPL");
   }
