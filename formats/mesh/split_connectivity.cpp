@@ -21,6 +21,41 @@ bool contains(const std::vector<uint32_t>& list, uint32_t v) {
 
 }  // namespace
 
+bool SplitConnectivity::FaceLists::contains(uint32_t v, uint32_t f) const {
+  const uint32_t* d = data(v);
+  return std::find(d, d + count(v), f) != d + count(v);
+}
+
+void SplitConnectivity::FaceLists::push(uint32_t v, uint32_t f) {
+  List& l = lists_[v];
+  if (l.spill == kNoSpill && l.count < kInline) {
+    l.head[l.count++] = f;
+    return;
+  }
+  if (l.spill == kNoSpill) {
+    l.spill = static_cast<uint32_t>(spills_.size());
+    spills_.emplace_back(l.head, l.head + l.count);
+  }
+  spills_[l.spill].push_back(f);
+  ++l.count;
+}
+
+void SplitConnectivity::FaceLists::erase(uint32_t v, uint32_t f) {
+  List& l = lists_[v];
+  if (l.spill != kNoSpill) {
+    std::vector<uint32_t>& spill = spills_[l.spill];
+    const auto it = std::find(spill.begin(), spill.end(), f);
+    if (it == spill.end()) return;
+    spill.erase(it);
+  } else {
+    uint32_t* end = l.head + l.count;
+    uint32_t* it = std::find(l.head, end, f);
+    if (it == end) return;
+    std::copy(it + 1, end, it);
+  }
+  --l.count;
+}
+
 SplitConnectivity::SplitConnectivity(uint32_t vertex_count, const std::vector<Triangle>& triangles)
     : vertex_faces_(vertex_count) {
   faces_.reserve(triangles.size());
@@ -32,21 +67,22 @@ void SplitConnectivity::add_face(const Triangle& t) {
   const uint32_t f = static_cast<uint32_t>(faces_.size());
   faces_.push_back(t);
   for (int k = 0; k < 3; ++k) {
-    if ((k < 1 || t[k] != t[0]) && (k < 2 || t[k] != t[1])) vertex_faces_[t[k]].push_back(f);
+    if ((k < 1 || t[k] != t[0]) && (k < 2 || t[k] != t[1])) vertex_faces_.push(t[k], f);
   }
 }
 
 bool SplitConnectivity::neighbours(uint32_t vs, std::vector<uint32_t>* ring) const {
   ring->clear();
-  const std::vector<uint32_t>& faces = vertex_faces_[vs];
-  if (faces.empty() || faces.size() > kMaxFanFaces) return false;
+  const size_t face_count = vertex_faces_.count(vs);
+  if (face_count == 0 || face_count > kMaxFanFaces) return false;
+  const uint32_t* faces = vertex_faces_.data(vs);
   // (a, b) of each face (vs, a, b), in vs's face list order.
   uint32_t a[kMaxFanFaces];
   uint32_t b[kMaxFanFaces];
   bool used[kMaxFanFaces] = {};
   size_t pairs = 0;
-  for (uint32_t f : faces) {
-    const Triangle& t = faces_[f];
+  for (size_t i = 0; i < face_count; ++i) {
+    const Triangle& t = faces_[faces[i]];
     const int c = corner(t, vs);
     const uint32_t x = t[(c + 1) % 3];
     const uint32_t y = t[(c + 2) % 3];
@@ -93,25 +129,27 @@ bool SplitConnectivity::neighbours(uint32_t vs, std::vector<uint32_t>* ring) con
 
 void SplitConnectivity::split(uint32_t vs, uint32_t vl, uint32_t vr) {
   const uint32_t vt = vertex_count();
-  vertex_faces_.emplace_back();
-  std::vector<uint32_t>& faces = vertex_faces_[vs];
-  std::vector<uint32_t> moved;
-  if (faces.size() <= kMaxFanFaces) {
+  vertex_faces_.add_vertex();
+  const size_t face_count = vertex_faces_.count(vs);
+  uint32_t moved[kMaxFanFaces];
+  size_t moves = 0;
+  if (face_count <= kMaxFanFaces) {
+    const uint32_t* faces = vertex_faces_.data(vs);
     bool taken[kMaxFanFaces] = {};
     // The untaken face of vs whose corner `offset` places after vs is v.
     auto find = [&](int offset, uint32_t v) {
-      for (size_t i = 0; i < faces.size(); ++i) {
+      for (size_t i = 0; i < face_count; ++i) {
         const Triangle& t = faces_[faces[i]];
         if (!taken[i] && t[(corner(t, vs) + offset) % 3] == v) return i;
       }
-      return faces.size();
+      return face_count;
     };
     bool reached_vl = false;
     if (vr != kNoVertex) {
       uint32_t next = vr;
-      for (size_t i = find(1, next); i < faces.size(); i = find(1, next)) {
+      for (size_t i = find(1, next); i < face_count; i = find(1, next)) {
         taken[i] = true;
-        moved.push_back(faces[i]);
+        moved[moves++] = faces[i];
         const Triangle& t = faces_[faces[i]];
         next = t[(corner(t, vs) + 2) % 3];
         if (next == vl) {
@@ -122,20 +160,21 @@ void SplitConnectivity::split(uint32_t vs, uint32_t vl, uint32_t vr) {
     }
     if (vl != kNoVertex && !reached_vl) {
       uint32_t prev = vl;
-      for (size_t i = find(2, prev); i < faces.size(); i = find(2, prev)) {
+      for (size_t i = find(2, prev); i < face_count; i = find(2, prev)) {
         taken[i] = true;
-        moved.push_back(faces[i]);
+        moved[moves++] = faces[i];
         const Triangle& t = faces_[faces[i]];
         prev = t[(corner(t, vs) + 1) % 3];
       }
     }
   }
-  for (uint32_t f : moved) {
+  for (size_t k = 0; k < moves; ++k) {
+    const uint32_t f = moved[k];
     Triangle& t = faces_[f];
     t[corner(t, vs)] = vt;
-    faces.erase(std::find(faces.begin(), faces.end(), f));
+    vertex_faces_.erase(vs, f);
     // A face holding vt already (only a degenerate hostile one) stays listed once.
-    if (!contains(vertex_faces_[vt], f)) vertex_faces_[vt].push_back(f);
+    if (!vertex_faces_.contains(vt, f)) vertex_faces_.push(vt, f);
   }
   if (vl != kNoVertex) add_face({vs, vt, vl});
   if (vr != kNoVertex) add_face({vt, vs, vr});

@@ -51,9 +51,39 @@ class SplitConnectivity {
   void split(uint32_t vs, uint32_t vl, uint32_t vr);
 
  private:
+  // Each vertex's faces in insertion order: up to kInline inline (fans
+  // average six faces), more in a spill vector, so a million-vertex mesh
+  // needs no allocation per vertex and its lists stay in one array.
+  class FaceLists {
+   public:
+    explicit FaceLists(size_t vertices) : lists_(vertices) {}
+    size_t size() const { return lists_.size(); }
+    void add_vertex() { lists_.emplace_back(); }
+    size_t count(uint32_t v) const { return lists_[v].count; }
+    const uint32_t* data(uint32_t v) const {
+      const List& l = lists_[v];
+      return l.spill == kNoSpill ? l.head : spills_[l.spill].data();
+    }
+    bool contains(uint32_t v, uint32_t f) const;
+    void push(uint32_t v, uint32_t f);
+    /// Removes the first f, keeping the order of the others.
+    void erase(uint32_t v, uint32_t f);
+
+   private:
+    static constexpr uint32_t kInline = 7;
+    static constexpr uint32_t kNoSpill = UINT32_MAX;
+    struct List {
+      uint32_t count = 0;
+      uint32_t spill = kNoSpill;
+      uint32_t head[kInline] = {};
+    };
+    std::vector<List> lists_;
+    std::vector<std::vector<uint32_t>> spills_;
+  };
+
   void add_face(const Triangle& t);
   std::vector<Triangle> faces_;
-  std::vector<std::vector<uint32_t>> vertex_faces_;
+  FaceLists vertex_faces_;
 };
 
 }  // namespace lodbake

@@ -33,9 +33,10 @@ struct VsplCompactStats {
 };
 
 struct VsplCompactOptions {
-  /// 1 or 2; 0 (the default) writes both and keeps the smaller, version 2
-  /// on a tie: version 2's adaptive models need a few hundred splits to
-  /// learn, so version 1 stays smaller on tiny progressive meshes.
+  /// 1 or 2; 0 (the default): below 4096 splits, writes both and keeps the
+  /// smaller, version 2 on a tie (version 2's adaptive models need a few
+  /// hundred splits to learn, so version 1 stays smaller on tiny
+  /// progressive meshes); from 4096 splits on, version 2.
   uint8_t version = 0;
   /// Filled in with the version-2 encoding's costs when not null.
   VsplCompactStats* stats = nullptr;
