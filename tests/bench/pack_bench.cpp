@@ -3,7 +3,10 @@
 //   - lodbake: the engine's full PM (down to --base-triangles) stored as
 //     BASE + VSPL raw float32, raw quantized, compact float32, compact
 //     quantized, compact quantized with a Draco BASE; the compact VSPL's
-//     parts (permutation, errors) measured by re-encoding without them;
+//     parts (permutation, errors) measured by re-encoding without them, and
+//     the bits per split of each part as the range coder spends them (vs,
+//     wings, positions, errors, permutation); the ratio to Draco of the
+//     whole PM and of its topology and positions alone (what Draco stores);
 //   - OpenMesh's progressive mesh file (DecimaterT + ModQuadricT +
 //     ModProgMeshT::write(): 24 bytes per split), and the .spm OpenMesh's
 //     VDPM analyzer (OpenMesh-Analyzer, Debian libopenmesh-apps, run as a
