@@ -7,7 +7,9 @@
 // (formats/support/range_coder.h).
 //
 // Layout version 2, measured on the Stanford bunny's full PM (34780 splits,
-// 14-bit positions; bits per split):
+// 14-bit positions; bits per split; each step with LZMA's 11-bit
+// probabilities, whose 16-bit replacement then took 0.3 bit more off:
+// 63.3 in all, against 88 for version 1):
 // - vs: uniform over n costs log2 n (13.66 against bits(n)'s 16); vs is
 //   rarely a vertex created in the last quarter of the splits (bins of
 //   vs / n have an entropy of 4.65 bits out of 5), so its 64th of [0, n) is

@@ -1,5 +1,6 @@
 // The LZMA range coder (Pavlov, LZMA SDK "LzmaEnc.c" / "LzmaDec.c"): 32-bit
-// range, 11-bit probabilities adapting by 1/32 of the distance to certainty,
+// range, probabilities adapting by 1/32 of the distance to certainty (here
+// with 16 bits of precision instead of LZMA's 11),
 // carry propagation through a cached byte and a count of pending 0xFF
 // bytes. Additions over LZMA: uniform values over any n (the range divided
 // by n, in 16-bit pieces so the division loses at most 2^-8 of the range),
@@ -16,16 +17,18 @@ constexpr uint32_t kTop = 1u << 24;
 constexpr int kMoveBits = 5;
 constexpr uint64_t kUniformPiece = 1u << 16;
 
-// -log2(p / 2048) for every 11-bit probability.
-const std::array<float, 1u << kBitModelBits>& cost_table() {
-  static const std::array<float, 1u << kBitModelBits> table = [] {
-    std::array<float, 1u << kBitModelBits> t{};
-    t[0] = 32;
-    for (size_t p = 1; p < t.size(); ++p)
-      t[p] = static_cast<float>(-std::log2(static_cast<double>(p) / (1u << kBitModelBits)));
+constexpr int kCostIndexShift = 4;
+
+// -log2(p / 65536) for the probabilities p in each 1/4096th (at the bin's
+// middle): the statistics need no more precision.
+float cost_of(uint32_t p) {
+  static const std::array<float, 1u << (kBitModelBits - kCostIndexShift)> table = [] {
+    std::array<float, 1u << (kBitModelBits - kCostIndexShift)> t{};
+    for (size_t i = 0; i < t.size(); ++i)
+      t[i] = static_cast<float>(-std::log2((static_cast<double>(i) + 0.5) / t.size()));
     return t;
   }();
-  return table;
+  return table[p >> kCostIndexShift];
 }
 
 }  // namespace
@@ -54,11 +57,11 @@ void RangeEncoder::normalize() {
 void RangeEncoder::encode_bit(BitModel* model, int bit) {
   const uint32_t bound = (range_ >> kBitModelBits) * *model;
   if (bit == 0) {
-    cost_ += cost_table()[*model];
+    cost_ += cost_of(*model);
     range_ = bound;
     *model = static_cast<BitModel>(*model + (((1u << kBitModelBits) - *model) >> kMoveBits));
   } else {
-    cost_ += cost_table()[(1u << kBitModelBits) - *model];
+    cost_ += cost_of((1u << kBitModelBits) - *model);
     low_ += bound;
     range_ -= bound;
     *model = static_cast<BitModel>(*model - (*model >> kMoveBits));

@@ -17,9 +17,14 @@
 
 namespace lodbake {
 
-/// The probability that a bit is 0, in 1/2048ths; starts at 1/2.
+/// The probability that a bit is 0, in 1/65536ths; starts at 1/2. LZMA
+/// uses 1/2048ths, which caps a probability at 1 - 31/2048 and so charges
+/// 0.02 bit for every near-certain decision (the top bits of a length that
+/// never gets long): 16 bits of precision gave 0.3 bit per split less on
+/// the bunny's progressive mesh, and also beat mixing a fast and a slow
+/// estimate.
 using BitModel = uint16_t;
-inline constexpr int kBitModelBits = 11;
+inline constexpr int kBitModelBits = 16;
 inline constexpr BitModel kBitModelHalf = 1u << (kBitModelBits - 1);
 
 /// Appends a range-coded stream to a byte vector. Deterministic: the same

@@ -176,8 +176,10 @@ TEST(RangeCoder, CostsCloseToTheEntropy) {
     rc.encode_bit(&model, (rng() % 1000) < 50 ? 1 : 0);
   rc.finish();
   const double entropy = n * -(p * std::log2(p) + (1 - p) * std::log2(1 - p));
-  // Adapting by 1/32 costs a few percent over the entropy.
-  EXPECT_LT(rc.cost_bits(), 1.06 * entropy);
+  // Adapting by 1/32 follows the noise of the last few dozen bits: a few
+  // percent over the entropy.
+  EXPECT_LT(rc.cost_bits(), 1.08 * entropy);
+  EXPECT_LT(8.0 * out.size(), 1.08 * entropy);
   EXPECT_LT(8.0 * out.size(), rc.cost_bits() + 64);
   EXPECT_GT(8.0 * out.size(), rc.cost_bits() - 8);
 }
