@@ -31,11 +31,16 @@
 //   spread of the fan along each axis (22.11), and the axis most aligned
 //   with the fan's Newell normal coded last, predicted on the tangent plane
 //   from the other two residuals (21.27). Conditioning the last axis on the
-//   first two residuals, or adapting faster (1/16), gained nothing.
+//   first two residuals, or adapting faster (1/16), gained nothing; on
+//   whether the fan's normal points down that axis (the side of the plane a
+//   convex fan puts vt on), 0.07 (added last); a running mean of the last
+//   axis's residual per context (JPEG-LS's bias cancellation), nothing.
 // - Errors (float32, exact): the signed difference of each error's bit
 //   pattern from the previous one, in the context of the previous
 //   difference's size: 13.75 (version 1's Exp-Golomb: 13.8). Collapse costs are not
-//   monotone, but neighbours in the order share exponent bits.
+//   monotone, but neighbours in the order share exponent bits. The previous
+//   error's exponent as context instead: 0.05 bit less on the bunny, 0.08
+//   on the armadillo, 0.03 more on the dragon, so not kept.
 // - Permutation: each split vertex's input id, coded with its record,
 //   predicted by the median of its fan's input ids (vt's neighbours in the
 //   full mesh, which input files number close together), in the context
@@ -586,7 +591,7 @@ struct Models {
         first(kFanContexts, BitTreeModel(6)),
         offset(kFanContexts, BitTreeModel(6)),
         alone(kFanContexts, BitTreeModel(6)),
-        position(6 * kScaleContexts),
+        position(7 * kScaleContexts),
         error(kErrorContexts),
         permutation(kPermutationContexts) {}
   BitTreeModel vs_buckets;
@@ -639,8 +644,13 @@ struct VtPrediction {
     const int64_t q = (2 * (num < 0 ? -num : num) + den) / (2 * den);
     return centroid[axis] + (num < 0 ? -q : q);
   }
-  // The context of coordinate order[c]: its axis's spread.
-  size_t context(int c) const { return static_cast<size_t>(c) * kScaleContexts + spread[order[c]]; }
+  bool flipped = false;  // the fan's normal pointed down the dominant axis
+  // The context of coordinate order[c]: its axis's spread, for the third
+  // apart when the normal was flipped.
+  size_t context(int c) const {
+    const size_t slot = c == 2 && flipped ? 6 : static_cast<size_t>(c);
+    return slot * kScaleContexts + spread[order[c]];
+  }
 };
 
 int shift_below(uint64_t magnitude, int bits) {
@@ -713,6 +723,7 @@ VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl
   if (largest == 0) return p;
   const int normal_shift = shift_below(largest, 16);
   const int64_t sign = n[dominant] < 0 ? -1 : 1;
+  p.flipped = sign < 0;
   for (int a = 0; a < 3; ++a)
     p.normal[a] = sign * n[a] / (int64_t{1} << normal_shift);
   if (p.normal[dominant] == 0) {

@@ -1,11 +1,11 @@
 // The compact codec (codec 1) of the VSPL section: a lossless recoding of a
-// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 2, the
-// one written: the connectivity replayed split by split, wings coded by
-// their place in vs's current fan, quantized positions predicted from the
-// wings, errors and the permutation as predicted differences, all through
-// an adaptive range coder. Version 1 (still read, and written on request):
-// wings from lists of known neighbours, Exp-Golomb codes, permutation
-// verbatim. Decoding gives back the raw payload byte for byte.
+// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 2: the
+// connectivity replayed split by split, wings coded by their place in vs's
+// current fan, quantized positions predicted from vt's fan, errors and the
+// permutation as predicted differences, all through an adaptive range
+// coder. Version 1 (still read, and written when smaller, on tiny PMs, or
+// on request): wings from lists of known neighbours, Exp-Golomb codes,
+// permutation verbatim. Decoding gives back the raw payload byte for byte.
 #pragma once
 
 #include <cstddef>
@@ -59,7 +59,10 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
 /// \return LBK-E023 "section VSPL: compact ..." (kInvalidInput) for an
 ///         unknown version, a base vertex count other than base's, a count
 ///         needing more bits than remain, an index, residual or code out of
-///         range, nonzero padding bits or trailing bytes. Never throws.
+///         range, a record with both wings missing or a repeated vertex,
+///         nonzero padding bits (version 1), a range-coded stream that is
+///         not canonical (version 2) or trailing bytes; kRuntime when memory
+///         runs out. Never throws.
 Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const TriangleMesh& base);
 
 }  // namespace lodbake
