@@ -1,53 +1,82 @@
 // Compact VSPL (codec 1): a lossless recoding of a raw VSPL payload, layout
 // in docs/format.md "Compact VSPL". Progressive-mesh coding after Hoppe
-// 1996 ("Progressive meshes", section 5: vs as an index, wings relative to
-// vs, positions predicted from vs), without replaying the connectivity.
+// 1996 ("Progressive meshes", section 5: vs as an index, wings by their
+// place around vs, positions predicted from the neighbourhood) and Hoppe
+// 1998 ("Efficient implementation of progressive meshes": the wings as a
+// fan offset), entropy coded with the LZMA range coder
+// (formats/support/range_coder.h).
 //
-// Choices, measured on the Stanford bunny's full PM (34795 splits):
-// - vs stays a bits(n) index: QEM order makes it uniform over the mesh
-//   (entropy of n - vs: 13.96 bits at log2 n = 13.66), so coding it
-//   relative to anything saves nothing.
-// - Wings relative to vs as raw ids (vl - vs) have an entropy of 14 bits:
-//   ids carry no locality. Instead each vertex keeps a list of vertices it
-//   is known to neighbour (the base mesh's edges, then every split's new
-//   edges vs-vt, vt-vl, vt-vr), in insertion order, capped at 64 entries
-//   (255 gave the same sizes on the bunny and the dragon, with longer
-//   scans). A wing found in vs's list costs 1 + bits(list size) bits,
-//   otherwise 1 + bits(n + 1). On the bunny 63% are found in lists of 7 on
-//   average: about 8.3 bits per wing instead of 14. Replaying the connectivity would
-//   find every wing (Hoppe's ~5 bits) but needs the replay in the reader;
-//   the lists need no mesh and cannot fail on hostile records.
-// - Quantized positions, in the section's own box and bits (a base vertex's
-//   float position is quantized into that box first, clamped): vt minus the
-//   midpoint of its wings vl and vr (vs's position when a wing is missing),
-//   a stored vs minus vs's position before the split; zigzag, then
-//   Exp-Golomb of the order k that is smallest for each axis (k stored).
-//   Mean log2(|residual| + 1) per coordinate on the bunny at 14 bits: 5.57
-//   predicting from vs, 5.28 by the parallelogram vl + vr - vs, 5.20 from
-//   the centroid of vs, vl, vr, 5.03 from the wings' midpoint. QEM collapses
-//   short edges in any direction, so vt is not where a regular mesh's
-//   parallelogram puts it.
-//   Float32 positions are copied: they cannot be predicted losslessly
-//   without a float residual coder, and packing quantizes them on request.
-// - Errors (float32, exact): the difference of each error's bit pattern
-//   from the previous one, zigzag, Exp-Golomb with the best k. Collapse
-//   costs are not monotone, but neighbours share exponent bits.
-// - Normals, texture coordinates and the permutation are copied unchanged.
-// - One interleaved bit stream, record after record, so the decoder needs
-//   no per-part sizes: it checks the tail's exact size after the stream.
+// Layout version 2, measured on the Stanford bunny's full PM (34780 splits,
+// 14-bit positions; bits per split; each step with LZMA's 11-bit
+// probabilities, whose 16-bit replacement then took 0.3 bit more off:
+// 63.3 in all, against 88 for version 1; 62.6 with the permutation below):
+// - vs: uniform over n costs log2 n (13.66 against bits(n)'s 16); vs is
+//   rarely a vertex created in the last quarter of the splits (bins of
+//   vs / n have an entropy of 4.65 bits out of 5), so its 64th of [0, n) is
+//   coded adaptively: 13.22. Neither the previous vs nor recent splits'
+//   vertices predict it (a vs is among the last 64 records' vertices in
+//   0.07% of the splits).
+// - Wings: the connectivity is replayed (formats/mesh/split_connectivity.h),
+//   vl is coded by its index in vs's current fan and vr by its offset back
+//   from vl (the faces that move), adaptive per fan size and closedness:
+//   4.74, against 17.8 for version 1's known-neighbour lists. Every wing of
+//   a real PM is in its fan. A quantized closed fan starts at its vertex
+//   farthest from vs (the moved faces were vt's, so far vertices lie between
+//   vr and vl), which puts vl a step or two after the start: added last,
+//   4.61 -> 4.14 (armadillo 4.82 -> 4.42).
+// - Positions (quantized): vt from the centroid of its fan after the split
+//   (22.63, against 24.76 from the wings' midpoint of version 1; weighting
+//   the midpoint in, or leaving vs out, was worse; counting vs twice, added
+//   last, took 0.05 more off, 0.47 on the armadillo), residual contexts by the
+//   spread of the fan along each axis (22.11), and the axis most aligned
+//   with the fan's Newell normal coded last, predicted on the tangent plane
+//   from the other two residuals (21.27). Conditioning the last axis on the
+//   first two residuals, or adapting faster (1/16), gained nothing; on
+//   whether the fan's normal points down that axis (the side of the plane a
+//   convex fan puts vt on), 0.07 (added last); a running mean of the last
+//   axis's residual per context (JPEG-LS's bias cancellation), nothing.
+// - Errors (float32, exact): the signed difference of each error's bit
+//   pattern from the previous one, in the context of the previous
+//   difference's size: 13.75 (version 1's Exp-Golomb: 13.8). Collapse costs are not
+//   monotone, but neighbours in the order share exponent bits. The previous
+//   error's exponent as context instead: 0.05 bit less on the bunny, 0.08
+//   on the armadillo, 0.03 more on the dragon, so not kept.
+// - Permutation: each split vertex's input id, coded with its record,
+//   predicted by the median of its fan's input ids (vt's neighbours in the
+//   full mesh, which input files number close together), in the context
+//   of the fan's spread of ids: 9.93 per vertex (with 16-bit
+//   probabilities), against bits(F) = 16 verbatim; from vs's id with the
+//   wings' spread as context 10.58, the parallelogram vl + vr - vs in id
+//   space 11.59.
+// - Float32 positions, normals and texture coordinates are copied: they
+//   cannot be predicted losslessly without a float residual coder, and
+//   packing quantizes positions on request.
+// - Adaptive models need a few hundred splits to learn: on the 31-split
+//   golden grid version 2 is larger than version 1, so the writer keeps the
+//   smaller of the two.
+//
+// Layout version 1 (read, and written when smaller): vs in bits(n), wings
+// by their index in lists of vertices each vertex is known to neighbour
+// (the base mesh's edges, then every split's new edges, capped at 64),
+// positions predicted from the wings' midpoint, Exp-Golomb codes with the
+// best order per part, the permutation verbatim.
 #include "formats/sections/vspl_compact.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstring>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
+#include "formats/mesh/split_connectivity.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/bit_packing.h"
 #include "formats/support/byte_reader.h"
 #include "formats/support/quantization.h"
+#include "formats/support/range_coder.h"
 #include "formats/support/string_format.h"
 
 namespace lodbake {
@@ -290,7 +319,7 @@ class QuantizedPositions {
   std::vector<uint32_t> q_;
 };
 
-Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
+Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
   LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
   Fixed f;
@@ -333,7 +362,7 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
 
   Bytes out;
   ByteWriter writer(&out);
-  writer.write(kVsplCompactVersion);
+  writer.write(uint8_t{1});
   writer.write_bytes(raw, f.bytes);
   int order[3] = {0, 0, 0};
   if (f.quantized) {
@@ -389,12 +418,7 @@ Result<Bytes> encode_unchecked(const uint8_t* raw, size_t raw_size, const Triang
   return out;
 }
 
-Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleMesh& base) {
-  if (size < 1) return bad_compact("payload is empty");
-  if (data[0] != kVsplCompactVersion) {
-    return bad_compact(string_printf("layout version %u is unknown (this reader knows %u)", data[0],
-                                     kVsplCompactVersion));
-  }
+Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& base) {
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, &f));
   if (f.base != base.vertex_count()) {
@@ -532,11 +556,644 @@ Result<Bytes> decode_unchecked(const uint8_t* data, size_t size, const TriangleM
   return out;
 }
 
+// ---------------------------------------------------------------------------
+// Layout version 2 (see the file comment).
+
+// From this many splits on, the writer does not try version 1: version 2
+// is smaller on every real mesh from a few hundred splits up (the 2324-split
+// golden mushroom's VSPL: 20 against 25.5 kB), and trying both doubles
+// the time.
+constexpr uint32_t kVersion1Candidates = 4096;
+
+constexpr uint32_t kWingNone = 62;    // first-wing and lone-wing symbol: no such wing
+constexpr uint32_t kWingEscape = 63;  // any wing symbol: the id follows, uniform in [0, n)
+constexpr uint32_t kOffsetNone = 0;   // second-wing offset symbol: no vr
+constexpr size_t kFanContexts = 64;
+constexpr size_t kScaleContexts = 32;
+constexpr size_t kErrorContexts = 33;
+constexpr size_t kPermutationContexts = 34;
+
+// Context of a fan: closed rings and open fans (boundaries) apart, then the
+// neighbour count, which sets the spread of a uniform wing.
+size_t fan_context(bool closed, size_t count) {
+  return (closed ? 0 : 32) + std::min<size_t>(count, 31);
+}
+
+// Context of the second wing: its offset is below the ring size in a closed
+// fan, below vl's place in an open one.
+size_t offset_context(bool closed, size_t count, size_t vl_index) {
+  return closed ? std::min<size_t>(count, 31) : 32 + std::min<size_t>(vl_index, 31);
+}
+
+struct Models {
+  Models()
+      : vs_buckets(6),
+        first(kFanContexts, BitTreeModel(6)),
+        offset(kFanContexts, BitTreeModel(6)),
+        alone(kFanContexts, BitTreeModel(6)),
+        position(7 * kScaleContexts),
+        error(kErrorContexts),
+        permutation(kPermutationContexts) {}
+  BitTreeModel vs_buckets;
+  std::vector<BitTreeModel> first;
+  std::vector<BitTreeModel> offset;
+  std::vector<BitTreeModel> alone;
+  AdaptiveSignedModel position;
+  AdaptiveSignedModel error;
+  AdaptiveSignedModel permutation;
+};
+
+// The scale context of a split's residuals: the bit length of the largest
+// coordinate distance between its wings (or between vs and its one wing),
+// since a split's offsets grow with the size of the edges around it.
+size_t scale_context(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr) {
+  const uint32_t a = vl == kNoVertex ? vs : vl;
+  const uint32_t b = vr == kNoVertex ? vs : vr;
+  uint32_t largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const uint32_t p = q.get(a, axis);
+    const uint32_t r = q.get(b, axis);
+    largest = std::max(largest, p > r ? p - r : r - p);
+  }
+  return std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(largest)),
+                          kScaleContexts - 1);
+}
+
+// vt's prediction, once the split is applied to `mesh`. The centroid of
+// vt's neighbours (vs, the wings and the fan between them): a smooth
+// surface passes near the average of a vertex's neighbours. The two axes
+// least aligned with the fan's normal are coded first; the third is then
+// predicted on the fan's tangent plane through the centroid, since the
+// offset from the centroid is mostly tangential. Without a fan (hostile
+// records), version 1's rule from the wings. Integer arithmetic only, so
+// every platform predicts alike.
+struct VtPrediction {
+  int64_t centroid[3] = {};
+  size_t spread[3] = {};  // per axis: bit length of the neighbours' widest offset
+  int order[3] = {0, 1, 2};
+  int64_t normal[3] = {};  // fan normal, scaled below 2^16 per axis; 0 without a plane
+  // The prediction of coordinate order[c], given the residuals of the
+  // coordinates coded before it.
+  int64_t predict(int c, const int64_t residual[3]) const {
+    const int axis = order[c];
+    if (c < 2 || normal[axis] == 0) return centroid[axis];
+    const int64_t num =
+        -(normal[order[0]] * residual[order[0]] + normal[order[1]] * residual[order[1]]);
+    const int64_t den = normal[axis];
+    // Rounded to nearest, ties away from zero.
+    const int64_t q = (2 * (num < 0 ? -num : num) + den) / (2 * den);
+    return centroid[axis] + (num < 0 ? -q : q);
+  }
+  bool flipped = false;  // the fan's normal pointed down the dominant axis
+  // The context of coordinate order[c]: its axis's spread, for the third
+  // apart when the normal was flipped.
+  size_t context(int c) const {
+    const size_t slot = c == 2 && flipped ? 6 : static_cast<size_t>(c);
+    return slot * kScaleContexts + spread[order[c]];
+  }
+};
+
+int shift_below(uint64_t magnitude, int bits) {
+  int shift = 0;
+  while ((magnitude >> shift) >= (uint64_t{1} << bits))
+    ++shift;
+  return shift;
+}
+
+// `ring` and `closed`: vt's fan after the split (SplitConnectivity::neighbours).
+VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr,
+                           const std::vector<uint32_t>* ring, bool closed) {
+  VtPrediction p;
+  if (ring->empty()) {
+    for (int a = 0; a < 3; ++a) {
+      p.centroid[a] = q.predict_vt(vs, vl, vr, a);
+      p.spread[a] = kScaleContexts - 1;
+    }
+    return p;
+  }
+  // vs counts twice: the simplifier collapsed vt into vs because it was
+  // close, so vt lies nearer to vs than to the rest of its fan (weight 2:
+  // 0.05 bit per split less on the bunny, 0.47 on the armadillo; 3 and 4
+  // were worse).
+  int64_t count = 0;
+  for (uint32_t v : *ring)
+    count += v == vs ? 2 : 1;
+  uint64_t widest_all = 0;
+  for (int a = 0; a < 3; ++a) {
+    int64_t sum = 0;
+    for (uint32_t v : *ring)
+      sum += (v == vs ? 2 : 1) * int64_t{q.get(v, a)};
+    p.centroid[a] = (sum + count / 2) / count;
+    uint64_t widest = 0;
+    for (uint32_t v : *ring) {
+      const int64_t d = int64_t{q.get(v, a)} - p.centroid[a];
+      widest = std::max(widest, static_cast<uint64_t>(d < 0 ? -d : d));
+    }
+    widest_all = std::max(widest_all, widest);
+    p.spread[a] = std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(widest)),
+                                   kScaleContexts - 1);
+  }
+  // Newell's normal of the fan polygon, offsets scaled below 2^20 so that
+  // the sums of products stay far inside 64 bits.
+  const int shift = shift_below(widest_all, 20);
+  int64_t n[3] = {0, 0, 0};
+  const size_t edges = closed ? ring->size() : ring->size() - 1;
+  for (size_t i = 0; i < edges; ++i) {
+    const uint32_t u = (*ring)[i];
+    const uint32_t w = (*ring)[(i + 1) % ring->size()];
+    int64_t du[3];
+    int64_t dw[3];
+    for (int a = 0; a < 3; ++a) {
+      du[a] = (int64_t{q.get(u, a)} - p.centroid[a]) / (int64_t{1} << shift);
+      dw[a] = (int64_t{q.get(w, a)} - p.centroid[a]) / (int64_t{1} << shift);
+    }
+    n[0] += du[1] * dw[2] - du[2] * dw[1];
+    n[1] += du[2] * dw[0] - du[0] * dw[2];
+    n[2] += du[0] * dw[1] - du[1] * dw[0];
+  }
+  uint64_t largest = 0;
+  int dominant = 0;
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t m = static_cast<uint64_t>(n[a] < 0 ? -n[a] : n[a]);
+    if (m > largest) {
+      largest = m;
+      dominant = a;
+    }
+  }
+  if (largest == 0) return p;
+  const int normal_shift = shift_below(largest, 16);
+  const int64_t sign = n[dominant] < 0 ? -1 : 1;
+  p.flipped = sign < 0;
+  for (int a = 0; a < 3; ++a)
+    p.normal[a] = sign * n[a] / (int64_t{1} << normal_shift);
+  if (p.normal[dominant] == 0) {
+    for (int64_t& c : p.normal)
+      c = 0;
+    return p;
+  }
+  int k = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (a != dominant) p.order[k++] = a;
+  }
+  p.order[2] = dominant;
+  return p;
+}
+
+size_t error_context(int64_t previous_delta) {
+  const uint64_t m = previous_delta < 0 ? uint64_t{0} - static_cast<uint64_t>(previous_delta)
+                                        : static_cast<uint64_t>(previous_delta);
+  return std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(m)), kErrorContexts - 1);
+}
+
+// The permutation: a base vertex's input id is predicted by the previous
+// one's + 1 (context 0), all of them before the records; a split vertex's,
+// coded with its record, by the median of its fan's input ids (vt's
+// neighbours in the full mesh, which input files number close together),
+// vs's when the fan is empty, in the context of the fan's widest id
+// distance from that median (how scattered the neighbourhood's numbering
+// is). Predicting from vs's id alone, with the wings' distance as context,
+// cost 0.7 bit more on the bunny; the parallelogram vl + vr - vs in id
+// space, 1 bit more.
+struct InputPrediction {
+  int64_t value = 0;
+  size_t context = 0;
+};
+
+InputPrediction predict_input(const std::vector<uint32_t>& input, uint32_t vs,
+                              const std::vector<uint32_t>& fan, std::vector<int64_t>* ids) {
+  InputPrediction p;
+  ids->clear();
+  for (uint32_t w : fan)
+    ids->push_back(input[w]);
+  if (ids->empty()) {
+    p.value = input[vs];
+  } else {
+    std::sort(ids->begin(), ids->end());
+    p.value = (*ids)[ids->size() / 2];
+  }
+  uint64_t widest = 0;
+  for (int64_t id : *ids)
+    widest = std::max(widest, static_cast<uint64_t>(id > p.value ? id - p.value : p.value - id));
+  p.context = 1 + std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(widest)),
+                                   kPermutationContexts - 2);
+  return p;
+}
+
+// vs by the 64th of [0, n) it falls in (adaptive: recently created
+// vertices are rarely split soon, so the top 64ths are rare), then
+// uniformly within that 64th. Below 128 vertices a 64th may hold one id or
+// none, so vs is uniform there: either way each record narrows the coder's
+// range by at least one bit, which bounds the record count by the bytes.
+constexpr uint32_t kVsBucketsFrom = 128;
+uint32_t vs_bucket_start(uint64_t bucket, uint64_t n) {
+  return static_cast<uint32_t>((bucket * n + 63) / 64);
+}
+
+void encode_vs(RangeEncoder* rc, BitTreeModel* buckets, uint32_t vs, uint32_t n) {
+  if (n < kVsBucketsFrom) {
+    rc->encode_uniform(vs, n);
+    return;
+  }
+  const uint32_t bucket = static_cast<uint32_t>(uint64_t{vs} * 64 / n);
+  buckets->encode(rc, bucket);
+  const uint32_t start = vs_bucket_start(bucket, n);
+  rc->encode_uniform(vs - start, vs_bucket_start(bucket + 1, n) - start);
+}
+
+bool decode_vs(RangeDecoder* rc, BitTreeModel* buckets, uint32_t n, uint32_t* vs) {
+  if (n < kVsBucketsFrom) return rc->decode_uniform(n, vs);
+  const uint32_t bucket = buckets->decode(rc);
+  const uint32_t start = vs_bucket_start(bucket, n);
+  uint32_t offset = 0;
+  if (!rc->decode_uniform(vs_bucket_start(bucket + 1, n) - start, &offset)) return false;
+  *vs = start + offset;
+  return true;
+}
+
+// Rotates a closed fan of vs to start at its vertex farthest from vs (the
+// first of equal ones): the faces that move to vt were vt's, so the far
+// vertices lie in the arc between vr and vl.
+void start_at_farthest(const QuantizedPositions& q, uint32_t vs, std::vector<uint32_t>* ring) {
+  size_t best = 0;
+  uint64_t best_d = 0;
+  for (size_t k = 0; k < ring->size(); ++k) {
+    uint64_t d = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int64_t x = int64_t{q.get((*ring)[k], a)} - int64_t{q.get(vs, a)};
+      d += static_cast<uint64_t>(x * x);
+    }
+    if (d > best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  std::rotate(ring->begin(), ring->begin() + static_cast<std::ptrdiff_t>(best), ring->end());
+}
+
+size_t index_in(const std::vector<uint32_t>& ring, uint32_t v) {
+  if (v == kNoVertex) return ring.size();
+  return static_cast<size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
+}
+
+uint64_t verbatim_bytes(const Fixed& f) {
+  const uint64_t r = f.splits;
+  const uint64_t per_split = (f.flags & kVsplStoresVsPositions) != 0 ? 24 : 12;
+  uint64_t bytes = f.quantized ? 0 : per_split * r;
+  if ((f.flags & kVsplStoresNormals) != 0) bytes += 12 * r;
+  if ((f.flags & kVsplStoresTexcoords) != 0) bytes += 8 * r;
+  return bytes;
+}
+
+Status check_base_triangles(const TriangleMesh& base) {
+  for (const Triangle& t : base.triangles) {
+    for (uint32_t v : t) {
+      if (v >= base.vertex_count()) return bad_compact("a base triangle index is out of range");
+    }
+  }
+  return Status::ok();
+}
+
+Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
+                        VsplCompactStats* stats) {
+  LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
+  LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
+  Fixed f;
+  LODBAKE_RETURN_IF_ERROR(read_fixed(raw, raw_size, &f));
+  LODBAKE_RETURN_IF_ERROR(check_base_triangles(base));
+  const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
+  const size_t per_split = with_vs ? 6 : 3;
+  const std::vector<VertexSplit>& splits = section.splits;
+  VsplCompactStats local;
+  VsplCompactStats& cost = stats != nullptr ? *stats : local;
+  cost = VsplCompactStats{};
+
+  Bytes out;
+  ByteWriter writer(&out);
+  writer.write(uint8_t{2});
+  writer.write_bytes(raw, f.bytes);
+  const size_t verbatim_start = out.size();
+  if (!f.quantized) writer.write_bytes(raw + parts.positions_offset, parts.positions_bytes);
+  const uint64_t attributes = verbatim_bytes(f) - (f.quantized ? 0 : parts.positions_bytes);
+  writer.write_bytes(raw + parts.tail_offset, static_cast<size_t>(attributes));
+  cost.verbatim_bytes = out.size() - verbatim_start;
+
+  RangeEncoder rc(&out);
+  Models m;
+  SplitConnectivity mesh(f.base, base.triangles);
+  std::vector<QuantizedPositions> q;
+  if (f.quantized) q.emplace_back(f, base.positions);
+  BitReader ints(raw + parts.positions_offset, parts.positions_bytes);
+  std::vector<uint32_t> ring;
+  uint32_t previous_error = 0;
+  int64_t previous_delta = 0;
+  double mark = 0;
+  auto spend = [&](double* part) {
+    *part += rc.cost_bits() - mark;
+    mark = rc.cost_bits();
+  };
+  const bool with_permutation = (f.flags & kVsplStoresPermutation) != 0;
+  const std::vector<uint32_t>& input = section.input_vertex;
+  if (with_permutation) {
+    for (uint32_t v = 0; v < f.base; ++v)
+      m.permutation.encode(&rc, 0, int64_t{input[v]} - (v == 0 ? 0 : int64_t{input[v - 1]} + 1));
+    spend(&cost.permutation_bits);
+  }
+  std::vector<uint32_t> vt_ring;
+  std::vector<int64_t> ids;
+  for (size_t i = 0; i < splits.size(); ++i) {
+    const VertexSplit& s = splits[i];
+    const uint32_t n = f.base + static_cast<uint32_t>(i);
+    encode_vs(&rc, &m.vs_buckets, s.vs, n);
+    spend(&cost.vs_bits);
+
+    const bool closed = mesh.neighbours(s.vs, &ring);
+    if (closed && f.quantized) start_at_farthest(q.front(), s.vs, &ring);
+    const size_t count = ring.size();
+    const size_t il = index_in(ring, s.vl);
+    const uint32_t first = s.vl == kNoVertex                         ? kWingNone
+                           : il < std::min<size_t>(count, kWingNone) ? static_cast<uint32_t>(il)
+                                                                     : kWingEscape;
+    m.first[fan_context(closed, count)].encode(&rc, first);
+    if (first == kWingEscape) rc.encode_uniform(s.vl, n);
+    const size_t ir = index_in(ring, s.vr);
+    if (first < kWingNone) {
+      // vr by its offset back from vl along the fan: the faces that move.
+      uint32_t symbol = kWingEscape;
+      if (s.vr == kNoVertex) {
+        symbol = kOffsetNone;
+      } else if (ir < count) {
+        const size_t k = closed ? (il + count - ir) % count : (ir < il ? il - ir : 0);
+        if (k >= 1 && k < kWingNone) symbol = static_cast<uint32_t>(k);
+      }
+      m.offset[offset_context(closed, count, il)].encode(&rc, symbol);
+      if (symbol == kWingEscape) rc.encode_uniform(s.vr, n);
+    } else {
+      const uint32_t symbol = s.vr == kNoVertex                         ? kWingNone
+                              : ir < std::min<size_t>(count, kWingNone) ? static_cast<uint32_t>(ir)
+                                                                        : kWingEscape;
+      m.alone[fan_context(closed, count)].encode(&rc, symbol);
+      if (symbol == kWingEscape) rc.encode_uniform(s.vr, n);
+    }
+    spend(&cost.wing_bits);
+    mesh.split(s.vs, s.vl, s.vr);
+    const bool vt_closed = mesh.neighbours(n, &vt_ring);
+
+    if (f.quantized) {
+      QuantizedPositions& qp = q.front();
+      const size_t scale = scale_context(qp, s.vs, s.vl, s.vr);
+      const VtPrediction p = predict_vt_v2(qp, s.vs, s.vl, s.vr, &vt_ring, vt_closed);
+      uint32_t value[6] = {};
+      for (size_t c = 0; c < per_split; ++c)
+        ints.read(f.bits, &value[c]);
+      int64_t residual[3] = {};
+      for (int c = 0; c < 3; ++c) {
+        const int a = p.order[c];
+        residual[a] = int64_t{value[a]} - p.predict(c, residual);
+        m.position.encode(&rc, p.context(c), residual[a]);
+      }
+      for (size_t c = 3; c < per_split; ++c) {
+        const int a = static_cast<int>(c % 3);
+        m.position.encode(&rc, c * kScaleContexts + scale,
+                          int64_t{value[c]} - int64_t{qp.get(s.vs, a)});
+      }
+      if (with_vs) {
+        for (int a = 0; a < 3; ++a)
+          qp.set(s.vs, a, value[3 + a]);
+      }
+      qp.append(value);
+      spend(&cost.position_bits);
+    }
+
+    const uint32_t bits = float_bits(s.error);
+    const int64_t delta = int64_t{bits} - int64_t{previous_error};
+    m.error.encode(&rc, error_context(previous_delta), delta);
+    previous_error = bits;
+    previous_delta = delta;
+    spend(&cost.error_bits);
+
+    if (with_permutation) {
+      const InputPrediction p = predict_input(input, s.vs, vt_ring, &ids);
+      m.permutation.encode(&rc, p.context, int64_t{input[n]} - p.value);
+      spend(&cost.permutation_bits);
+    }
+  }
+  rc.finish();
+  return out;
+}
+
+Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& base) {
+  Fixed f;
+  LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, &f));
+  if (f.base != base.vertex_count()) {
+    return bad_compact(string_printf("base vertex count %u, but the base mesh has %zu vertices",
+                                     f.base, base.vertex_count()));
+  }
+  const uint64_t r = f.splits;
+  if (uint64_t{f.base} + r > UINT32_MAX)
+    return bad_compact("base vertices and splits make more than 2^32 - 1 vertices");
+  if (r != 0 && f.base < 2) return bad_compact("splits over a base of fewer than 2 vertices");
+  const size_t pos = 1 + f.bytes;
+  const uint64_t verbatim = verbatim_bytes(f);
+  if (verbatim > size - pos) {
+    return bad_compact(string_printf("%u splits need %" PRIu64 " verbatim bytes, %zu remain",
+                                     f.splits, verbatim, size - pos));
+  }
+  const uint8_t* stream = data + pos + verbatim;
+  const size_t stream_size = size - pos - static_cast<size_t>(verbatim);
+  // Each record codes vs uniformly among n >= 2 vertices, which narrows the
+  // coder's range by at least one bit, and the range gains 8 bits per byte
+  // read: a stream of S bytes holds fewer than 8 S records.
+  if (r > 8 * uint64_t{stream_size}) {
+    return bad_compact(
+        string_printf("%u splits cannot fit in a stream of %zu bytes", f.splits, stream_size));
+  }
+  LODBAKE_RETURN_IF_ERROR(check_base_triangles(base));
+  const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
+  const size_t per_split = with_vs ? 6 : 3;
+
+  RangeDecoder rc(stream, stream_size);
+  if (!rc.valid_start()) return bad_compact("the range-coded stream has no valid start");
+  Bytes topology;
+  Bytes positions;
+  Bytes errors;
+  BitWriter topology_out(&topology);
+  BitWriter positions_out(&positions);
+  ByteWriter errors_out(&errors);
+  Models m;
+  SplitConnectivity mesh(f.base, base.triangles);
+  std::vector<QuantizedPositions> q;
+  if (f.quantized) q.emplace_back(f, base.positions);
+  std::vector<uint32_t> ring;
+  const bool with_permutation = (f.flags & kVsplStoresPermutation) != 0;
+  const uint64_t full = uint64_t{f.base} + r;
+  // The input ids decoded so far: the base's first, then one per record.
+  std::vector<uint32_t> input;
+  auto decode_input = [&](size_t context, int64_t predicted, uint64_t v) -> Status {
+    int64_t delta = 0;
+    if (!m.permutation.decode(&rc, context, &delta))
+      return bad_compact("a permutation code is out of range");
+    const int64_t value = predicted + delta;
+    if (value < 0 || static_cast<uint64_t>(value) >= full) {
+      return bad_compact(string_printf("input vertex %" PRId64 " of vertex %" PRIu64
+                                       " outside 0..%" PRIu64,
+                                       value, v, full - 1));
+    }
+    input.push_back(static_cast<uint32_t>(value));
+    return Status::ok();
+  };
+  if (with_permutation) {
+    for (uint32_t v = 0; v < f.base; ++v) {
+      LODBAKE_RETURN_IF_ERROR(decode_input(0, v == 0 ? 0 : int64_t{input[v - 1]} + 1, v));
+      if (rc.overrun()) return bad_compact("the stream ends inside the permutation");
+    }
+  }
+  std::vector<uint32_t> vt_ring;
+  std::vector<int64_t> ids;
+  uint32_t previous_error = 0;
+  int64_t previous_delta = 0;
+  for (uint32_t i = 0; i < f.splits; ++i) {
+    const uint32_t n = f.base + i;
+    // The message prefix is built only on failure: a string per record
+    // would be the decoder's largest cost.
+    const auto bad = [i](const std::string& detail) {
+      return bad_compact(string_printf("split %u: ", i) + detail);
+    };
+    uint32_t vs = 0;
+    if (!decode_vs(&rc, &m.vs_buckets, n, &vs)) return bad("vs out of range");
+
+    const bool closed = mesh.neighbours(vs, &ring);
+    if (closed && f.quantized) start_at_farthest(q.front(), vs, &ring);
+    const size_t count = ring.size();
+    uint32_t vl = kNoVertex;
+    uint32_t vr = kNoVertex;
+    const uint32_t first = m.first[fan_context(closed, count)].decode(&rc);
+    if (first == kWingEscape) {
+      if (!rc.decode_uniform(n, &vl)) return bad("vl out of range");
+    } else if (first < kWingNone) {
+      if (first >= count) return bad("vl's place is outside vs's fan");
+      vl = ring[first];
+    }
+    if (first < kWingNone) {
+      const uint32_t k = m.offset[offset_context(closed, count, first)].decode(&rc);
+      if (k == kWingEscape) {
+        if (!rc.decode_uniform(n, &vr)) return bad("vr out of range");
+      } else if (k != kOffsetNone) {
+        if (k == kWingNone || k >= count || (!closed && k > first))
+          return bad("vr's offset from vl is outside vs's fan");
+        vr = ring[closed ? (first + count - k) % count : first - k];
+      }
+    } else {
+      const uint32_t symbol = m.alone[fan_context(closed, count)].decode(&rc);
+      if (symbol == kWingEscape) {
+        if (!rc.decode_uniform(n, &vr)) return bad("vr out of range");
+      } else if (symbol < kWingNone) {
+        if (symbol >= count) return bad("vr's place is outside vs's fan");
+        vr = ring[symbol];
+      }
+    }
+    if (vl == kNoVertex && vr == kNoVertex) return bad("both wings are missing");
+    if (vl == vs || vr == vs || (vl == vr && vl != kNoVertex)) return bad("a repeated vertex");
+    topology_out.write(vs, bits_for_count(n));
+    topology_out.write(vl == kNoVertex ? n : vl, bits_for_count(uint64_t{n} + 1));
+    topology_out.write(vr == kNoVertex ? n : vr, bits_for_count(uint64_t{n} + 1));
+    mesh.split(vs, vl, vr);
+    const bool vt_closed = mesh.neighbours(n, &vt_ring);
+
+    if (f.quantized) {
+      QuantizedPositions& qp = q.front();
+      const size_t scale = scale_context(qp, vs, vl, vr);
+      const VtPrediction p = predict_vt_v2(qp, vs, vl, vr, &vt_ring, vt_closed);
+      uint32_t value[6] = {};
+      int64_t residual[3] = {};
+      for (size_t c = 0; c < per_split; ++c) {
+        const int a = c < 3 ? p.order[c] : static_cast<int>(c % 3);
+        const size_t context = c < 3 ? p.context(static_cast<int>(c)) : c * kScaleContexts + scale;
+        int64_t decoded = 0;
+        if (!m.position.decode(&rc, context, &decoded))
+          return bad("a position residual code is out of range");
+        const int64_t predicted =
+            c < 3 ? p.predict(static_cast<int>(c), residual) : int64_t{qp.get(vs, a)};
+        if (c < 3) residual[a] = decoded;
+        const int64_t v = predicted + decoded;
+        if (v < 0 || v > int64_t{qp.steps()}) {
+          return bad(string_printf("position coordinate %" PRId64 " outside 0..%u", v, qp.steps()));
+        }
+        value[c < 3 ? a : c] = static_cast<uint32_t>(v);
+      }
+      for (size_t c = 0; c < per_split; ++c)
+        positions_out.write(value[c], f.bits);
+      if (with_vs) {
+        for (int a = 0; a < 3; ++a)
+          qp.set(vs, a, value[3 + a]);
+      }
+      qp.append(value);
+    }
+
+    int64_t delta = 0;
+    if (!m.error.decode(&rc, error_context(previous_delta), &delta))
+      return bad("an error code is out of range");
+    const int64_t bits = int64_t{previous_error} + delta;
+    if (bits < 0 || bits > int64_t{UINT32_MAX}) return bad("error bits out of range");
+    previous_error = static_cast<uint32_t>(bits);
+    previous_delta = delta;
+    errors_out.write(previous_error);
+    if (with_permutation) {
+      const InputPrediction p = predict_input(input, vs, vt_ring, &ids);
+      LODBAKE_RETURN_IF_ERROR(decode_input(p.context, p.value, n));
+    }
+    if (rc.overrun()) return bad("the stream ends inside the record");
+  }
+  topology_out.finish();
+  positions_out.finish();
+
+  Bytes permutation;
+  if (with_permutation) {
+    BitWriter permutation_out(&permutation);
+    const int width = bits_for_count(full);
+    for (uint32_t id : input)
+      permutation_out.write(id, width);
+    permutation_out.finish();
+  }
+  if (!rc.at_end()) {
+    return bad_compact(rc.overrun() ? "the range-coded stream ends early"
+                                    : "bytes follow the range-coded stream");
+  }
+
+  const uint64_t float_bytes = f.quantized ? 0 : 4 * per_split * r;
+  const uint8_t* verbatim_data = data + pos;
+  Bytes out;
+  out.reserve(f.bytes + topology.size() + positions.size() + errors.size() + verbatim +
+              permutation.size());
+  out.insert(out.end(), data + 1, data + 1 + f.bytes);
+  out.insert(out.end(), topology.begin(), topology.end());
+  if (f.quantized) {
+    out.insert(out.end(), positions.begin(), positions.end());
+  } else {
+    out.insert(out.end(), verbatim_data, verbatim_data + float_bytes);
+  }
+  out.insert(out.end(), errors.begin(), errors.end());
+  out.insert(out.end(), verbatim_data + float_bytes, verbatim_data + verbatim);
+  out.insert(out.end(), permutation.begin(), permutation.end());
+  return out;
+}
+
 }  // namespace
 
-Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
+Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
+                                  const VsplCompactOptions& options) {
   try {
-    return encode_unchecked(raw, raw_size, base);
+    if (options.version == 1) return encode_v1(raw, raw_size, base);
+    if (options.version == 2) return encode_v2(raw, raw_size, base, options.stats);
+    if (options.version == 0) {
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v2, encode_v2(raw, raw_size, base, options.stats));
+      uint32_t splits = 0;
+      std::memcpy(&splits, raw, 4);  // encode_v2 checked the payload
+      if (splits >= kVersion1Candidates) return v2;
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v1, encode_v1(raw, raw_size, base));
+      return v1.size() < v2.size() ? v1 : v2;
+    }
+    return invalid_input(
+        string_printf("cannot encode compact VSPL: layout version %u is unknown", options.version));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact VSPL");
   }
@@ -544,7 +1201,11 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
 
 Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const TriangleMesh& base) {
   try {
-    return decode_unchecked(data, size, base);
+    if (size < 1) return bad_compact("payload is empty");
+    if (data[0] == 1) return decode_v1(data, size, base);
+    if (data[0] == 2) return decode_v2(data, size, base);
+    return bad_compact(
+        string_printf("layout version %u is unknown (this reader knows 1 and 2)", data[0]));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact VSPL");
   }

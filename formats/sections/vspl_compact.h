@@ -1,9 +1,11 @@
 // The compact codec (codec 1) of the VSPL section: a lossless recoding of a
-// raw VSPL payload (docs/format.md "Compact VSPL"). Vertex-split topology
-// with wings predicted from a per-vertex list of known neighbours,
-// quantized positions predicted from vs's position before the split and
-// Exp-Golomb coded, errors as Exp-Golomb coded differences of their bits.
-// Decoding gives back the raw payload byte for byte.
+// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 2: the
+// connectivity replayed split by split, wings coded by their place in vs's
+// current fan, quantized positions predicted from vt's fan, errors and the
+// permutation as predicted differences, all through an adaptive range
+// coder. Version 1 (still read, and written when smaller, on tiny PMs, or
+// on request): wings from lists of known neighbours, Exp-Golomb codes,
+// permutation verbatim. Decoding gives back the raw payload byte for byte.
 #pragma once
 
 #include <cstddef>
@@ -15,15 +17,39 @@
 
 namespace lodbake {
 
-/// The layout version written first in every compact VSPL payload.
-inline constexpr uint8_t kVsplCompactVersion = 1;
+/// The newest layout version; readers accept 1 and 2.
+inline constexpr uint8_t kVsplCompactVersion = 2;
+
+/// What each part of a version-2 payload costs, in bits: the range coder's
+/// information content of the part's decisions (the stream's 5 framing
+/// bytes excluded), and the bytes copied verbatim.
+struct VsplCompactStats {
+  double vs_bits = 0;
+  double wing_bits = 0;
+  double position_bits = 0;
+  double error_bits = 0;
+  double permutation_bits = 0;
+  uint64_t verbatim_bytes = 0;  ///< float32 positions, normals, texture coordinates
+};
+
+struct VsplCompactOptions {
+  /// 1 or 2; 0 (the default): below 4096 splits, writes both and keeps the
+  /// smaller, version 2 on a tie (version 2's adaptive models need a few
+  /// hundred splits to learn, so version 1 stays smaller on tiny
+  /// progressive meshes); from 4096 splits on, version 2.
+  uint8_t version = 0;
+  /// Filled in with the version-2 encoding's costs when not null.
+  VsplCompactStats* stats = nullptr;
+};
 
 /// Recodes a raw VSPL payload. `base` is the decoded BASE mesh the payload
-/// belongs to (its positions predict the first splits, its triangles seed
-/// the neighbour lists). Deterministic.
+/// belongs to (its positions predict the first splits, its triangles are
+/// the connectivity the splits refine). Deterministic.
 /// \return the compact bytes; decode_vspl()'s error when the raw payload is
-///         malformed; kRuntime when memory runs out.
-Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base);
+///         malformed; kInvalidInput for an unknown version or a base
+///         triangle out of range; kRuntime when memory runs out.
+Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
+                                  const VsplCompactOptions& options = {});
 
 /// The raw VSPL payload that `data` encodes, against the same `base`.
 /// Every count is bounded by the bytes that remain before anything is
@@ -33,7 +59,10 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
 /// \return LBK-E023 "section VSPL: compact ..." (kInvalidInput) for an
 ///         unknown version, a base vertex count other than base's, a count
 ///         needing more bits than remain, an index, residual or code out of
-///         range, nonzero padding bits or trailing bytes. Never throws.
+///         range, a record with both wings missing or a repeated vertex,
+///         nonzero padding bits (version 1), a range-coded stream that is
+///         not canonical (version 2) or trailing bytes; kRuntime when memory
+///         runs out. Never throws.
 Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const TriangleMesh& base);
 
 }  // namespace lodbake

@@ -3,7 +3,10 @@
 //   - lodbake: the engine's full PM (down to --base-triangles) stored as
 //     BASE + VSPL raw float32, raw quantized, compact float32, compact
 //     quantized, compact quantized with a Draco BASE; the compact VSPL's
-//     parts (permutation, errors) measured by re-encoding without them;
+//     parts (permutation, errors) measured by re-encoding without them, and
+//     the bits per split of each part as the range coder spends them (vs,
+//     wings, positions, errors, permutation); the ratio to Draco of the
+//     whole PM and of its topology and positions alone (what Draco stores);
 //   - OpenMesh's progressive mesh file (DecimaterT + ModQuadricT +
 //     ModProgMeshT::write(): 24 bytes per split), and the .spm OpenMesh's
 //     VDPM analyzer (OpenMesh-Analyzer, Debian libopenmesh-apps, run as a
@@ -48,6 +51,7 @@
 #include "formats/sections/meta.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
+#include "formats/sections/vspl_compact.h"
 #include "lib/core/unreferenced_vertices.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/pack/pack_containers.h"
@@ -374,9 +378,31 @@ int main(int argc, char** argv) {
     const double goal = static_cast<double>(packed.size()) / static_cast<double>(d_14.bytes);
     std::printf("%scompact %d-bit PM / Draco single-rate qp %d cl 10 = %.2f (goal < 2)%s\n",
                 markdown ? "\n" : "  ", bits, bits, goal, markdown ? "\n" : "");
+    const double without =
+        static_cast<double>(without_errors.size()) / static_cast<double>(d_14.bytes);
+    std::printf(
+        "%s.. without the permutation and the errors (topology + positions, what Draco "
+        "stores) / Draco = %.2f%s\n",
+        markdown ? "" : "  ", without, markdown ? "\n" : "");
     std::printf("%sVSPL alone: compact %.2f bits/split, raw %d-bit %.2f bits/split%s\n",
                 markdown ? "" : "  ", section_size(packed, kVsplTag) * 8.0 / splits, bits,
                 section_size(raw_quantized, kVsplTag) * 8.0 / splits, markdown ? "\n" : "");
+    // The compact VSPL's parts as the range coder spends them.
+    VsplEncodeOptions vspl_options;
+    vspl_options.quantize = true;
+    vspl_options.bits = bits;
+    const Bytes raw_vspl = encode_vspl(pm, vspl_options).value();
+    VsplCompactStats parts;
+    VsplCompactOptions compact_options;
+    compact_options.stats = &parts;
+    if (!encode_vspl_compact(raw_vspl.data(), raw_vspl.size(), pm.base, compact_options).is_ok())
+      std::exit(4);
+    std::printf(
+        "%sbits per split in the compact %d-bit VSPL: vs %.2f, wings %.2f, positions "
+        "%.2f, errors %.2f, permutation %.2f (%.2f per vertex)%s\n",
+        markdown ? "" : "  ", bits, parts.vs_bits / splits, parts.wing_bits / splits,
+        parts.position_bits / splits, parts.error_bits / splits, parts.permutation_bits / splits,
+        parts.permutation_bits / v, markdown ? "\n" : "");
     // OpenMesh's files per split of OpenMesh's own PM (its decimation, so its
     // split count), the figures the anchors quote.
     const auto per_split = [](uint64_t bytes, uint64_t count) {

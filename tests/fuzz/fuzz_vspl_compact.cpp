@@ -1,8 +1,10 @@
 // Fuzz target for the compact VSPL decoder (codec 1). Input: a u32 byte
 // count n, n bytes of a raw BASE payload, then the compact VSPL payload
 // decoded against that BASE (the corpus holds real pairs written by
-// lodbake-pack). Invariant: when the result is a valid raw VSPL payload,
-// encoding it compactly again and decoding gives the same raw bytes.
+// lodbake-pack, in both layout versions). Invariant: when the result is a
+// valid raw VSPL payload, encoding it compactly again in the input's layout
+// version (and in the writer's default choice) and decoding gives the same
+// raw bytes.
 #include <cstdint>
 #include <cstring>
 
@@ -26,10 +28,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!raw.is_ok()) return 0;
   if (!decode_vspl(raw.value().data(), raw.value().size(), base.value().positions).is_ok())
     return 0;
-  Result<Bytes> again = encode_vspl_compact(raw.value().data(), raw.value().size(), base.value());
-  fuzz::require(again.is_ok(), "a valid raw VSPL payload does not encode compactly");
-  Result<Bytes> back =
-      decode_vspl_compact(again.value().data(), again.value().size(), base.value());
-  fuzz::require(back.is_ok() && back.value() == raw.value(), "compact VSPL round trip differs");
+  for (uint8_t version : {payload[0], uint8_t{0}}) {
+    VsplCompactOptions options;
+    options.version = version;
+    Result<Bytes> again =
+        encode_vspl_compact(raw.value().data(), raw.value().size(), base.value(), options);
+    fuzz::require(again.is_ok(), "a valid raw VSPL payload does not encode compactly");
+    Result<Bytes> back =
+        decode_vspl_compact(again.value().data(), again.value().size(), base.value());
+    fuzz::require(back.is_ok() && back.value() == raw.value(), "compact VSPL round trip differs");
+  }
   return 0;
 }

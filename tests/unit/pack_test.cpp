@@ -16,6 +16,7 @@
 #include "formats/container/container_writer.h"
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
+#include "formats/mesh/split_connectivity.h"
 #include "formats/sections/base.h"
 #include "formats/sections/draco_codec.h"
 #include "formats/sections/meta.h"
@@ -161,7 +162,9 @@ class CompactVspl : public ::testing::TestWithParam<int> {};
 
 // Compact coding is lossless: the raw payload comes back byte for byte, for
 // float32 and quantized positions, half and optimal placement (stored vs
-// positions), attributes and boundary splits.
+// positions), attributes and boundary splits, in both layout versions (1
+// still read and written on request). Encoding is deterministic, and
+// re-encoding what was decoded gives the same bytes.
 TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
   const int bits = GetParam();
   std::vector<ProgressiveMesh> pms = {record_pm(load_clean_mesh("cgal_elephant-with-holes.off")),
@@ -173,44 +176,157 @@ TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
     options.quantize = bits != 0;
     options.bits = bits == 0 ? 16 : bits;
     Bytes raw = encode_vspl(pm, options).value();
-    Result<Bytes> compact = encode_vspl_compact(raw.data(), raw.size(), pm.base);
-    ASSERT_TRUE(compact.is_ok()) << compact.status().message();
-    Result<Bytes> back =
-        decode_vspl_compact(compact.value().data(), compact.value().size(), pm.base);
-    ASSERT_TRUE(back.is_ok()) << back.status().message();
-    EXPECT_EQ(back.value(), raw);
-    EXPECT_LT(compact.value().size(), raw.size());
+    for (uint8_t version : {1, 2}) {
+      VsplCompactOptions compact_options;
+      compact_options.version = version;
+      Result<Bytes> compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options);
+      ASSERT_TRUE(compact.is_ok()) << compact.status().message();
+      EXPECT_EQ(compact.value()[0], version);
+      Result<Bytes> back =
+          decode_vspl_compact(compact.value().data(), compact.value().size(), pm.base);
+      ASSERT_TRUE(back.is_ok()) << back.status().message();
+      EXPECT_EQ(back.value(), raw);
+      EXPECT_LT(compact.value().size(), raw.size());
+      EXPECT_EQ(
+          encode_vspl_compact(back.value().data(), back.value().size(), pm.base, compact_options)
+              .value(),
+          compact.value());
+    }
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Bits, CompactVspl, ::testing::Values(0, 8, 14, 30));
 
-// Every truncation and a flipped bit in each byte fail cleanly (ASan and
-// UBSan check the decoder's reads) or decode to something else.
+// Version 2 on a real mesh: ids identical, positions within the stated
+// quantization, and the codec's own connectivity replay ends with exactly
+// the triangles of lib/simplify's replay (so every wing was found in its fan).
+TEST(CompactVsplVersion2, RealMeshKeepsIdsAndPositionsAndFindsEveryWing) {
+  const ProgressiveMesh pm = record_pm(load_clean_mesh("cgal_elephant-with-holes.off"));
+  ASSERT_FALSE(pm.splits.empty());
+  VsplEncodeOptions options;
+  options.quantize = true;
+  options.bits = 14;
+  const Bytes raw = encode_vspl(pm, options).value();
+  VsplCompactStats stats;
+  VsplCompactOptions compact_options;
+  compact_options.stats = &stats;
+  const Bytes compact =
+      encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options).value();
+  const Bytes back = decode_vspl_compact(compact.data(), compact.size(), pm.base).value();
+  const VsplSection section = decode_vspl(back.data(), back.size(), pm.base.positions).value();
+  ASSERT_EQ(section.splits.size(), pm.splits.size());
+  Vec3f lo{}, hi{};
+  std::vector<Vec3f> vt_positions;
+  for (const VertexSplit& s : pm.splits)
+    vt_positions.push_back(s.vt_position);
+  bounding_box(vt_positions, &lo, &hi);
+  const double step = extent(vt_positions) / ((1u << 14) - 1);
+  for (size_t i = 0; i < pm.splits.size(); ++i) {
+    EXPECT_EQ(section.splits[i].vs, pm.splits[i].vs);
+    EXPECT_EQ(section.splits[i].vl, pm.splits[i].vl);
+    EXPECT_EQ(section.splits[i].vr, pm.splits[i].vr);
+    for (int a = 0; a < 3; ++a)
+      EXPECT_LE(std::fabs(section.splits[i].vt_position[a] - pm.splits[i].vt_position[a]), step);
+  }
+  EXPECT_EQ(section.input_vertex, pm.input_vertex);
+  // A wing outside its fan would cost an escape of ~log2(n) = 11 bits.
+  EXPECT_LT(stats.wing_bits / static_cast<double>(pm.splits.size()), 8.0);
+  EXPECT_GT(stats.vs_bits, 0);
+  EXPECT_GT(stats.position_bits, 0);
+  EXPECT_GT(stats.error_bits, 0);
+
+  Result<PmRefiner> refiner = PmRefiner::create(pm);
+  ASSERT_TRUE(refiner.is_ok());
+  ASSERT_TRUE(refiner.value().refine_to(pm.full_vertex_count()).is_ok());
+  SplitConnectivity replay(static_cast<uint32_t>(pm.base.vertex_count()), pm.base.triangles);
+  for (const VertexSplit& s : pm.splits)
+    replay.split(s.vs, s.vl, s.vr);
+  EXPECT_EQ(replay.triangles(), refiner.value().mesh().triangles);
+}
+
+// Every truncation and flipped bits fail cleanly (ASan and UBSan check the
+// decoder's reads) or decode to something else, in both versions.
 TEST(CompactVsplHostile, TruncatedAndFlippedPayloads) {
   const ProgressiveMesh pm = record_pm(attributed_grid(5));
   VsplEncodeOptions options;
   options.quantize = true;
   options.bits = 12;
   Bytes raw = encode_vspl(pm, options).value();
-  Bytes compact = encode_vspl_compact(raw.data(), raw.size(), pm.base).value();
-  for (size_t n = 0; n < compact.size(); ++n) {
-    Result<Bytes> cut = decode_vspl_compact(compact.data(), n, pm.base);
-    EXPECT_FALSE(cut.is_ok()) << n;
-  }
-  for (size_t i = 0; i < compact.size(); ++i) {
-    Bytes flipped = compact;
-    flipped[i] ^= 0x10;
-    Result<Bytes> decoded = decode_vspl_compact(flipped.data(), flipped.size(), pm.base);
-    if (decoded.is_ok()) {
-      EXPECT_NE(decoded.value(), raw) << i;
+  for (uint8_t version : {1, 2}) {
+    VsplCompactOptions compact_options;
+    compact_options.version = version;
+    Bytes compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options).value();
+    for (size_t n = 0; n < compact.size(); ++n) {
+      Result<Bytes> cut = decode_vspl_compact(compact.data(), n, pm.base);
+      EXPECT_FALSE(cut.is_ok()) << n;
+    }
+    Bytes longer = compact;
+    longer.push_back(0);
+    EXPECT_FALSE(decode_vspl_compact(longer.data(), longer.size(), pm.base).is_ok());
+    for (size_t i = 1; i < compact.size(); ++i) {
+      for (int bit = 0; bit < 8; ++bit) {
+        if (version == 1 && bit != 4) continue;
+        Bytes flipped = compact;
+        flipped[i] ^= static_cast<uint8_t>(1u << bit);
+        Result<Bytes> decoded = decode_vspl_compact(flipped.data(), flipped.size(), pm.base);
+        if (decoded.is_ok()) {
+          EXPECT_NE(decoded.value(), raw) << i;
+        }
+      }
     }
   }
-  Bytes wrong_version = compact;
-  wrong_version[0] = 2;
+  Bytes wrong_version = encode_vspl_compact(raw.data(), raw.size(), pm.base).value();
+  wrong_version[0] = 3;
   Result<Bytes> refused = decode_vspl_compact(wrong_version.data(), wrong_version.size(), pm.base);
   ASSERT_FALSE(refused.is_ok());
-  EXPECT_NE(refused.status().message().find("layout version 2 is unknown"), std::string::npos);
+  EXPECT_NE(refused.status().message().find("layout version 3 is unknown"), std::string::npos);
+}
+
+// Hostile records that the format accepts but that do not fit the mesh
+// (wings that are not vs's neighbours, splits of a vertex without faces)
+// are escapes: they still code and decode exactly.
+TEST(CompactVsplHostile, RecordsThatDoNotFitTheMeshStillRoundTrip) {
+  ProgressiveMesh pm = record_pm(attributed_grid(6));
+  ASSERT_GT(pm.splits.size(), 4u);
+  std::swap(pm.splits[1].vl, pm.splits[3].vr);
+  for (VertexSplit& s : pm.splits) {
+    if (s.vl == s.vr || s.vl == s.vs || s.vr == s.vs) s.vr = kNoVertex;
+    if (s.vl == kNoVertex && s.vr == kNoVertex) s.vl = s.vs == 0 ? 1 : 0;
+  }
+  pm.splits[2].vs = 0;
+  pm.splits[2].vl = 1;
+  pm.splits[2].vr = 2;
+  for (bool quantize : {false, true}) {
+    VsplEncodeOptions options;
+    options.quantize = quantize;
+    const Result<Bytes> raw = encode_vspl(pm, options);
+    ASSERT_TRUE(raw.is_ok()) << raw.status().message();
+    VsplCompactOptions version2;
+    version2.version = 2;
+    const Bytes compact =
+        encode_vspl_compact(raw.value().data(), raw.value().size(), pm.base, version2).value();
+    EXPECT_EQ(decode_vspl_compact(compact.data(), compact.size(), pm.base).value(), raw.value());
+  }
+}
+
+// By default the writer keeps the smaller layout: version 1 for a tiny PM,
+// whose adaptive models have no time to learn, version 2 for a real mesh.
+TEST(CompactVspl, DefaultKeepsTheSmallerLayout) {
+  for (const ProgressiveMesh& pm : {record_pm(attributed_grid(3)),
+                                    record_pm(load_clean_mesh("cgal_elephant-with-holes.off"))}) {
+    VsplEncodeOptions options;
+    options.quantize = true;
+    options.bits = 14;
+    const Bytes raw = encode_vspl(pm, options).value();
+    size_t sizes[3] = {};
+    for (uint8_t version : {0, 1, 2}) {
+      VsplCompactOptions compact_options;
+      compact_options.version = version;
+      sizes[version] =
+          encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options).value().size();
+    }
+    EXPECT_EQ(sizes[0], std::min(sizes[1], sizes[2]));
+  }
 }
 
 TEST(DracoBase, KeepsVertexAndTriangleIdsWithinTheQuantizationStep) {

@@ -1,0 +1,89 @@
+// The connectivity of a progressive mesh as its vertex splits are applied,
+// for codecs that code a split's wings by their place in the fan of the
+// split vertex (docs/format.md "Compact VSPL", version 2). Self-contained
+// (formats/ does not depend on lib/simplify, whose PmRefiner checks the
+// records) and total: any sequence of format-valid records is applied
+// deterministically, a record that does not fit the mesh moves what its
+// fan walk finds, and every operation is bounded by kMaxFanFaces.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "formats/mesh/triangle_mesh.h"
+
+namespace lodbake {
+
+class SplitConnectivity {
+ public:
+  /// A vertex with more faces than this has no fan for the codec (its
+  /// wings are coded by id) and a split of it moves no faces; real meshes
+  /// stay far below, and the cap keeps hostile records from costing more
+  /// than O(kMaxFanFaces^2) each.
+  static constexpr size_t kMaxFanFaces = 128;
+
+  /// The mesh of `vertex_count` vertices and `triangles`.
+  /// \pre every triangle index < vertex_count.
+  SplitConnectivity(uint32_t vertex_count, const std::vector<Triangle>& triangles);
+
+  uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_faces_.size()); }
+  /// The current triangles: the base ones (vs replaced by vt where faces
+  /// moved), then those of each split, as PmRefiner (lib/simplify) orders
+  /// them.
+  const std::vector<Triangle>& triangles() const { return faces_; }
+
+  /// Writes vs's neighbours to `ring` in fan order: following the faces
+  /// (vs, a, b) from a to b, starting at the smallest id that begins a
+  /// boundary (no face ends there), else at the smallest id; neighbours the
+  /// walk does not reach follow in increasing id order. Returns true when
+  /// the walk closed one ring through all of vs's faces. `ring` is empty
+  /// when vs has no faces or more than kMaxFanFaces.
+  /// \pre vs < vertex_count().
+  bool neighbours(uint32_t vs, std::vector<uint32_t>* ring) const;
+
+  /// Applies a split creating vertex vt = vertex_count(): the faces of vs
+  /// counter-clockwise from (vs, vr, .) until (vs, ., vl), or from vl
+  /// clockwise to the boundary when the first walk does not reach vl
+  /// (lib/simplify/split_fan.h's rule, each face at most once), move to
+  /// vt; then (vs, vt, vl) and (vt, vs, vr) are added for the wings given.
+  /// \pre vs < vt; each wing < vt or kNoVertex.
+  void split(uint32_t vs, uint32_t vl, uint32_t vr);
+
+ private:
+  // Each vertex's faces in insertion order: up to kInline inline (fans
+  // average six faces), more in a spill vector, so a million-vertex mesh
+  // needs no allocation per vertex and its lists stay in one array.
+  class FaceLists {
+   public:
+    explicit FaceLists(size_t vertices) : lists_(vertices) {}
+    size_t size() const { return lists_.size(); }
+    void add_vertex() { lists_.emplace_back(); }
+    size_t count(uint32_t v) const { return lists_[v].count; }
+    const uint32_t* data(uint32_t v) const {
+      const List& l = lists_[v];
+      return l.spill == kNoSpill ? l.head : spills_[l.spill].data();
+    }
+    bool contains(uint32_t v, uint32_t f) const;
+    void push(uint32_t v, uint32_t f);
+    /// Removes the first f, keeping the order of the others.
+    void erase(uint32_t v, uint32_t f);
+
+   private:
+    static constexpr uint32_t kInline = 7;
+    static constexpr uint32_t kNoSpill = UINT32_MAX;
+    struct List {
+      uint32_t count = 0;
+      uint32_t spill = kNoSpill;
+      uint32_t head[kInline] = {};
+    };
+    std::vector<List> lists_;
+    std::vector<std::vector<uint32_t>> spills_;
+  };
+
+  void add_face(const Triangle& t);
+  std::vector<Triangle> faces_;
+  FaceLists vertex_faces_;
+};
+
+}  // namespace lodbake
