@@ -7,40 +7,12 @@
 // order, so a reader never repeats the estimate).
 #include "formats/sections/compact_coding.h"
 
+#include <cstring>
+
+#include "formats/container/container_errors.h"
+#include "formats/support/string_format.h"
+
 namespace lodbake {
-namespace {
-
-int bit_length(uint64_t x) {
-  int n = 0;
-  while (x != 0) {
-    ++n;
-    x >>= 1;
-  }
-  return n;
-}
-
-void write_wide(BitWriter* out, uint64_t value, int width) {
-  if (width > 32) {
-    out->write(static_cast<uint32_t>(value & 0xFFFFFFFFu), 32);
-    out->write(static_cast<uint32_t>(value >> 32), width - 32);
-  } else {
-    out->write(static_cast<uint32_t>(value), width);
-  }
-}
-
-bool read_wide(BitReader* in, int width, uint64_t* value) {
-  uint32_t low = 0;
-  uint32_t high = 0;
-  if (width > 32) {
-    if (!in->read(32, &low) || !in->read(width - 32, &high)) return false;
-  } else if (!in->read(width, &low)) {
-    return false;
-  }
-  *value = (uint64_t{high} << 32) | low;
-  return true;
-}
-
-}  // namespace
 
 CompactStreamWriter::CompactStreamWriter(int contexts)
     : length_counts_(static_cast<size_t>(contexts), std::vector<uint64_t>(65, 0)),
@@ -51,17 +23,11 @@ void CompactStreamWriter::golomb(int ctx, uint64_t value) {
     ++length_counts_[static_cast<size_t>(ctx)][static_cast<size_t>(bit_length(value))];
     return;
   }
-  const int k = orders_[static_cast<size_t>(ctx)];
-  const uint64_t y = value + (uint64_t{1} << k);
-  const int length = bit_length(y);
-  for (int i = 0; i < length - k - 1; ++i)
-    writer_.write(0, 1);
-  writer_.write(1, 1);
-  write_wide(&writer_, y & ((uint64_t{1} << (length - 1)) - 1), length - 1);
+  write_exp_golomb(&writer_, value, orders_[static_cast<size_t>(ctx)]);
 }
 
 void CompactStreamWriter::bits(uint64_t value, int width) {
-  if (out_ != nullptr) write_wide(&writer_, value, width);
+  if (out_ != nullptr) write_bits64(&writer_, value, width);
 }
 
 void CompactStreamWriter::start_writing(Bytes* out) {
@@ -118,23 +84,53 @@ bool CompactStreamReader::start(const uint8_t* data, size_t size, int contexts) 
 }
 
 bool CompactStreamReader::golomb(int ctx, uint64_t* value) {
-  int zeros = 0;
-  for (;;) {
-    uint32_t bit = 0;
-    if (!reader_.read(1, &bit)) return false;
-    if (bit == 1) break;
-    if (++zeros > kCompactMaxPrefix) return false;
-  }
-  const int low_bits = zeros + orders_[static_cast<size_t>(ctx)];
-  if (low_bits > 62) return false;
-  uint64_t low = 0;
-  if (!read_wide(&reader_, low_bits, &low)) return false;
-  *value = ((uint64_t{1} << low_bits) | low) - (uint64_t{1} << orders_[static_cast<size_t>(ctx)]);
-  return true;
+  return read_exp_golomb(&reader_, orders_[static_cast<size_t>(ctx)], kCompactMaxPrefix, value);
 }
 
 bool CompactStreamReader::bits(int width, uint64_t* value) {
-  return read_wide(&reader_, width, value);
+  return read_bits64(&reader_, width, value);
+}
+
+namespace {
+
+Status bad_compact(const char* tag, const std::string& detail) {
+  return malformed_section(tag, "compact: " + detail);
+}
+
+}  // namespace
+
+Status require_canonical_layout(const char* tag, const Bytes& canonical, const uint8_t* raw,
+                                size_t raw_size, const char* widths) {
+  if (canonical.size() == raw_size && std::memcmp(canonical.data(), raw, raw_size) == 0)
+    return Status::ok();
+  return unsupported(std::string(tag) + " payload is not laid out as the reference writer does (" +
+                     widths + "), which the compact codec cannot reproduce");
+}
+
+Status check_compact_start(const char* tag, const uint8_t* data, size_t size, size_t fixed_bytes,
+                           uint8_t version) {
+  if (size < 1 + fixed_bytes) {
+    return bad_compact(tag, string_printf("%zu bytes, the version and fixed fields need %zu", size,
+                                          1 + fixed_bytes));
+  }
+  if (data[0] != version)
+    return bad_compact(tag, string_printf("unknown layout version %u", data[0]));
+  return Status::ok();
+}
+
+Result<Bytes> finish_compact_decode(const char* tag, const CompactStreamReader& in,
+                                    Result<Bytes> raw, const uint8_t* fixed, size_t fixed_bytes,
+                                    const char* structure) {
+  if (!in.at_clean_end())
+    return bad_compact(tag, "nonzero padding or trailing bytes after the stream");
+  if (!raw.is_ok()) {
+    if (raw.status().kind() == ErrorKind::kInvalidInput)
+      return bad_compact(tag, raw.status().message());
+    return raw.status();
+  }
+  if (raw.value().size() < fixed_bytes || std::memcmp(raw.value().data(), fixed, fixed_bytes) != 0)
+    return bad_compact(tag, std::string("the fixed fields disagree with the decoded ") + structure);
+  return raw;
 }
 
 }  // namespace lodbake

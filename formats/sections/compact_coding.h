@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "formats/support/bit_packing.h"
+#include "formats/support/exp_golomb.h"
 #include "formats/support/file_io.h"
+#include "formats/support/status.h"
 
 namespace lodbake {
 
@@ -21,13 +23,6 @@ namespace lodbake {
 inline constexpr int kCompactMaxOrder = 32;
 /// The longest zero prefix a reader accepts: values below 2^40 · 2^k.
 inline constexpr int kCompactMaxPrefix = 40;
-
-inline uint64_t zigzag64(int64_t d) {
-  return (static_cast<uint64_t>(d) << 1) ^ static_cast<uint64_t>(d >> 63);
-}
-inline int64_t unzigzag64(uint64_t z) {
-  return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
-}
 
 /// The detail of a section error ("LBK-E023: section VHIE: depth 0" gives
 /// "depth 0"), for a codec that reports it under its own prefix.
@@ -90,5 +85,25 @@ class CompactStreamReader {
   size_t size_ = 0;
   uint64_t total_bits_ = 0;
 };
+
+/// The checks every compact codec of a kind `tag` shares (errors are that
+/// section's LBK-E023 "compact: ..." and, for the writer, kUnsupported).
+///
+/// The encoder's: the kind's reference writer must give back `raw` byte
+/// for byte from the decoded structure (`canonical`), since the decoder
+/// rebuilds raw payloads with that writer; `widths` names what the writer
+/// chooses ("degree width").
+Status require_canonical_layout(const char* tag, const Bytes& canonical, const uint8_t* raw,
+                                size_t raw_size, const char* widths);
+/// The decoder's first: a version byte equal to `version`, then at least
+/// `fixed_bytes` bytes of fixed fields.
+Status check_compact_start(const char* tag, const uint8_t* data, size_t size, size_t fixed_bytes,
+                           uint8_t version);
+/// The decoder's last: the stream ends cleanly, the writer accepts the
+/// decoded `structure` (its refusal is a malformed payload) and the raw
+/// payload it gives starts with the stored `fixed_bytes` fixed fields.
+Result<Bytes> finish_compact_decode(const char* tag, const CompactStreamReader& in,
+                                    Result<Bytes> raw, const uint8_t* fixed, size_t fixed_bytes,
+                                    const char* structure);
 
 }  // namespace lodbake

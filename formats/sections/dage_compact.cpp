@@ -53,11 +53,8 @@ Result<Bytes> encode_dage_compact(const uint8_t* raw, size_t raw_size) {
   try {
     LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, decode_dage(raw, raw_size));
     LODBAKE_ASSIGN_OR_RETURN(Bytes canonical, encode_dage(dag));
-    if (canonical.size() != raw_size || std::memcmp(canonical.data(), raw, raw_size) != 0) {
-      return unsupported(
-          "DAGE payload is not laid out as the reference writer does (degree width), which the "
-          "compact codec cannot reproduce");
-    }
+    LODBAKE_RETURN_IF_ERROR(
+        require_canonical_layout(kDageTag, canonical, raw, raw_size, "degree width"));
     Bytes out(1 + kDageFixedBytes);
     out[0] = kDageCompactVersion;
     std::memcpy(out.data() + 1, raw, kDageFixedBytes);
@@ -74,12 +71,8 @@ Result<Bytes> encode_dage_compact(const uint8_t* raw, size_t raw_size) {
 
 Result<Bytes> decode_dage_compact(const uint8_t* data, size_t size) {
   try {
-    if (size < 1 + kDageFixedBytes) {
-      return bad_compact(string_printf("%zu bytes, the version and fixed fields need %zu", size,
-                                       1 + kDageFixedBytes));
-    }
-    if (data[0] != kDageCompactVersion)
-      return bad_compact(string_printf("unknown layout version %u", data[0]));
+    LODBAKE_RETURN_IF_ERROR(
+        check_compact_start(kDageTag, data, size, kDageFixedBytes, kDageCompactVersion));
     const uint8_t* fixed = data + 1;
     uint32_t node_count = 0, base_vertices = 0, edge_count = 0;
     std::memcpy(&node_count, fixed, 4);
@@ -121,17 +114,7 @@ Result<Bytes> decode_dage_compact(const uint8_t* data, size_t size) {
     }
     if (filled != edge_count)
       return bad_compact(string_printf("%zu parents, the header says %u", filled, edge_count));
-    if (!in.at_clean_end())
-      return bad_compact("nonzero padding or trailing bytes after the stream");
-    Result<Bytes> raw = encode_dage(dag);
-    if (!raw.is_ok()) {
-      if (raw.status().kind() == ErrorKind::kInvalidInput)
-        return bad_compact(raw.status().message());
-      return raw.status();
-    }
-    if (std::memcmp(raw.value().data(), fixed, kDageFixedBytes) != 0)
-      return bad_compact("the fixed fields disagree with the decoded DAG");
-    return raw;
+    return finish_compact_decode(kDageTag, in, encode_dage(dag), fixed, kDageFixedBytes, "DAG");
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact DAGE");
   }

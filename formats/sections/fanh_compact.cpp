@@ -201,11 +201,8 @@ Result<Bytes> encode_fanh_compact(const uint8_t* raw, size_t raw_size, const Tri
           h.vertex_count, h.triangle_count, base.vertex_count(), base.triangle_count()));
     }
     LODBAKE_ASSIGN_OR_RETURN(Bytes canonical, encode_fanh(h));
-    if (canonical.size() != raw_size || std::memcmp(canonical.data(), raw, raw_size) != 0) {
-      return unsupported(
-          "FANH payload is not laid out as the reference writer does (count widths), which the "
-          "compact codec cannot reproduce");
-    }
+    LODBAKE_RETURN_IF_ERROR(
+        require_canonical_layout(kFanhTag, canonical, raw, raw_size, "count widths"));
     Bytes out(1 + kFanhFixedBytes);
     out[0] = kFanhCompactVersion;
     std::memcpy(out.data() + 1, raw, kFanhFixedBytes);
@@ -226,12 +223,8 @@ Result<Bytes> encode_fanh_compact(const uint8_t* raw, size_t raw_size, const Tri
 
 Result<Bytes> decode_fanh_compact(const uint8_t* data, size_t size, const TriangleMesh& base) {
   try {
-    if (size < 1 + kFanhFixedBytes) {
-      return bad_compact(string_printf("%zu bytes, the version and fixed fields need %zu", size,
-                                       1 + kFanhFixedBytes));
-    }
-    if (data[0] != kFanhCompactVersion)
-      return bad_compact(string_printf("unknown layout version %u", data[0]));
+    LODBAKE_RETURN_IF_ERROR(
+        check_compact_start(kFanhTag, data, size, kFanhFixedBytes, kFanhCompactVersion));
     const uint8_t* fixed = data + 1;
     uint32_t f[6] = {};
     std::memcpy(f, fixed, sizeof(f));
@@ -348,17 +341,7 @@ Result<Bytes> decode_fanh_compact(const uint8_t* data, size_t size, const Triang
       h.child_start.push_back(static_cast<uint32_t>(h.children.size()));
       top[centre] = v_count + i;
     }
-    if (!in.at_clean_end())
-      return bad_compact("nonzero padding or trailing bytes after the stream");
-    Result<Bytes> raw = encode_fanh(h);
-    if (!raw.is_ok()) {
-      if (raw.status().kind() == ErrorKind::kInvalidInput)
-        return bad_compact(raw.status().message());
-      return raw.status();
-    }
-    if (std::memcmp(raw.value().data(), fixed, kFanhFixedBytes) != 0)
-      return bad_compact("the fixed fields disagree with the decoded hierarchy");
-    return raw;
+    return finish_compact_decode(kFanhTag, in, encode_fanh(h), fixed, kFanhFixedBytes, "hierarchy");
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact FANH");
   }

@@ -140,11 +140,8 @@ Result<Bytes> encode_sets_compact(const uint8_t* raw, size_t raw_size) {
   try {
     LODBAKE_ASSIGN_OR_RETURN(SetsGraph graph, decode_sets(raw, raw_size));
     LODBAKE_ASSIGN_OR_RETURN(Bytes canonical, encode_sets(graph));
-    if (canonical.size() != raw_size || std::memcmp(canonical.data(), raw, raw_size) != 0) {
-      return Status(ErrorKind::kUnsupported,
-                    "SETS payload is not laid out as the reference writer does (count widths), "
-                    "which the compact codec cannot reproduce");
-    }
+    LODBAKE_RETURN_IF_ERROR(
+        require_canonical_layout(kSetsTag, canonical, raw, raw_size, "count widths"));
     // Sized first: push_back then a range insert trips g++ 12's -Warray-bounds.
     Bytes out(1 + kSetsFixedBytes);
     out[0] = kSetsCompactVersion;
@@ -162,12 +159,8 @@ Result<Bytes> encode_sets_compact(const uint8_t* raw, size_t raw_size) {
 
 Result<Bytes> decode_sets_compact(const uint8_t* data, size_t size) {
   try {
-    if (size < 1 + kSetsFixedBytes) {
-      return bad_compact(string_printf("%zu bytes, the version and fixed fields need %zu", size,
-                                       1 + kSetsFixedBytes));
-    }
-    if (data[0] != kSetsCompactVersion)
-      return bad_compact(string_printf("unknown layout version %u", data[0]));
+    LODBAKE_RETURN_IF_ERROR(
+        check_compact_start(kSetsTag, data, size, kSetsFixedBytes, kSetsCompactVersion));
     const uint8_t* fixed = data + 1;
     uint32_t f[7] = {};
     std::memcpy(f, fixed, sizeof(f));
@@ -305,17 +298,7 @@ Result<Bytes> decode_sets_compact(const uint8_t* data, size_t size) {
         g.arc_first.push_back(static_cast<uint32_t>(g.arc_lod.size()));
       }
     }
-    if (!in.at_clean_end())
-      return bad_compact("nonzero padding or trailing bytes after the stream");
-    Result<Bytes> raw = encode_sets(g);
-    if (!raw.is_ok()) {
-      if (raw.status().kind() == ErrorKind::kInvalidInput)
-        return bad_compact(raw.status().message());
-      return raw.status();
-    }
-    if (std::memcmp(raw.value().data(), fixed, kSetsFixedBytes) != 0)
-      return bad_compact("the fixed fields disagree with the decoded graph");
-    return raw;
+    return finish_compact_decode(kSetsTag, in, encode_sets(g), fixed, kSetsFixedBytes, "graph");
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact SETS");
   }

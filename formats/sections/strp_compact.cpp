@@ -140,11 +140,8 @@ Result<Bytes> encode_strp_compact(const uint8_t* raw, size_t raw_size, const Tri
                                          strips.vertex_count, base.vertex_count()));
     }
     LODBAKE_ASSIGN_OR_RETURN(Bytes canonical, encode_strp(strips));
-    if (canonical.size() != raw_size || std::memcmp(canonical.data(), raw, raw_size) != 0) {
-      return unsupported(
-          "STRP payload is not laid out as the reference writer does (length width), which the "
-          "compact codec cannot reproduce");
-    }
+    LODBAKE_RETURN_IF_ERROR(
+        require_canonical_layout(kStrpTag, canonical, raw, raw_size, "length width"));
     Bytes out(1 + kStrpFixedBytes);
     out[0] = kStrpCompactVersion;
     std::memcpy(out.data() + 1, raw, kStrpFixedBytes);
@@ -162,12 +159,8 @@ Result<Bytes> encode_strp_compact(const uint8_t* raw, size_t raw_size, const Tri
 
 Result<Bytes> decode_strp_compact(const uint8_t* data, size_t size, const TriangleMesh& base) {
   try {
-    if (size < 1 + kStrpFixedBytes) {
-      return bad_compact(string_printf("%zu bytes, the version and fixed fields need %zu", size,
-                                       1 + kStrpFixedBytes));
-    }
-    if (data[0] != kStrpCompactVersion)
-      return bad_compact(string_printf("unknown layout version %u", data[0]));
+    LODBAKE_RETURN_IF_ERROR(
+        check_compact_start(kStrpTag, data, size, kStrpFixedBytes, kStrpCompactVersion));
     const uint8_t* fixed = data + 1;
     uint32_t vertex_count = 0, strip_count = 0, index_count = 0;
     std::memcpy(&vertex_count, fixed, 4);
@@ -245,17 +238,8 @@ Result<Bytes> decode_strp_compact(const uint8_t* data, size_t size, const Triang
     if (strips.indices.size() != index_count)
       return bad_compact(string_printf("the strips hold %zu indices, the header says %u",
                                        strips.indices.size(), index_count));
-    if (!in.at_clean_end())
-      return bad_compact("nonzero padding or trailing bytes after the stream");
-    Result<Bytes> raw = encode_strp(strips);
-    if (!raw.is_ok()) {
-      if (raw.status().kind() == ErrorKind::kInvalidInput)
-        return bad_compact(raw.status().message());
-      return raw.status();
-    }
-    if (std::memcmp(raw.value().data(), fixed, kStrpFixedBytes) != 0)
-      return bad_compact("the fixed fields disagree with the decoded strips");
-    return raw;
+    return finish_compact_decode(kStrpTag, in, encode_strp(strips), fixed, kStrpFixedBytes,
+                                 "strips");
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact STRP");
   }

@@ -241,12 +241,8 @@ Result<Bytes> encode_vhie_compact(const uint8_t* raw, size_t raw_size) {
 
 Result<Bytes> decode_vhie_compact(const uint8_t* data, size_t size) {
   try {
-    if (size < 1 + kVhieFixedBytes) {
-      return bad_compact(string_printf("%zu bytes, the version and fixed fields need %zu", size,
-                                       1 + kVhieFixedBytes));
-    }
-    if (data[0] != kVhieCompactVersion)
-      return bad_compact(string_printf("unknown layout version %u", data[0]));
+    LODBAKE_RETURN_IF_ERROR(
+        check_compact_start(kVhieTag, data, size, kVhieFixedBytes, kVhieCompactVersion));
     Fields f;
     const std::string fixed_problem = read_fixed(data + 1, &f);
     if (!fixed_problem.empty()) return bad_compact(fixed_problem);

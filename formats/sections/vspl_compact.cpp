@@ -75,6 +75,7 @@
 #include "formats/sections/vspl.h"
 #include "formats/support/bit_packing.h"
 #include "formats/support/byte_reader.h"
+#include "formats/support/exp_golomb.h"
 #include "formats/support/quantization.h"
 #include "formats/support/range_coder.h"
 #include "formats/support/string_format.h"
@@ -90,87 +91,19 @@ Status bad_compact(const std::string& detail) {
   return malformed_section(kVsplTag, "compact: " + detail);
 }
 
-uint64_t zigzag(int64_t d) {
-  return (static_cast<uint64_t>(d) << 1) ^ static_cast<uint64_t>(d >> 63);
-}
-int64_t unzigzag(uint64_t z) {
-  return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
-}
-
-int bit_length(uint64_t x) {
-  int n = 0;
-  while (x != 0) {
-    ++n;
-    x >>= 1;
-  }
-  return n;
-}
-
-// Exp-Golomb of order k: y = x + 2^k takes L = bit_length(y) bits; the code
-// is L - k - 1 zero bits, a one bit, then the low L - 1 bits of y.
-uint64_t golomb_bits(uint64_t x, int k) {
-  const int length = bit_length(x + (uint64_t{1} << k));
-  return static_cast<uint64_t>(2 * length - k - 1);
-}
-
 int best_golomb_order(const std::vector<uint64_t>& values) {
   int best = 0;
   uint64_t best_bits = UINT64_MAX;
   for (int k = 0; k <= kMaxGolombOrder; ++k) {
     uint64_t total = 0;
     for (uint64_t x : values)
-      total += golomb_bits(x, k);
+      total += exp_golomb_bits(x, k);
     if (total < best_bits) {
       best_bits = total;
       best = k;
     }
   }
   return best;
-}
-
-void write_wide(BitWriter* out, uint64_t value, int bits) {
-  if (bits > 32) {
-    out->write(static_cast<uint32_t>(value & 0xFFFFFFFFu), 32);
-    out->write(static_cast<uint32_t>(value >> 32), bits - 32);
-  } else {
-    out->write(static_cast<uint32_t>(value), bits);
-  }
-}
-
-bool read_wide(BitReader* in, int bits, uint64_t* value) {
-  uint32_t low = 0;
-  uint32_t high = 0;
-  if (bits > 32) {
-    if (!in->read(32, &low) || !in->read(bits - 32, &high)) return false;
-  } else if (!in->read(bits, &low)) {
-    return false;
-  }
-  *value = (uint64_t{high} << 32) | low;
-  return true;
-}
-
-void write_golomb(BitWriter* out, uint64_t x, int k) {
-  const uint64_t y = x + (uint64_t{1} << k);
-  const int length = bit_length(y);
-  for (int i = 0; i < length - k - 1; ++i)
-    out->write(0, 1);
-  out->write(1, 1);
-  write_wide(out, y & ((uint64_t{1} << (length - 1)) - 1), length - 1);
-}
-
-bool read_golomb(BitReader* in, int k, uint64_t* x) {
-  int zeros = 0;
-  for (;;) {
-    uint32_t bit = 0;
-    if (!in->read(1, &bit)) return false;
-    if (bit == 1) break;
-    if (++zeros > kMaxGolombPrefix) return false;
-  }
-  const int low_bits = zeros + k;
-  uint64_t low = 0;
-  if (!read_wide(in, low_bits, &low)) return false;
-  *x = ((uint64_t{1} << low_bits) | low) - (uint64_t{1} << k);
-  return true;
 }
 
 // The known-neighbour lists that predict the wings (see the file comment).
@@ -342,7 +275,7 @@ Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh&
         const int a = static_cast<int>(c % 3);
         const int64_t predicted =
             c < 3 ? q.predict_vt(vs, splits[i].vl, splits[i].vr, a) : int64_t{q.get(vs, a)};
-        residuals[a].push_back(zigzag(int64_t{value[c]} - predicted));
+        residuals[a].push_back(zigzag64(int64_t{value[c]} - predicted));
       }
       if (with_vs) {
         for (int a = 0; a < 3; ++a)
@@ -356,7 +289,7 @@ Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   uint32_t previous = 0;
   for (const VertexSplit& split : splits) {
     const uint32_t bits = float_bits(split.error);
-    error_deltas.push_back(zigzag(int64_t{bits} - int64_t{previous}));
+    error_deltas.push_back(zigzag64(int64_t{bits} - int64_t{previous}));
     previous = bits;
   }
 
@@ -406,10 +339,10 @@ Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh&
     if (f.quantized) {
       for (size_t c = 0; c < per_split; ++c) {
         const int a = static_cast<int>(c % 3);
-        write_golomb(&stream, residuals[a][next_residual[a]++], order[a]);
+        write_exp_golomb(&stream, residuals[a][next_residual[a]++], order[a]);
       }
     }
-    write_golomb(&stream, error_deltas[i], error_order);
+    write_exp_golomb(&stream, error_deltas[i], error_order);
     lists.split(split.vs, n, split.vl, split.vr);
   }
   stream.finish();
@@ -418,17 +351,34 @@ Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   return out;
 }
 
+Status check_base_triangles(const TriangleMesh& base) {
+  for (const Triangle& t : base.triangles) {
+    for (uint32_t v : t) {
+      if (v >= base.vertex_count()) return bad_compact("a base triangle index is out of range");
+    }
+  }
+  return Status::ok();
+}
+
+// The fixed fields of either layout (after the version byte), checked
+// against the base mesh the section refines.
+Status read_fixed_for_base(const uint8_t* data, size_t size, const TriangleMesh& base, Fixed* f) {
+  LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, f));
+  if (f->base != base.vertex_count()) {
+    return bad_compact(string_printf("base vertex count %u, but the base mesh has %zu vertices",
+                                     f->base, base.vertex_count()));
+  }
+  if (uint64_t{f->base} + f->splits > UINT32_MAX)
+    return bad_compact("base vertices and splits make more than 2^32 - 1 vertices");
+  if (f->splits != 0 && f->base < 2)
+    return bad_compact("splits over a base of fewer than 2 vertices");
+  return Status::ok();
+}
+
 Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& base) {
   Fixed f;
-  LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, &f));
-  if (f.base != base.vertex_count()) {
-    return bad_compact(string_printf("base vertex count %u, but the base mesh has %zu vertices",
-                                     f.base, base.vertex_count()));
-  }
+  LODBAKE_RETURN_IF_ERROR(read_fixed_for_base(data, size, base, &f));
   const uint64_t r = f.splits;
-  if (uint64_t{f.base} + r > UINT32_MAX)
-    return bad_compact("base vertices and splits make more than 2^32 - 1 vertices");
-  if (r != 0 && f.base < 2) return bad_compact("splits over a base of fewer than 2 vertices");
   size_t pos = 1 + f.bytes;
   int order[3] = {0, 0, 0};
   const int orders = f.quantized ? 4 : 1;
@@ -445,11 +395,7 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
     return bad_compact(string_printf("%u splits need at least %" PRIu64 " bytes, %zu remain",
                                      f.splits, (4 * r + 7) / 8, size - pos));
   }
-  for (const Triangle& t : base.triangles) {
-    for (uint32_t v : t) {
-      if (v >= base.vertex_count()) return bad_compact("a base triangle index is out of range");
-    }
-  }
+  LODBAKE_RETURN_IF_ERROR(check_base_triangles(base));
   const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
   const size_t per_split = with_vs ? 6 : 3;
 
@@ -498,11 +444,12 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
       for (size_t c = 0; c < per_split; ++c) {
         const int a = static_cast<int>(c % 3);
         uint64_t z = 0;
-        if (!read_golomb(&in, order[a], &z)) return bad_compact("stream ends inside a position");
+        if (!read_exp_golomb(&in, order[a], kMaxGolombPrefix, &z))
+          return bad_compact("stream ends inside a position");
         const uint32_t vl = wing_value[0] == n ? kNoVertex : wing_value[0];
         const uint32_t vr = wing_value[1] == n ? kNoVertex : wing_value[1];
         const int64_t predicted = c < 3 ? qp.predict_vt(vs, vl, vr, a) : int64_t{qp.get(vs, a)};
-        const int64_t v = predicted + unzigzag(z);
+        const int64_t v = predicted + unzigzag64(z);
         if (v < 0 || v > int64_t{qp.steps()}) {
           return bad_compact(string_printf(
               "split %u: position coordinate %" PRId64 " outside 0..%u", i, v, qp.steps()));
@@ -517,8 +464,9 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
       qp.append(value);
     }
     uint64_t z = 0;
-    if (!read_golomb(&in, error_order, &z)) return bad_compact("stream ends inside an error");
-    const int64_t bits = int64_t{previous} + unzigzag(z);
+    if (!read_exp_golomb(&in, error_order, kMaxGolombPrefix, &z))
+      return bad_compact("stream ends inside an error");
+    const int64_t bits = int64_t{previous} + unzigzag64(z);
     if (bits < 0 || bits > int64_t{UINT32_MAX})
       return bad_compact(string_printf("split %u: error bits out of range", i));
     previous = static_cast<uint32_t>(bits);
@@ -844,15 +792,6 @@ uint64_t verbatim_bytes(const Fixed& f) {
   return bytes;
 }
 
-Status check_base_triangles(const TriangleMesh& base) {
-  for (const Triangle& t : base.triangles) {
-    for (uint32_t v : t) {
-      if (v >= base.vertex_count()) return bad_compact("a base triangle index is out of range");
-    }
-  }
-  return Status::ok();
-}
-
 Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
                         VsplCompactStats* stats) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
@@ -983,15 +922,8 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
 
 Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& base) {
   Fixed f;
-  LODBAKE_RETURN_IF_ERROR(read_fixed(data + 1, size - 1, &f));
-  if (f.base != base.vertex_count()) {
-    return bad_compact(string_printf("base vertex count %u, but the base mesh has %zu vertices",
-                                     f.base, base.vertex_count()));
-  }
+  LODBAKE_RETURN_IF_ERROR(read_fixed_for_base(data, size, base, &f));
   const uint64_t r = f.splits;
-  if (uint64_t{f.base} + r > UINT32_MAX)
-    return bad_compact("base vertices and splits make more than 2^32 - 1 vertices");
-  if (r != 0 && f.base < 2) return bad_compact("splits over a base of fewer than 2 vertices");
   const size_t pos = 1 + f.bytes;
   const uint64_t verbatim = verbatim_bytes(f);
   if (verbatim > size - pos) {

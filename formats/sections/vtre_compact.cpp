@@ -293,11 +293,8 @@ Result<Bytes> encode_vtre_compact(const uint8_t* raw, size_t raw_size) {
   try {
     LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw, raw_size));
     LODBAKE_ASSIGN_OR_RETURN(Bytes canonical, encode_vtre(trees));
-    if (canonical.size() != raw_size || std::memcmp(canonical.data(), raw, raw_size) != 0) {
-      return Status(ErrorKind::kUnsupported,
-                    "VTRE payload is not laid out as the reference writer does (bit widths), "
-                    "which the compact codec cannot reproduce");
-    }
+    LODBAKE_RETURN_IF_ERROR(
+        require_canonical_layout(kVtreTag, canonical, raw, raw_size, "bit widths"));
     // Sized first: push_back then a range insert trips g++ 12's -Warray-bounds.
     Bytes out(1 + kVtreFixedBytes);
     out[0] = kVtreCompactVersion;
@@ -315,12 +312,8 @@ Result<Bytes> encode_vtre_compact(const uint8_t* raw, size_t raw_size) {
 
 Result<Bytes> decode_vtre_compact(const uint8_t* data, size_t size) {
   try {
-    if (size < 1 + kVtreFixedBytes) {
-      return bad_compact(string_printf("%zu bytes, the version and fixed fields need %zu", size,
-                                       1 + kVtreFixedBytes));
-    }
-    if (data[0] != kVtreCompactVersion)
-      return bad_compact(string_printf("unknown layout version %u", data[0]));
+    LODBAKE_RETURN_IF_ERROR(
+        check_compact_start(kVtreTag, data, size, kVtreFixedBytes, kVtreCompactVersion));
     const uint8_t* fixed = data + 1;
     uint32_t b = 0, splits = 0, run_total = 0, fan_total = 0;
     std::memcpy(&b, fixed, 4);
@@ -477,17 +470,7 @@ Result<Bytes> decode_vtre_compact(const uint8_t* data, size_t size) {
       const uint32_t* fans = t.fan_vertices.data();
       known.split(vs, vt, fans + l0, l1 - l0, fans + l1, t.fan_vertices.size() - l1);
     }
-    if (!in.at_clean_end())
-      return bad_compact("nonzero padding or trailing bytes after the stream");
-    Result<Bytes> raw = encode_vtre(t);
-    if (!raw.is_ok()) {
-      if (raw.status().kind() == ErrorKind::kInvalidInput)
-        return bad_compact(raw.status().message());
-      return raw.status();
-    }
-    if (std::memcmp(raw.value().data(), fixed, kVtreFixedBytes) != 0)
-      return bad_compact("the fixed fields disagree with the decoded trees");
-    return raw;
+    return finish_compact_decode(kVtreTag, in, encode_vtre(t), fixed, kVtreFixedBytes, "trees");
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact VTRE");
   }

@@ -69,24 +69,6 @@ namespace {
 
 constexpr int kBits = 14;  // --quantize 14, and Draco's default qp
 
-// The value of `result`, or T{} after failing the test.
-template <typename T>
-T take(Result<T> result, const char* what) {
-  EXPECT_TRUE(result.is_ok()) << what << ": " << result.status().message();
-  return result.is_ok() ? std::move(result).value() : T{};
-}
-
-// The one small shared mesh every container is baked from (2775 vertices).
-const TriangleMesh& shared_mesh() {
-  static const TriangleMesh mesh = [] {
-    TriangleMesh m = load_clean_mesh("cgal_elephant.off");
-    m.normals = MeshAttribute();
-    m.texcoords = MeshAttribute();
-    return m;
-  }();
-  return mesh;
-}
-
 struct Written {
   const char* tag;
   Bytes bytes;
@@ -115,7 +97,7 @@ std::map<std::string, uint64_t> pm_counts(const ProgressiveMesh& pm) {
 
 // lodbake-hierarchy's container (all of --sections vhie,dage,vtre).
 Bytes hierarchy_container() {
-  const TriangleMesh& mesh = shared_mesh();
+  const TriangleMesh& mesh = bare_elephant();
   const BalancedHierarchy built =
       take(build_balanced_hierarchy(mesh, BalancedBuildOptions()), "hierarchy");
   const VertexHierarchy& h = built.hierarchy;
@@ -142,7 +124,7 @@ Bytes hierarchy_container() {
 
 // lodbake-fan's container.
 Bytes fan_container() {
-  const TriangleMesh& mesh = shared_mesh();
+  const TriangleMesh& mesh = bare_elephant();
   const FanBuildResult built = take(build_fan_hierarchy(mesh, FanBuildOptions()), "fan");
   std::vector<Written> sections;
   sections.push_back({kBaseTag, take(encode_base(mesh, BaseEncodeOptions()), "BASE"), true});
@@ -160,7 +142,7 @@ Bytes strips_container() {
   SimplifyOptions options;
   options.record_pm = true;
   options.placement = Placement::kHalf;
-  SimplifyResult simplified = take(simplify(shared_mesh(), options), "simplify");
+  SimplifyResult simplified = take(simplify(bare_elephant(), options), "simplify");
   EXPECT_TRUE(simplified.pm.has_value());
   if (!simplified.pm) return {};
   const ProgressiveMesh& pm = *simplified.pm;
@@ -176,7 +158,7 @@ Bytes strips_container() {
 
 // lodbake-strips --strips-only's container.
 Bytes strips_only_container() {
-  const TriangleMesh& mesh = shared_mesh();
+  const TriangleMesh& mesh = bare_elephant();
   std::vector<Written> sections;
   sections.push_back({kBaseTag, take(encode_base(mesh, BaseEncodeOptions()), "BASE"), true});
   sections.push_back({kStrpTag, take(encode_strp(take(stripify(mesh), "strips")), "STRP"), true});

@@ -44,22 +44,6 @@
 namespace lodbake {
 namespace {
 
-template <typename T>
-T take(Result<T> result, const char* what) {
-  EXPECT_TRUE(result.is_ok()) << what << ": " << result.status().message();
-  return result.is_ok() ? std::move(result).value() : T{};
-}
-
-const TriangleMesh& elephant() {
-  static const TriangleMesh mesh = [] {
-    TriangleMesh m = load_clean_mesh("cgal_elephant.off");
-    m.normals = MeshAttribute();
-    m.texcoords = MeshAttribute();
-    return m;
-  }();
-  return mesh;
-}
-
 // lodbake-hierarchy's progressive mesh: the balanced hierarchy's.
 ProgressiveMesh hierarchy_pm(const TriangleMesh& mesh) {
   const BalancedHierarchy built =
@@ -132,7 +116,7 @@ std::vector<Sample> samples() {
   std::vector<Sample> s;
   s.push_back({"VtreHierarchyElephant", kVtreTag, [] {
                  return take(
-                     encode_vtre(take(build_vertex_trees(hierarchy_pm(elephant())), "trees")),
+                     encode_vtre(take(build_vertex_trees(hierarchy_pm(bare_elephant())), "trees")),
                      "VTRE");
                }});
   s.push_back(
@@ -150,27 +134,28 @@ std::vector<Sample> samples() {
                  return take(encode_vtre(take(build_vertex_trees(pm), "trees")), "VTRE");
                },
                true});
-  s.push_back({"VhieElephant", kVhieTag, [] { return vhie_of(elephant()); }});
+  s.push_back({"VhieElephant", kVhieTag, [] { return vhie_of(bare_elephant()); }});
   s.push_back({"VhieTorus", kVhieTag, [] { return vhie_of(test_meshes::torus(8, 6)); }, true});
   s.push_back(
       {"VhieTetrahedron", kVhieTag, [] { return vhie_of(test_meshes::tetrahedron()); }, true});
-  s.push_back({"RfinElephant", kRfinTag, [] { return rfin_of(elephant()); }});
+  s.push_back({"RfinElephant", kRfinTag, [] { return rfin_of(bare_elephant()); }});
   s.push_back({"RfinTorus", kRfinTag, [] { return rfin_of(test_meshes::torus(8, 6)); }, true});
   s.push_back(
       {"RfinTetrahedron", kRfinTag, [] { return rfin_of(test_meshes::tetrahedron()); }, true});
-  s.push_back({"FanhElephant", kFanhTag, [] { return fanh_of(elephant()); }, false,
-               [] { return elephant(); }});
+  s.push_back({"FanhElephant", kFanhTag, [] { return fanh_of(bare_elephant()); }, false,
+               [] { return bare_elephant(); }});
   s.push_back({"FanhTorus", kFanhTag, [] { return fanh_of(test_meshes::torus(8, 6)); }, true,
                [] { return test_meshes::torus(8, 6); }});
-  s.push_back({"StrpElephant", kStrpTag, [] { return strp_of(elephant()); }, false,
-               [] { return elephant(); }});
+  s.push_back({"StrpElephant", kStrpTag, [] { return strp_of(bare_elephant()); }, false,
+               [] { return bare_elephant(); }});
   s.push_back({"StrpTorus", kStrpTag, [] { return strp_of(test_meshes::torus(8, 6)); }, true,
                [] { return test_meshes::torus(8, 6); }});
   s.push_back({"StrpMoebius", kStrpTag, [] { return strp_of(test_meshes::moebius_band(12)); }, true,
                [] { return test_meshes::moebius_band(12); }});
   s.push_back({"DageHierarchyElephant", kDageTag, [] {
-                 return take(encode_dage(take(build_vsplit_dag(hierarchy_pm(elephant())), "DAG")),
-                             "DAGE");
+                 return take(
+                     encode_dage(take(build_vsplit_dag(hierarchy_pm(bare_elephant())), "DAG")),
+                     "DAGE");
                }});
   s.push_back({"DageGreedyTorus", kDageTag,
                [] {
@@ -179,7 +164,7 @@ std::vector<Sample> samples() {
                              "DAGE");
                },
                true});
-  s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(elephant()); }});
+  s.push_back({"SetsElephant", kSetsTag, [] { return sets_of(bare_elephant()); }});
   s.push_back({"SetsTorus", kSetsTag, [] { return sets_of(test_meshes::torus(9, 6)); }, true});
   s.push_back(
       {"SetsTetrahedron", kSetsTag, [] { return sets_of(test_meshes::tetrahedron()); }, true});

@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "formats/mesh/triangle_mesh.h"
 #include "lib/ingest/load_mesh.h"
@@ -38,6 +39,25 @@ inline TriangleMesh load_clean_mesh(const std::string& file) {
   const Status status = load_mesh(shared_mesh_path(file), clean_mesh_options(), &loaded);
   EXPECT_TRUE(status.is_ok()) << file << ": " << status.message();
   return loaded.mesh;
+}
+
+// The value of `result`, or T{} after failing the test.
+template <typename T>
+T take(Result<T> result, const char* what) {
+  EXPECT_TRUE(result.is_ok()) << what << ": " << result.status().message();
+  return result.is_ok() ? std::move(result).value() : T{};
+}
+
+// cgal_elephant.off without its normals and texture coordinates: the
+// small shared mesh (2775 vertices) the section tests bake containers from.
+inline const TriangleMesh& bare_elephant() {
+  static const TriangleMesh mesh = [] {
+    TriangleMesh m = load_clean_mesh("cgal_elephant.off");
+    m.normals = MeshAttribute();
+    m.texcoords = MeshAttribute();
+    return m;
+  }();
+  return mesh;
 }
 
 }  // namespace lodbake
