@@ -245,6 +245,15 @@ class QuantizedPositions {
   // The next vertex's position: storage grows with the records decoded, so
   // a hostile split count allocates nothing up front.
   void append(const uint32_t* q) { q_.insert(q_.end(), q, q + 3); }
+  // A split's positions: vt's are value[0..2]; vs moves to value[3..5]
+  // when the section stores vs positions.
+  void apply_split(uint32_t vs, const uint32_t* value, bool with_vs) {
+    if (with_vs) {
+      for (int a = 0; a < 3; ++a)
+        set(vs, a, value[3 + a]);
+    }
+    append(value);
+  }
   uint32_t steps() const { return steps_; }
 
  private:
@@ -277,11 +286,7 @@ Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh&
             c < 3 ? q.predict_vt(vs, splits[i].vl, splits[i].vr, a) : int64_t{q.get(vs, a)};
         residuals[a].push_back(zigzag64(int64_t{value[c]} - predicted));
       }
-      if (with_vs) {
-        for (int a = 0; a < 3; ++a)
-          q.set(vs, a, value[3 + a]);
-      }
-      q.append(value);
+      q.apply_split(vs, value, with_vs);
     }
   }
   std::vector<uint64_t> error_deltas;
@@ -457,11 +462,7 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
         value[c] = static_cast<uint32_t>(v);
         positions_out.write(value[c], f.bits);
       }
-      if (with_vs) {
-        for (int a = 0; a < 3; ++a)
-          qp.set(vs, a, value[3 + a]);
-      }
-      qp.append(value);
+      qp.apply_split(vs, value, with_vs);
     }
     uint64_t z = 0;
     if (!read_exp_golomb(&in, error_order, kMaxGolombPrefix, &z))
@@ -895,11 +896,7 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
         m.position.encode(&rc, c * kScaleContexts + scale,
                           int64_t{value[c]} - int64_t{qp.get(s.vs, a)});
       }
-      if (with_vs) {
-        for (int a = 0; a < 3; ++a)
-          qp.set(s.vs, a, value[3 + a]);
-      }
-      qp.append(value);
+      qp.apply_split(s.vs, value, with_vs);
       spend(&cost.position_bits);
     }
 
@@ -1054,11 +1051,7 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
       }
       for (size_t c = 0; c < per_split; ++c)
         positions_out.write(value[c], f.bits);
-      if (with_vs) {
-        for (int a = 0; a < 3; ++a)
-          qp.set(vs, a, value[3 + a]);
-      }
-      qp.append(value);
+      qp.apply_split(vs, value, with_vs);
     }
 
     int64_t delta = 0;
