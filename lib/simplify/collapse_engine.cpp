@@ -72,6 +72,11 @@ constexpr double kPassLimitFactor = 1.5;
 // less time with it, measured with 4, 8, 16 and 32 (16 kept; the others
 // within 2 %).
 constexpr size_t kListAhead = 16;
+// Below this many live triangles the listing runs on one thread: starting
+// the second costs more than it saves.
+constexpr size_t kParallelListing = 8192;
+// Likewise for the quadric set-up, in triangles.
+constexpr size_t kParallelQuadrics = 8192;
 
 // One edge listed for a pass, in its cheaper direction: vt into vs.
 struct Candidate {
@@ -86,39 +91,63 @@ struct Candidate {
 // listing order, which is deterministic. The 10 lowest mantissa bits are
 // left out: costs within a relative 2^-13 of each other keep their listing
 // order. Of the remaining bits, the upper 11 are sorted for the whole list
-// at the pass start (one counting sweep, one scattering sweep); the lower 11
-// of each upper bucket only when the walk reaches it. A pass walks about a
-// third of its candidates, so most of the second scattering sweep of a full
-// sort was never read. The result is the same as sorting by (upper digit,
-// lower digit, listing order) in one go.
+// at the pass start (counted while listing, then one scattering sweep); the
+// lower 11 of each upper bucket only when the walk reaches it. A pass walks
+// about a third of its candidates, so most of the second scattering sweep
+// of a full sort was never read. The result is the same as sorting by
+// (upper digit, lower digit, listing order) in one go.
+//
+// The listing comes in two parts (the first and second half of the live
+// triangles), each with its own buffer and upper-digit counts, so that two
+// threads can list and scatter at once: part 0's candidates go before part
+// 1's in every bucket, which is the listing order of one thread.
 class CandidateList {
  public:
-  // Empties the list for at most `max_count` candidates: growing by
-  // doubling would copy the first pass's list several times.
-  void clear(size_t max_count) {
-    items_.clear();
-    items_.reserve(max_count);
+  static constexpr int kParts = 2;
+
+  // Empties the list for at most `max_count[p]` candidates in part p.
+  void clear(const size_t max_count[kParts]) {
+    size_t total = 0;
+    for (int p = 0; p < kParts; ++p) {
+      reserve(&parts_[p], max_count[p]);
+      part_size_[p] = 0;
+      std::fill(part_counts_[p], part_counts_[p] + kBuckets, 0u);
+      total += max_count[p];
+    }
+    reserve(&scratch_, total);
+    reserve(&items_, total);
+    size_ = 0;
   }
-  void push_back(const Candidate& c) { items_.push_back(c); }
-  size_t size() const { return items_.size(); }
+
+  // Called by part p's thread only.
+  void push_back(int p, const Candidate& c) {
+    parts_[p].data[part_size_[p]++] = c;
+    ++part_counts_[p][upper(c)];
+  }
+  size_t size() const { return size_; }
 
   // Groups the candidates by the upper digit and leaves each group in
   // listing order.
-  void sort_upper() {
-    if (scratch_capacity_ < items_.size()) {
-      // Not value-initialised: every element is written before it is read.
-      scratch_.reset(new Candidate[items_.size()]);
-      scratch_capacity_ = items_.size();
+  void sort_upper(TwoWaySplit& split) {
+    uint32_t sum = 0;
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      bucket_end_[b] = sum;
+      for (int p = 0; p < kParts; ++p) {
+        part_fill_[p][b] = sum;
+        sum += part_counts_[p][b];
+      }
     }
-    std::fill(bucket_end_, bucket_end_ + kBuckets + 1, 0u);
-    for (const Candidate& c : items_)
-      ++bucket_end_[upper(c) + 1];
-    for (uint32_t b = 0; b < kBuckets; ++b)
-      bucket_end_[b + 1] += bucket_end_[b];
-    uint32_t fill[kBuckets];
-    std::copy(bucket_end_, bucket_end_ + kBuckets, fill);
-    for (const Candidate& c : items_)
-      scratch_[fill[upper(c)]++] = c;
+    bucket_end_[kBuckets] = sum;
+    size_ = sum;
+    split.run(
+        [this](int p) {
+          uint32_t* fill = part_fill_[p];
+          const Candidate* src = parts_[p].data.get();
+          Candidate* dst = scratch_.data.get();
+          for (size_t i = 0, n = part_size_[p]; i < n; ++i)
+            dst[fill[upper(src[i])]++] = src[i];
+        },
+        size_ >= kParallelScatter);
     // bucket_end_[b] now is the start of bucket b, bucket_end_[b + 1] its end.
     next_bucket_ = 0;
     sorted_end_ = 0;
@@ -128,7 +157,7 @@ class CandidateList {
   const Candidate& operator[](size_t i) {
     while (i >= sorted_end_)
       sort_next_bucket();
-    return items_[i];
+    return items_.data[i];
   }
 
  private:
@@ -138,6 +167,21 @@ class CandidateList {
   // Below this size a bucket is sorted by insertion (stable) rather than
   // by counting, whose histogram would dominate.
   static constexpr uint32_t kSmallBucket = 64;
+  // Below this many candidates one thread scatters faster than two can be
+  // started.
+  static constexpr size_t kParallelScatter = 16384;
+
+  // A buffer that is only grown, never value-initialised: every element is
+  // written before it is read.
+  struct Buffer {
+    std::unique_ptr<Candidate[]> data;
+    size_t capacity = 0;
+  };
+  static void reserve(Buffer* buffer, size_t count) {
+    if (buffer->capacity >= count) return;
+    buffer->data.reset(new Candidate[count]);
+    buffer->capacity = count;
+  }
 
   static uint32_t key(const Candidate& c) {
     uint32_t bits;
@@ -153,8 +197,8 @@ class CandidateList {
     const uint32_t begin = bucket_end_[next_bucket_];
     const uint32_t end = bucket_end_[next_bucket_ + 1];
     ++next_bucket_;
-    const Candidate* src = scratch_.get();
-    Candidate* dst = items_.data();
+    const Candidate* src = scratch_.data.get();
+    Candidate* dst = items_.data.get();
     if (end - begin <= kSmallBucket) {
       for (uint32_t i = begin; i < end; ++i) {
         const Candidate c = src[i];
@@ -179,9 +223,13 @@ class CandidateList {
     sorted_end_ = end;
   }
 
-  std::vector<Candidate> items_;
-  std::unique_ptr<Candidate[]> scratch_;  // grouped by the upper digit
-  size_t scratch_capacity_ = 0;
+  Buffer parts_[kParts];
+  size_t part_size_[kParts] = {};
+  uint32_t part_counts_[kParts][kBuckets] = {};
+  uint32_t part_fill_[kParts][kBuckets] = {};
+  Buffer scratch_;  // grouped by the upper digit
+  Buffer items_;    // sorted, bucket by bucket
+  size_t size_ = 0;
   uint32_t bucket_end_[kBuckets + 1] = {};
   uint32_t next_bucket_ = 0;
   size_t sorted_end_ = 0;
@@ -236,7 +284,7 @@ class Engine {
   // vinfo_, and the state's positions are written back at the end).
   Engine(TriangleMesh mesh, MeshTopology topology, const SimplifyOptions& options,
          const EngineSettings& settings)
-      : options_(options), settings_(settings) {
+      : options_(options), settings_(settings), split_(*settings.split) {
     const size_t n = mesh.positions.size();
     state_.positions = std::move(mesh.positions);
     state_.triangles = std::move(mesh.triangles);
@@ -287,7 +335,7 @@ class Engine {
     while (triangle_count_ > target) {
       if (pass_ > 0) finish_pass(/*rebuild=*/true);
       list_candidates();
-      candidates_.sort_upper();
+      candidates_.sort_upper(split_);
       if (run_pass() == 0) break;
     }
     finish_pass(/*rebuild=*/false);
@@ -363,17 +411,37 @@ class Engine {
     }
   }
 
+  // Each vertex sums its faces' quadrics (and its boundary edges') in
+  // triangle order. Two parts own the lower and the upper half of the
+  // vertices; each walks all triangles and adds only to its own vertices,
+  // so every sum is made in the same order as by one thread (a triangle
+  // with vertices in both halves has its quadric computed twice).
   void setup_quadrics() {
     const size_t n = state_.positions.size();
     quadric_.assign(n, AlignedQuadric());
+    const auto all = static_cast<uint32_t>(n);
+    if (!split_.splits(state_.triangles.size() >= kParallelQuadrics)) {
+      add_quadrics(0, all);
+      return;
+    }
+    const uint32_t half = all / 2;
+    split_.run([this, half, all](int part) {
+      add_quadrics(part == 0 ? 0 : half, part == 0 ? half : all);
+    });
+  }
+
+  void add_quadrics(uint32_t lo, uint32_t hi) {
+    auto owned = [lo, hi](uint32_t v) { return v >= lo && v < hi; };
     const double bw = options_.boundary_weight;
     for (const Triangle& t : state_.triangles) {
+      if (!owned(t[0]) && !owned(t[1]) && !owned(t[2])) continue;
       const Vec3d p0 = to_d(state_.positions[t[0]]);
       const Vec3d p1 = to_d(state_.positions[t[1]]);
       const Vec3d p2 = to_d(state_.positions[t[2]]);
       const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
-      for (uint32_t v : t)
-        quadric_[v].q += q;
+      for (uint32_t v : t) {
+        if (owned(v)) quadric_[v].q += q;
+      }
       if (!(bw > 0) ||
           (!is_set(t[0], kBoundary) && !is_set(t[1], kBoundary) && !is_set(t[2], kBoundary)))
         continue;
@@ -381,13 +449,13 @@ class Engine {
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
-        if (!is_boundary_half_edge(a, b)) continue;
+        if (!(owned(a) || owned(b)) || !is_boundary_half_edge(a, b)) continue;
         Quadric bq;
         if (!boundary_edge_quadric(to_d(state_.positions[a]), to_d(state_.positions[b]), normal, bw,
                                    &bq))
           continue;
-        quadric_[a].q += bq;
-        quadric_[b].q += bq;
+        if (owned(a)) quadric_[a].q += bq;
+        if (owned(b)) quadric_[b].q += bq;
       }
     }
   }
@@ -405,12 +473,22 @@ class Engine {
 
   // Every live edge once, in its cheaper direction. A half-edge a->b stands
   // for its edge when a precedes b or when b->a does not exist (a boundary
-  // edge).
+  // edge). Two parts, the two halves of the live triangles, listed at once
+  // (everything they read is constant during the listing).
   void list_candidates() {
-    candidates_.clear(3 * live_triangles_.size());
     const size_t live = live_triangles_.size();
-    for (size_t i = 0; i < live; ++i) {
-      if (i + kListAhead < live) {
+    const size_t bounds[CandidateList::kParts + 1] = {0, live / 2, live};
+    size_t max_count[CandidateList::kParts];
+    for (int p = 0; p < CandidateList::kParts; ++p)
+      max_count[p] = 3 * (bounds[p + 1] - bounds[p]);
+    candidates_.clear(max_count);
+    split_.run([&](int p) { list_candidates(p, bounds[p], bounds[p + 1]); },
+               live >= kParallelListing);
+  }
+
+  void list_candidates(int part, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (i + kListAhead < end) {
         for (uint32_t v : state_.triangles[live_triangles_[i + kListAhead]]) {
           __builtin_prefetch(&vinfo_[v]);
           prefetch_quadric(v);
@@ -429,7 +507,7 @@ class Engine {
         // be the survivor (meshoptimizer's collapse table: a border vertex
         // moves only along the border).
         if (!boundary_edge && is_set(a, kBoundary) && is_set(b, kBoundary)) continue;
-        add_candidate(a, b, boundary_edge);
+        add_candidate(part, a, b, boundary_edge);
       }
     }
   }
@@ -677,7 +755,7 @@ class Engine {
     return weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
   }
 
-  void add_candidate(uint32_t a, uint32_t b, bool boundary_edge) {
+  void add_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {
     // removing a, keeping b
     const double ab = !boundary_edge && is_set(a, kBoundary) ? kInfinity : cost(a, b);
     const double ba = !boundary_edge && is_set(b, kBoundary) ? kInfinity : cost(b, a);
@@ -696,7 +774,7 @@ class Engine {
       const double lb = dot(db, db);
       remove_a = lb < la || (lb == la && precedes(b, a));
     }
-    candidates_.push_back(remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
+    candidates_.push_back(part, remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
   }
 
   // ---- legality ----
@@ -896,6 +974,7 @@ class Engine {
   uint32_t shared_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<uint32_t> live_vertices_;   // those with faces, in order, filtered by finish_pass()
+  TwoWaySplit& split_;
   CandidateList candidates_;
   uint32_t pass_ = 0;
   float max_cost_float_ = 0;  // settings_.max_cost rounded up to float

@@ -10,6 +10,7 @@
 #include "formats/mesh/triangle_mesh.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/simplify.h"
+#include "lib/simplify/two_way_split.h"
 
 namespace lodbake {
 namespace simplify_internal {
@@ -33,6 +34,8 @@ struct EngineSettings {
   // (vertex_order.h): ties between vertices are broken by it, so that the
   // collapse sequence does not depend on the numbering. Null: identity.
   const std::vector<uint32_t>* input_ids = nullptr;
+  // The threads of the parallel steps (never null).
+  TwoWaySplit* split = nullptr;
 };
 
 struct EngineState {

@@ -22,6 +22,8 @@ using FanFace = FanCorner;
 // a real mesh, and far cheaper than the sorting path for them.
 constexpr size_t kSmallFan = 16;
 constexpr uint32_t kNone = 0xffffffffu;
+// Below this many triangles the fan checks run on one thread.
+constexpr size_t kParallelFanCheck = 8192;
 
 // The quadratic check of a small fan: true when no neighbour repeats as
 // `next` or as `prev` and the faces form one chain or one cycle, with *open
@@ -65,61 +67,15 @@ bool small_fan_is_simple(const FanFace* fan, size_t k, bool* open) {
   return walked == k;
 }
 
-}  // namespace
-
-Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces) {
-  const size_t n = mesh.positions.size();
-  const size_t m = mesh.triangles.size();
-  if (n >= (size_t{1} << 31) || m >= (size_t{1} << 30)) {
-    return unsupported("mesh too large for the collapse engine (" + std::to_string(n) +
-                       " vertices, " + std::to_string(m) + " triangles)");
-  }
-  for (size_t v = 0; v < n; ++v) {
-    const Vec3f& p = mesh.positions[v];
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      return invalid_input("vertex " + std::to_string(v) + " has a non-finite coordinate");
-    }
-  }
-  std::vector<uint32_t>& start = topology->face_start;
-  start.assign(n + 1, 0);
-  for (size_t t = 0; t < m; ++t) {
-    const Triangle& tri = mesh.triangles[t];
-    for (uint32_t v : tri) {
-      if (v >= n) {
-        return invalid_input("triangle " + std::to_string(t) + ": vertex index " +
-                             std::to_string(v) + " out of range (" + std::to_string(n) +
-                             " vertices)");
-      }
-    }
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      return invalid_input("triangle " + std::to_string(t) +
-                           " repeats a vertex (use --repair to fix)");
-    }
-    for (uint32_t v : tri)
-      ++start[v + 1];
-  }
-  for (size_t v = 0; v < n; ++v)
-    start[v + 1] += start[v];
-  topology->faces.resize(with_faces ? 3 * m : 0);
-  topology->corners.resize(3 * m);
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t t = 0; t < m; ++t) {
-      const Triangle& tri = mesh.triangles[t];
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t slot = fill[tri[k]]++;
-        if (with_faces) topology->faces[slot] = static_cast<uint32_t>(t);
-        topology->corners[slot] = {tri[(k + 1) % 3], tri[(k + 2) % 3]};
-      }
-    }
-  }
-  topology->boundary.assign(n, 0);
-
+// The fans of vertices [begin, end): each must be one chain or one cycle.
+// Sets topology->boundary of those vertices; fails at the first bad one.
+Status check_fans(MeshTopology* topology, size_t begin, size_t end) {
+  const std::vector<uint32_t>& start = topology->face_start;
   std::vector<uint32_t> by_next;
   std::vector<uint8_t> visited;
   std::vector<uint32_t> prevs;
   std::vector<uint8_t> has_pred;
-  for (size_t v = 0; v < n; ++v) {
+  for (size_t v = begin; v < end; ++v) {
     const FanFace* fan = &topology->corners[start[v]];
     const size_t k = start[v + 1] - start[v];
     if (k == 0) continue;
@@ -192,6 +148,75 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool wit
     topology->boundary[v] = open ? 1 : 0;
   }
   return Status::ok();
+}
+
+}  // namespace
+
+Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces,
+                      TwoWaySplit* split) {
+  const size_t n = mesh.positions.size();
+  const size_t m = mesh.triangles.size();
+  if (n >= (size_t{1} << 31) || m >= (size_t{1} << 30)) {
+    return unsupported("mesh too large for the collapse engine (" + std::to_string(n) +
+                       " vertices, " + std::to_string(m) + " triangles)");
+  }
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3f& p = mesh.positions[v];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      return invalid_input("vertex " + std::to_string(v) + " has a non-finite coordinate");
+    }
+  }
+  std::vector<uint32_t>& start = topology->face_start;
+  start.assign(n + 1, 0);
+  for (size_t t = 0; t < m; ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    for (uint32_t v : tri) {
+      if (v >= n) {
+        return invalid_input("triangle " + std::to_string(t) + ": vertex index " +
+                             std::to_string(v) + " out of range (" + std::to_string(n) +
+                             " vertices)");
+      }
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      return invalid_input("triangle " + std::to_string(t) +
+                           " repeats a vertex (use --repair to fix)");
+    }
+    for (uint32_t v : tri)
+      ++start[v + 1];
+  }
+  for (size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  topology->faces.resize(with_faces ? 3 * m : 0);
+  topology->corners.resize(3 * m);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < m; ++t) {
+      const Triangle& tri = mesh.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t slot = fill[tri[k]]++;
+        if (with_faces) topology->faces[slot] = static_cast<uint32_t>(t);
+        topology->corners[slot] = {tri[(k + 1) % 3], tri[(k + 2) % 3]};
+      }
+    }
+  }
+  topology->boundary.assign(n, 0);
+
+  // The fan checks are independent per vertex: two parts, the halves of
+  // the vertices; the first part's error, if any, is the first in vertex
+  // order.
+  Status part_status[2];
+  const size_t bounds[3] = {0, n / 2, n};
+  auto check_part = [&](int part) {
+    part_status[part] = check_fans(topology, bounds[part], bounds[part + 1]);
+  };
+  if (split) {
+    split->run(check_part, m >= kParallelFanCheck);
+  } else {
+    check_part(0);
+    check_part(1);
+  }
+  if (!part_status[0].is_ok()) return part_status[0];
+  return part_status[1];
 }
 
 }  // namespace simplify_internal

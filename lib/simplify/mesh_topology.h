@@ -8,6 +8,7 @@
 
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
+#include "lib/simplify/two_way_split.h"
 
 namespace lodbake {
 namespace simplify_internal {
@@ -30,8 +31,10 @@ struct MeshTopology {
 /// faces walked in opposite directions (consistent orientation), and the
 /// faces around each vertex forming a single fan (no non-manifold vertex).
 /// Fails with kInvalidInput naming the first offending element. Without
-/// `with_faces`, MeshTopology::faces is left empty.
-Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces = true);
+/// `with_faces`, MeshTopology::faces is left empty. The fan checks use
+/// `split`'s threads when given; the result is the same.
+Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces = true,
+                      TwoWaySplit* split = nullptr);
 
 }  // namespace simplify_internal
 }  // namespace lodbake

@@ -21,6 +21,10 @@ namespace {
 using simplify_internal::EngineSettings;
 using simplify_internal::EngineState;
 
+// Below this many input triangles the output mesh and the progressive mesh
+// are assembled one after the other: starting a thread would cost more.
+constexpr uint64_t kParallelAssembly = 8192;
+
 Status check_attribute(const MeshAttribute& attr, const char* name, uint32_t components,
                        const TriangleMesh& mesh) {
   if (!attr.present()) return Status::ok();
@@ -156,8 +160,9 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   // attributes (seams).
   const bool per_corner = input.normals.binding == AttributeBinding::kPerCorner ||
                           input.texcoords.binding == AttributeBinding::kPerCorner;
+  simplify_internal::TwoWaySplit split(options.threads);
   simplify_internal::MeshTopology topology;
-  const Status valid = simplify_internal::build_topology(work, &topology, per_corner);
+  const Status valid = simplify_internal::build_topology(work, &topology, per_corner, &split);
   if (!valid.is_ok()) {
     // Name the problem in input ids, and the first one in input order.
     simplify_internal::MeshTopology unused;
@@ -169,6 +174,7 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   EngineSettings settings;
   settings.diagonal = bbox_diagonal(work, topology);
   if (renumber) settings.input_ids = &order;
+  settings.split = &split;
   settings.target_triangles = 0;
   if (options.target_triangles) settings.target_triangles = *options.target_triangles;
   if (options.target_ratio) {
@@ -191,8 +197,16 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   if (renumber) simplify_internal::restore_input_ids(order, &state);
   SimplifyResult result;
   result.stats = state.stats;
-  result.mesh = assemble_mesh(state);
-  if (options.record_pm) result.pm = simplify_internal::record_progressive_mesh(input, state);
+  // Both only read the state.
+  split.run(
+      [&](int part) {
+        if (part == 0) {
+          result.mesh = assemble_mesh(state);
+        } else if (options.record_pm) {
+          result.pm = simplify_internal::record_progressive_mesh(input, state);
+        }
+      },
+      options.record_pm && input_triangles >= kParallelAssembly);
   return result;
 }
 

@@ -31,6 +31,10 @@ struct SimplifyOptions {
   double max_normal_change_degrees = 150.0;  // refuse collapses turning a face normal more
   bool permissive = false;                   // allow collapses across texture seams
   bool record_pm = false;                    // also record the progressive mesh
+  // Threads for the engine's parallel steps (listing, scattering, input
+  // check): 0 for one per core, at most two are used. The result does not
+  // depend on it.
+  unsigned threads = 0;
   // Called now and then with the fraction done (0..1); may be empty.
   std::function<void(double)> progress;
 };

@@ -6,9 +6,13 @@
 
 #include <cmath>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 #include "lib/check/mesh_check.h"
+#include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/pm_replay.h"
+#include "lib/simplify/two_way_split.h"
 #include "simplify_test_meshes.h"
 
 namespace lodbake {
@@ -118,6 +122,107 @@ TEST(Simplify, IsDeterministic) {
     EXPECT_EQ(a.mesh, b.mesh);
     ASSERT_TRUE(a.pm && b.pm);
     EXPECT_EQ(*a.pm, *b.pm);
+  }
+}
+
+// The listing, the quadric set-up, the input check and the assembly run in
+// two parts on one thread or two; the result must not depend on which. The
+// bunny is above every size from which the parts run in parallel.
+TEST(Simplify, OneThreadAndTwoGiveTheSameResult) {
+  const TriangleMesh bunny = load_clean_mesh("stanford_bun_zipper.ply");
+  for (Placement placement : {Placement::kHalf, Placement::kOptimal}) {
+    for (double ratio : {0.5, 0.02}) {
+      SimplifyOptions options;
+      options.placement = placement;
+      options.record_pm = placement == Placement::kHalf;
+      options.target_ratio = ratio;
+      options.threads = 1;
+      const SimplifyResult one = run(bunny, options);
+      options.threads = 2;
+      const SimplifyResult two = run(bunny, options);
+      EXPECT_EQ(one.mesh, two.mesh) << ratio;
+      EXPECT_EQ(one.pm, two.pm) << ratio;
+      EXPECT_EQ(one.stats.collapses, two.stats.collapses);
+      EXPECT_LT(one.mesh.triangles.size(), bunny.triangles.size());
+    }
+  }
+  // Per-corner values (a seam along x = 0) take the corner-list path.
+  TriangleMesh seamed = bunny;
+  MeshAttribute& tc = seamed.texcoords;
+  tc.binding = AttributeBinding::kPerCorner;
+  tc.components = 2;
+  for (const Triangle& t : seamed.triangles) {
+    const float cx =
+        seamed.positions[t[0]][0] + seamed.positions[t[1]][0] + seamed.positions[t[2]][0];
+    Triangle c;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = static_cast<uint32_t>(tc.values.size() / 2);
+      tc.values.push_back(cx < 0 ? 0.0f : 1.0f);
+      tc.values.push_back(0.0f);
+    }
+    tc.corners.push_back(c);
+  }
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  options.threads = 1;
+  const SimplifyResult one = run(seamed, options);
+  options.threads = 2;
+  EXPECT_EQ(one.mesh, run(seamed, options).mesh);
+}
+
+// The input check's two parts report the first problem in vertex order,
+// as one thread does.
+TEST(Simplify, TwoThreadsNameTheFirstProblemOfTheInput) {
+  TriangleMesh mesh = load_clean_mesh("stanford_bun_zipper.ply");
+  const auto n = static_cast<uint32_t>(mesh.positions.size());
+  // Two triangles hanging off a vertex near each end: two non-manifold
+  // vertices, one in each half.
+  for (uint32_t v : {n - 5, 7u}) {
+    const Vec3f p = mesh.positions[v];
+    const auto a = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.push_back({p[0] + 1, p[1], p[2]});
+    mesh.positions.push_back({p[0], p[1] + 1, p[2]});
+    mesh.triangles.push_back({v, a, a + 1});
+  }
+  std::string messages[2];
+  for (unsigned threads : {1u, 2u}) {
+    SimplifyOptions options;
+    options.threads = threads;
+    const Result<SimplifyResult> r = simplify(mesh, options);
+    ASSERT_FALSE(r.is_ok());
+    EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput);
+    messages[threads - 1] = r.status().message();
+  }
+  EXPECT_EQ(messages[0], messages[1]);
+  EXPECT_NE(messages[0].find("vertex 7:"), std::string::npos) << messages[0];
+
+  // The check itself, in the ids it is given (simplify() names the problem
+  // in input ids by checking the input again on one thread).
+  simplify_internal::TwoWaySplit split(2);
+  ASSERT_TRUE(split.parallel());
+  simplify_internal::MeshTopology topology;
+  const Status status = simplify_internal::build_topology(mesh, &topology, false, &split);
+  EXPECT_EQ(status.message(), messages[0]);
+}
+
+TEST(TwoWaySplit, RunsBothPartsAndRethrows) {
+  for (unsigned threads : {1u, 2u}) {
+    simplify_internal::TwoWaySplit split(threads);
+    EXPECT_EQ(split.parallel(), threads == 2);
+    for (int round = 0; round < 50; ++round) {
+      int ran[2] = {0, 0};
+      split.run([&](int part) { ++ran[part]; });
+      EXPECT_EQ(ran[0], 1);
+      EXPECT_EQ(ran[1], 1);
+    }
+    EXPECT_THROW(split.run([](int part) {
+      if (part == 1) throw std::runtime_error("worker");
+    }),
+                 std::runtime_error);
+    // Still usable after a part threw.
+    int ran = 0;
+    split.run([&](int) { ++ran; }, false);
+    EXPECT_EQ(ran, 2);
   }
 }
 
