@@ -533,35 +533,96 @@ class Engine {
   //   lists of touched vertices are not read again until the next rebuild.
   // The last pass is followed by the triangle rewrite alone (`rebuild`
   // false).
+  //
+  // Two parts share the work, each with one half of the live vertices and
+  // one half of the live triangles: first the quadric sums and the triangle
+  // rewrite (part 0 also counts the corners its triangles give each
+  // vertex), then, after the list places are known, the corner lists. Each
+  // vertex's list is filled from its start by part 0 and after part 0's
+  // corners by part 1, so it is in triangle order, as with one thread.
   void finish_pass(bool rebuild) {
     const bool faces = rebuild && !seam_attrs_.empty();
+    const size_t live = live_triangles_.size();
+    const size_t live_v = live_vertices_.size();
+    const bool parallel = split_.splits(live >= kParallelListing);
+    const size_t tri_bounds[3] = {0, parallel ? live / 2 : live, live};
+    const size_t vert_bounds[3] = {0, parallel ? live_v / 2 : live_v, live_v};
     if (rebuild) {
-      // Only the vertices that had faces at the pass start: the others are
-      // never read again (at 1 % the last passes would sweep 100 times as
-      // many records as they use).
-      uint32_t sum = 0;
       fill_.resize(vinfo_.size());
-      size_t kept = 0;
-      for (const uint32_t v : live_vertices_) {
-        if (locked_[v]) {
+      if (parallel) {
+        fill_second_.resize(vinfo_.size());
+        corners_first_.resize(vinfo_.size());
+      }
+    }
+    size_t kept_triangles[2] = {0, 0};
+    auto rewrite = [&](int part) {
+      if (rebuild) {
+        for (size_t i = vert_bounds[part]; i < vert_bounds[part + 1]; ++i) {
+          const uint32_t v = live_vertices_[i];
+          if (!locked_[v]) continue;
           if (alias_[v] != v) quadric_[alias_[v]].q += quadric_[v].q;
           locked_[v] = 0;
         }
-        VertexInfo& info = vinfo_[v];
-        if (info.count == 0) continue;
-        live_vertices_[kept++] = v;
-        info.start = sum;
-        info.size = info.count;
-        fill_[v] = sum;
-        sum += info.count;
       }
-      live_vertices_.resize(kept);
-      corners_.resize(sum);
-      if (faces) faces_.resize(sum);
+      kept_triangles[part] = rewrite_triangles(tri_bounds[part], tri_bounds[part + 1],
+                                               rebuild && parallel && part == 0);
+    };
+    split_.run(rewrite, parallel);
+    // The second part's kept triangles follow the first part's.
+    std::copy(
+        live_triangles_.begin() + static_cast<std::ptrdiff_t>(tri_bounds[1]),
+        live_triangles_.begin() + static_cast<std::ptrdiff_t>(tri_bounds[1] + kept_triangles[1]),
+        live_triangles_.begin() + static_cast<std::ptrdiff_t>(kept_triangles[0]));
+    live_triangles_.resize(kept_triangles[0] + kept_triangles[1]);
+    if (!rebuild) return;
+
+    // Only the vertices that had faces at the pass start: the others are
+    // never read again (at 1 % the last passes would sweep 100 times as
+    // many records as they use).
+    uint32_t sum = 0;
+    size_t kept = 0;
+    for (const uint32_t v : live_vertices_) {
+      VertexInfo& info = vinfo_[v];
+      if (info.count == 0) continue;
+      live_vertices_[kept++] = v;
+      info.start = sum;
+      info.size = info.count;
+      fill_[v] = sum;
+      if (parallel) {
+        fill_second_[v] = sum + corners_first_[v];
+        corners_first_[v] = 0;
+      }
+      sum += info.count;
     }
+    live_vertices_.resize(kept);
+    corners_.resize(sum);
+    if (faces) faces_.resize(sum);
+    const size_t list_bounds[3] = {0, kept_triangles[0], kept_triangles[0] + kept_triangles[1]};
+    split_.run(
+        [&](int part) {
+          std::vector<uint32_t>& fill = part == 0 ? fill_ : fill_second_;
+          for (size_t i = list_bounds[part]; i < list_bounds[part + 1]; ++i) {
+            const uint32_t f = live_triangles_[i];
+            const Triangle& t = state_.triangles[f];
+            for (int k = 0; k < 3; ++k) {
+              const uint32_t slot = fill[t[k]]++;
+              corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
+              if (faces) faces_[slot] = f;
+            }
+          }
+        },
+        parallel);
+  }
+
+  // Rewrites live_triangles_[begin, end) through alias_, drops the faces
+  // that died in the pass and keeps the others at the front of the range;
+  // returns how many it kept. With `count`, adds each kept corner to its
+  // vertex's corners_first_.
+  size_t rewrite_triangles(size_t begin, size_t end, bool count) {
     std::vector<Triangle>& tris = state_.triangles;
-    size_t live = 0;
-    for (uint32_t f : live_triangles_) {
+    size_t live = begin;
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t f = live_triangles_[i];
       Triangle& t = tris[f];
       const Triangle old = t;
       for (uint32_t& v : t)
@@ -571,12 +632,9 @@ class Engine {
         continue;
       }
       live_triangles_[live++] = f;
-      if (rebuild) {
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t slot = fill_[t[k]]++;
-          corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
-          if (faces) faces_[slot] = f;
-        }
+      if (count) {
+        for (uint32_t v : t)
+          ++corners_first_[v];
       }
       if (seam_attrs_.empty() || options_.permissive || t == old) continue;
       // Corners moved from vt take vs's (unique) value, so no new seam appears.
@@ -586,7 +644,7 @@ class Engine {
           seam_attrs_[a]->corners[f][k] = seam_value_[a][old[k]];
       }
     }
-    live_triangles_.resize(live);
+    return live - begin;
   }
 
   // Walks the sorted candidates; returns the number of collapses made.
@@ -960,9 +1018,11 @@ class Engine {
   // faces_ holds the face of each corner, only kept for seam attributes.
   std::vector<Corner> corners_;
   std::vector<uint32_t> faces_;
-  std::vector<uint32_t> alias_;  // a removed vertex's survivor; itself while alive
-  std::vector<uint8_t> locked_;  // touched in this pass
-  std::vector<uint32_t> fill_;
+  std::vector<uint32_t> alias_;          // a removed vertex's survivor; itself while alive
+  std::vector<uint8_t> locked_;          // touched in this pass
+  std::vector<uint32_t> fill_;           // finish_pass(): next corner slot of each vertex
+  std::vector<uint32_t> fill_second_;    // the same for the second part's triangles
+  std::vector<uint32_t> corners_first_;  // corners of the first part's triangles; 0 between
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<std::vector<uint32_t>> seam_value_;  // per seam attribute, per removed vertex
   std::vector<AlignedQuadric> quadric_;
