@@ -133,6 +133,9 @@ class DagReplay {
       --size_;
       return e;
     }
+    // The node of the i-th entry from the front, i < size().
+    size_t size() const { return size_; }
+    uint32_t node_at(size_t i) const { return ring_[(head_ + i) & (ring_.size() - 1)].node; }
     void drop(uint32_t node) { queued[node] = 0; }
     // For the node of the entry just popped, neither requeued nor dropped.
     void requeue_front(uint32_t node) {
