@@ -32,7 +32,9 @@
 //   operations would exceed the triangle budget"); the FIFO traversals keep
 //   that node first in their queue for the next frame.
 // - The FIFO queues hold each front node once; nodes that left the front
-//   are dropped when popped and count as no visit. Linear traversal stops
+//   are dropped when popped and count as no visit. A node visited again in
+//   the frame that found it needing nothing reuses that answer (the view
+//   is the same) and counts as a visit. Linear traversal stops
 //   when a whole front was visited without a change (Figure 4, line 11);
 //   constant-time traversal visits exactly N live nodes per traversal, as
 //   Figure 5 has it, even when that means visiting a small front twice.
