@@ -32,7 +32,9 @@
 //   operations would exceed the triangle budget"); the FIFO traversals keep
 //   that node first in their queue for the next frame.
 // - The FIFO queues hold each front node once; nodes that left the front
-//   are dropped when popped and count as no visit. Linear traversal stops
+//   are dropped when popped and count as no visit. A node visited again in
+//   the frame that found it needing nothing reuses that answer (the view
+//   is the same) and counts as a visit. Linear traversal stops
 //   when a whole front was visited without a change (Figure 4, line 11);
 //   constant-time traversal visits exactly N live nodes per traversal, as
 //   Figure 5 has it, even when that means visiting a small front twice.
@@ -53,6 +55,8 @@ namespace lodbake {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// evaluate()'s cone_from for an exact error: every error is at least this.
+constexpr float kAlwaysCone = -std::numeric_limits<float>::infinity();
 
 }  // namespace
 
@@ -159,6 +163,7 @@ void DagReplay::derive_bounds() {
   // The closure over the descendants, in reverse id order (children have
   // larger ids), as lib/hierarchy's refinement data bounds a subtree.
   bounds_.assign(nodes, NodeBound());
+  cones_.assign(nodes, NodeCone());
   std::vector<double> half_angle(nodes, kPi);
   for (size_t k = nodes; k-- > 0;) {
     const uint32_t n = static_cast<uint32_t>(k);
@@ -194,37 +199,52 @@ void DagReplay::derive_bounds() {
       b.ax = static_cast<float>(sum[0] / l);
       b.ay = static_cast<float>(sum[1] / l);
       b.az = static_cast<float>(sum[2] / l);
-      b.sin_half_angle = static_cast<float>(std::sin(stored));
+      const double sin_alpha = static_cast<float>(std::sin(stored));
+      cones_[n] = {sin_alpha, std::sqrt(1 - sin_alpha * sin_alpha)};
     }
   }
 }
 
-// Every front node is evaluated every frame, in no memory order: one record
-// per node is what the evaluation reads.
+// Every front node is evaluated every frame, in no memory order: one
+// 32-byte record per node is what most evaluations read.
 float DagReplay::priority(uint32_t node) const {
+  return evaluate(node, kAlwaysCone);
+}
+
+// The back-face test can only set an error to 0, so for an error under the
+// tolerance it cannot change NEED-APPLY's answer (0 and the error are both
+// under it): the traversals that only ask NEED-APPLY skip it there, the
+// cheapest tests (frustum, then distance) coming first.
+float DagReplay::evaluate(uint32_t node, float cone_from) const {
   const NodeBound& b = bounds_[node];
   const double x = b.x, y = b.y, z = b.z, r = b.radius;
-  for (const std::array<float, 4>& q : view_.frustum) {
-    if (double{q[0]} * x + double{q[1]} * y + double{q[2]} * z + q[3] < -r) return 0;
+  for (const std::array<double, 4>& q : planes_) {
+    if (q[0] * x + q[1] * y + q[2] * z + q[3] < -r) return 0;
   }
-  const double dx = x - view_.eye[0], dy = y - view_.eye[1], dz = z - view_.eye[2];
+  const double dx = x - eye_[0], dy = y - eye_[1], dz = z - eye_[2];
   const double centre_distance = std::sqrt(dx * dx + dy * dy + dz * dz);
-  if (back_face_ && faces_away(b, dx, dy, dz, centre_distance)) return 0;
   const double d = std::max({centre_distance - r, near_distance_, 1e-12});
-  return static_cast<float>(double{b.error} / d * pixels_per_unit_at_1_);
+  const float error = static_cast<float>(double{b.error} / d * pixels_per_unit_at_1_);
+  if (!back_face_ || error < cone_from) return error;
+  return faces_away(b, cones_[node], dx, dy, dz, centre_distance) ? 0 : error;
 }
 
 // Every normal n of the cone and every point p of the sphere have
 // n . (p - eye) > 0 when the angle between the axis and the direction to
 // the centre (theta), the cone's half-angle (alpha) and the sphere's
 // angular radius seen from the eye (beta) sum to under pi/2; compared as
-// cos(theta + alpha + beta) > 0 without trigonometry.
-bool DagReplay::faces_away(const NodeBound& b, double dx, double dy, double dz, double distance) {
-  if (!(b.sin_half_angle < 1) || !(distance > b.radius)) return false;
-  const double cos_theta = (b.ax * dx + b.ay * dy + b.az * dz) / distance;
-  if (!(cos_theta > 0)) return false;
+// cos(theta + alpha + beta) > 0 without trigonometry. The early outs come
+// cheapest first; a wide cone's zero axis leaves at the first dot product,
+// before the NodeCone is read.
+bool DagReplay::faces_away(const NodeBound& b, const NodeCone& cone, double dx, double dy,
+                           double dz, double distance) {
+  if (!(distance > b.radius)) return false;
+  // distance > 0, so the sign of cos_theta is the dot product's.
+  const double dot = b.ax * dx + b.ay * dy + b.az * dz;
+  if (!(dot > 0) || !(cone.sin_half_angle < 1)) return false;
+  const double cos_theta = dot / distance;
   const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
-  const double sin_alpha = b.sin_half_angle, cos_alpha = std::sqrt(1 - sin_alpha * sin_alpha);
+  const double sin_alpha = cone.sin_half_angle, cos_alpha = cone.cos_half_angle;
   const double sin_beta = b.radius / distance, cos_beta = std::sqrt(1 - sin_beta * sin_beta);
   const double cos_gamma = cos_alpha * cos_beta - sin_alpha * sin_beta;  // gamma = alpha + beta
   if (!(cos_gamma > 0)) return false;
@@ -270,36 +290,52 @@ Status DagReplay::traverse(Side side, DagTraversal traversal, size_t limit, size
 }
 
 // Figure 3. Fs pops its largest error first, Fc its smallest; ties go to
-// the larger node id (a fixed order).
+// the larger node id (a fixed order). Only the nodes that need the change
+// enter the heap: every one of them pops before any that does not (their
+// errors lie on either side of the tolerance), and the first that does
+// not ends the traversal, so the others would never be applied. Fs's
+// order among those needing a split only depends on errors of at least
+// the tolerance, which evaluate() gives exactly with cone_from = tolerance;
+// Fc's collapses are ordered by errors under it, 0 for a cone facing away,
+// so Fc's evaluations are exact.
 Status DagReplay::traverse_priority(Side side, size_t limit, size_t triangle_cap, float tolerance,
                                     DagFrameStats* stats) {
   using Entry = std::pair<float, uint32_t>;
   const bool split = side == Side::kSplit;
   auto before = [split](const Entry& a, const Entry& b) { return split ? a < b : b < a; };
-  std::vector<Entry> heap;
+  const float cone_from = split ? tolerance : kAlwaysCone;
+  std::vector<Entry>& heap = heap_;
+  heap.clear();
   const std::vector<uint32_t>& front = split ? fronts_.split_front() : fronts_.collapse_front();
-  heap.reserve(front.size());
-  for (uint32_t n : front)
-    heap.push_back({priority(n), n});
-  stats->visited += heap.size();
+  // The front lists its nodes in no memory order: on a large DAG most
+  // records are cache misses, fetched a few nodes ahead.
+  constexpr size_t kAhead = 8;
+  for (size_t i = 0; i < front.size(); ++i) {
+    if (i + kAhead < front.size()) __builtin_prefetch(&bounds_[front[i + kAhead]]);
+    const uint32_t n = front[i];
+    const float p = evaluate(n, cone_from);
+    if (needs(side, p, tolerance)) heap.push_back({p, n});
+  }
+  stats->visited += front.size();
   std::make_heap(heap.begin(), heap.end(), before);
-  std::vector<uint32_t> entered;
+  std::vector<uint32_t>& entered = entered_;
   size_t changes = 0;
   while (!heap.empty() && changes < limit) {
     std::pop_heap(heap.begin(), heap.end(), before);
     const Entry top = heap.back();
     heap.pop_back();
     if (!in_front(side, top.second)) continue;
-    if (!needs(side, top.first, tolerance)) break;
     if (split && triangles_ + added_[top.second] > triangle_cap) break;
     entered.clear();
     LODBAKE_RETURN_IF_ERROR(apply(side, top.second, &entered));
     ++changes;
     for (uint32_t n : entered) {
       if (!in_front(side, n)) continue;
-      heap.push_back({priority(n), n});
-      std::push_heap(heap.begin(), heap.end(), before);
       ++stats->visited;
+      const float p = evaluate(n, cone_from);
+      if (!needs(side, p, tolerance)) continue;
+      heap.push_back({p, n});
+      std::push_heap(heap.begin(), heap.end(), before);
     }
   }
   (split ? stats->splits : stats->collapses) += changes;
@@ -312,25 +348,35 @@ Status DagReplay::traverse_fifo(Side side, bool count_visits, size_t limit, size
   const bool split = side == Side::kSplit;
   FrontQueue& queue = split ? split_queue_ : collapse_queue_;
   size_t count = 0, changes = 0, idle = 0;
-  while (!queue.nodes.empty() && count < limit) {
-    const uint32_t n = queue.nodes.front();
-    queue.nodes.pop_front();
-    queue.queued[n] = 0;
-    if (!in_front(side, n)) continue;
+  constexpr size_t kAhead = 8;  // as in traverse_priority()
+  while (!queue.empty() && count < limit) {
+    if (kAhead < queue.size()) __builtin_prefetch(&bounds_[queue.node_at(kAhead)]);
+    const FrontQueue::Entry entry = queue.pop_front();
+    const uint32_t n = entry.node;
+    // The view is the frame's: a node that needed nothing earlier in this
+    // traversal (the linear traversal's last sweep of the front, a small
+    // front visited twice by the constant-time one) still needs nothing,
+    // and is still in the front: this side's changes take no node out of
+    // its own front but the one they apply.
+    const bool needless = entry.needless_in == frame_stamp_;
+    if (!needless && !in_front(side, n)) {
+      queue.drop(n);
+      continue;
+    }
     if (count_visits) ++count;
     ++stats->visited;
-    if (needs(side, priority(n), tolerance)) {
+    if (!needless && needs(side, evaluate(n, tolerance), tolerance)) {
       if (split && triangles_ + added_[n] > triangle_cap) {
-        queue.queued[n] = 1;
-        queue.nodes.push_front(n);
+        queue.requeue_front(n);
         break;
       }
+      queue.drop(n);
       LODBAKE_RETURN_IF_ERROR(apply(side, n, nullptr));
       ++changes;
       if (!count_visits) ++count;
       idle = 0;
     } else {
-      queue.push(n);
+      queue.requeue_back(n, frame_stamp_);
       if (!count_visits && ++idle >= front_size(side)) break;
     }
   }
@@ -346,6 +392,10 @@ Result<DagFrameStats> DagReplay::adapt(const BoundingSphere& sphere, const Camer
     back_face_ = options.back_face;
     view_ = view_parameters(frame, options.viewport, static_cast<float>(near_distance_),
                             options.tolerance_pixels);
+    planes_.clear();
+    for (const std::array<float, 4>& q : view_.frustum)
+      planes_.push_back({double{q[0]}, double{q[1]}, double{q[2]}, double{q[3]}});
+    eye_ = {double{view_.eye[0]}, double{view_.eye[1]}, double{view_.eye[2]}};
     pixels_per_unit_at_1_ =
         options.viewport.height / (2 * std::tan(double{frame.fov_degrees} * kPi / 360));
     DagFrameStats stats;
@@ -359,6 +409,11 @@ Result<DagFrameStats> DagReplay::adapt(const BoundingSphere& sphere, const Camer
                                        ? DagTraversal::kLinear
                                        : options.traversal;
     ++frames_;
+    if (++frame_stamp_ == 0) {
+      split_queue_.forget_answers();
+      collapse_queue_.forget_answers();
+      frame_stamp_ = 1;
+    }
     switch (options.budget_mode) {
       case DagBudgetMode::kBudget:
         stats.budget_mode = true;

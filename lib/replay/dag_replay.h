@@ -5,10 +5,11 @@
 // budget, and the accuracy measure of the paper's Figure 7.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "formats/mesh/progressive_mesh.h"
@@ -62,7 +63,9 @@ struct DagReplayOptions {
 struct DagFrameStats {
   size_t splits = 0;
   size_t collapses = 0;
-  size_t visited = 0;         ///< front nodes evaluated (ERROR-EVALUATE calls)
+  /// Front nodes evaluated (ERROR-EVALUATE calls; a FIFO traversal's second
+  /// visit of a node in one frame counts, reusing the first one's answer).
+  size_t visited = 0;
   bool budget_mode = false;   ///< the frame ran in BUDGET-MODE
   size_t split_front = 0;     ///< |Fs| after the frame
   size_t collapse_front = 0;  ///< |Fc| after the frame
@@ -107,15 +110,67 @@ class DagReplay {
  private:
   // A FIFO over one front that outlives the frame. A node is queued at most
   // once; entries whose node has left the front are dropped when popped.
-  struct FrontQueue {
-    std::deque<uint32_t> nodes;
-    std::vector<uint8_t> queued;
+  // An entry remembers the frame stamp (frame_stamp_) of the frame in which
+  // its node was evaluated and needed no change, so that a second visit in
+  // the same frame, on the same view, reuses the answer; 0: not evaluated.
+  // A ring buffer (power-of-two capacity, doubled when full): the queue is
+  // popped and pushed once per visit, and std::deque's block allocations
+  // cost more than an evaluation.
+  class FrontQueue {
+   public:
+    struct Entry {
+      uint32_t node;
+      uint32_t needless_in;
+    };
+    std::vector<uint8_t> queued;  // per node: it has an entry
+
+    bool empty() const { return size_ == 0; }
+    // The first entry; its node stays `queued` until requeued or dropped.
+    Entry pop_front() {
+      const Entry e = ring_[head_];
+      head_ = (head_ + 1) & (ring_.size() - 1);
+      --size_;
+      return e;
+    }
+    // The node of the i-th entry from the front, i < size().
+    size_t size() const { return size_; }
+    uint32_t node_at(size_t i) const { return ring_[(head_ + i) & (ring_.size() - 1)].node; }
+    void drop(uint32_t node) { queued[node] = 0; }
+    // For the node of the entry just popped, neither requeued nor dropped.
+    void requeue_front(uint32_t node) {
+      reserve_one();
+      head_ = (head_ + ring_.size() - 1) & (ring_.size() - 1);
+      ring_[head_] = {node, 0};
+      ++size_;
+    }
+    void requeue_back(uint32_t node, uint32_t needless_in) {
+      reserve_one();
+      ring_[(head_ + size_) & (ring_.size() - 1)] = {node, needless_in};
+      ++size_;
+    }
     void push(uint32_t node) {
       if (queued[node] == 0) {
         queued[node] = 1;
-        nodes.push_back(node);
+        requeue_back(node, 0);
       }
     }
+    // Forgets every remembered answer (when the frame stamp wraps).
+    void forget_answers() {
+      for (Entry& e : ring_)
+        e.needless_in = 0;
+    }
+
+   private:
+    void reserve_one() {
+      if (size_ < ring_.size()) return;
+      std::vector<Entry> grown(ring_.empty() ? 64 : 2 * ring_.size());
+      for (size_t i = 0; i < size_; ++i)
+        grown[i] = ring_[(head_ + i) & (ring_.size() - 1)];
+      ring_ = std::move(grown);
+      head_ = 0;
+    }
+    std::vector<Entry> ring_;
+    size_t head_ = 0, size_ = 0;
   };
   enum class Side { kCollapse, kSplit };
 
@@ -151,22 +206,43 @@ class DagReplay {
   SplitLineage lineage_;
   std::vector<uint32_t> added_;  // net triangles a split adds
   uint32_t max_added_ = 0;
-  // Per node: the new vertex (the sphere's centre), bound_radius() and the
-  // error bound priority() projects.
-  // The cone of normals: unit axis and sine of the half-angle; 2 when the
-  // cone is pi/2 or wider and never faces away.
-  struct NodeBound {
+  // Per node, what every evaluation of a node in the frustum reads, in one
+  // 32-byte record (one cache line): the new vertex (the sphere's centre),
+  // bound_radius(), the error bound priority() projects, and the unit axis
+  // of the cone of normals, 0 when the cone is pi/2 or wider and never
+  // faces away.
+  struct alignas(32) NodeBound {
     float x = 0, y = 0, z = 0, radius = 0, error = 0;
-    float ax = 0, ay = 0, az = 0, sin_half_angle = 2;
+    float ax = 0, ay = 0, az = 0;
   };
-  static bool faces_away(const NodeBound& b, double dx, double dy, double dz, double distance);
+  static_assert(sizeof(NodeBound) == 32, "one node record per half cache line");
+  // The rest of the cone, read only by the few evaluations that get to it:
+  // sine of the half-angle (2 when the cone never faces away) and its
+  // cosine, precomputed (in double, from the float sine the test used to
+  // read, so that the test's arithmetic is unchanged).
+  struct NodeCone {
+    double sin_half_angle = 2, cos_half_angle = 0;
+  };
+  // ERROR-EVALUATE (priority()), with the cone test only for an error of at
+  // least `cone_from` (kAlwaysCone: always).
+  float evaluate(uint32_t node, float cone_from) const;
+  static bool faces_away(const NodeBound& b, const NodeCone& cone, double dx, double dy, double dz,
+                         double distance);
   std::vector<NodeBound> bounds_;
+  std::vector<NodeCone> cones_;
   size_t triangles_ = 0;
-  size_t frames_ = 0;  // adapt() calls so far
+  size_t frames_ = 0;         // adapt() calls so far
+  uint32_t frame_stamp_ = 0;  // the current frame's FrontQueue stamp, from 1
   FrontQueue split_queue_;
   FrontQueue collapse_queue_;
-  // The current frame's view (set by adapt()).
+  // Reused by traverse_priority() from one call to the next.
+  std::vector<std::pair<float, uint32_t>> heap_;
+  std::vector<uint32_t> entered_;
+  // The current frame's view (set by adapt()): the frustum's planes and the
+  // eye in double, as the evaluation computes with them.
   ViewParameters view_;
+  std::vector<std::array<double, 4>> planes_;
+  std::array<double, 3> eye_{};
   double pixels_per_unit_at_1_ = 0;  // height / (2 tan(fov/2))
   double near_distance_ = 0;
   bool back_face_ = true;
