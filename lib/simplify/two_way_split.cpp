@@ -1,5 +1,6 @@
 #include "lib/simplify/two_way_split.h"
 
+#include <chrono>
 #include <system_error>
 
 namespace lodbake {
@@ -24,6 +25,7 @@ TwoWaySplit::~TwoWaySplit() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
+    pending_.store(true, std::memory_order_release);
   }
   wake_.notify_one();
   worker_.join();
@@ -38,8 +40,9 @@ void TwoWaySplit::run(const std::function<void(int)>& part, bool worth_it) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     job_ = &part;
-    finished_ = false;
+    pending_.store(true, std::memory_order_release);
     worker_error_ = nullptr;
+    finished_.store(false, std::memory_order_relaxed);
   }
   wake_.notify_one();
   std::exception_ptr own_error;
@@ -48,8 +51,12 @@ void TwoWaySplit::run(const std::function<void(int)>& part, bool worth_it) {
   } catch (...) {
     own_error = std::current_exception();
   }
-  std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return finished_; });
+  // The caller waits awake: woken from a sleep by the worker, it would be
+  // moved to the worker's CPU, and the next job's parts would share it. The
+  // parts are about equal, so the wait is short; yielding lets another job
+  // of the machine run meanwhile.
+  while (!finished_.load(std::memory_order_acquire))
+    std::this_thread::yield();
   if (own_error) std::rethrow_exception(own_error);
   if (worker_error_) std::rethrow_exception(worker_error_);
 }
@@ -57,9 +64,24 @@ void TwoWaySplit::run(const std::function<void(int)>& part, bool worth_it) {
 void TwoWaySplit::work() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
+    if (job_ == nullptr && !stop_) {
+      // Stay awake a while for the next job: waking an idle CPU costs up
+      // to milliseconds on a virtual machine, more than a part takes.
+      lock.unlock();
+      const auto until = std::chrono::steady_clock::now() + kStayAwake;
+      // Yielding between checks gives the CPU to the caller or another job
+      // whenever they share it.
+      while (!pending_.load(std::memory_order_acquire) &&
+             std::chrono::steady_clock::now() < until) {
+        std::this_thread::yield();
+      }
+      lock.lock();
+    }
     wake_.wait(lock, [this] { return stop_ || job_ != nullptr; });
     if (stop_) return;
     const std::function<void(int)>* job = job_;
+    job_ = nullptr;
+    pending_.store(false, std::memory_order_relaxed);
     lock.unlock();
     std::exception_ptr error;
     try {
@@ -67,11 +89,9 @@ void TwoWaySplit::work() {
     } catch (...) {
       error = std::current_exception();
     }
-    lock.lock();
-    job_ = nullptr;
     worker_error_ = error;
-    finished_ = true;
-    done_.notify_one();
+    finished_.store(true, std::memory_order_release);
+    lock.lock();
   }
 }
 

@@ -278,8 +278,8 @@ int main(int argc, char** argv) {
       "quantize", po::value<int>(&request.quantize_bits)->value_name("BITS"),
       "store the PM's positions quantized to BITS (1..30) bits")(
       "threads", po::value<unsigned>(&request.options.threads)->value_name("N"),
-      "threads for the engine's parallel steps: 1, or 0 (default) for one per core; at most 2 "
-      "are used and the output does not depend on it")(
+      "threads for the engine's parallel steps: 1 (default) or 2 (0: 2 when there are two "
+      "cores); two take less wall time and about twice the CPU time, the output is the same")(
       "no-metrics", "skip measuring the Hausdorff and mean distance to the input");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
