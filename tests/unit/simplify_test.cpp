@@ -34,6 +34,28 @@ void expect_clean(const TriangleMesh& mesh) {
   EXPECT_EQ(r.unreferenced_vertices, 0u);
 }
 
+// Per-corner texture coordinates with a seam along x = 0: each face's
+// corners take u = 0 or 1 by the side of its centroid, so the vertices on
+// x = 0 carry two values.
+void add_seam_at_x0(TriangleMesh* mesh) {
+  MeshAttribute& tc = mesh->texcoords;
+  tc = MeshAttribute();
+  tc.binding = AttributeBinding::kPerCorner;
+  tc.components = 2;
+  for (const Triangle& t : mesh->triangles) {
+    const double cx =
+        (double{mesh->positions[t[0]][0]} + mesh->positions[t[1]][0] + mesh->positions[t[2]][0]) /
+        3;
+    Triangle c;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = static_cast<uint32_t>(tc.values.size() / 2);
+      tc.values.push_back(cx < 0 ? 0.0f : 1.0f);
+      tc.values.push_back(0.0f);
+    }
+    tc.corners.push_back(c);
+  }
+}
+
 std::set<Vec3f> boundary_positions(const TriangleMesh& mesh) {
   std::set<std::pair<uint32_t, uint32_t>> half_edges;
   for (const Triangle& t : mesh.triangles) {
@@ -148,20 +170,7 @@ TEST(Simplify, OneThreadAndTwoGiveTheSameResult) {
   }
   // Per-corner values (a seam along x = 0) take the corner-list path.
   TriangleMesh seamed = bunny;
-  MeshAttribute& tc = seamed.texcoords;
-  tc.binding = AttributeBinding::kPerCorner;
-  tc.components = 2;
-  for (const Triangle& t : seamed.triangles) {
-    const float cx =
-        seamed.positions[t[0]][0] + seamed.positions[t[1]][0] + seamed.positions[t[2]][0];
-    Triangle c;
-    for (int k = 0; k < 3; ++k) {
-      c[k] = static_cast<uint32_t>(tc.values.size() / 2);
-      tc.values.push_back(cx < 0 ? 0.0f : 1.0f);
-      tc.values.push_back(0.0f);
-    }
-    tc.corners.push_back(c);
-  }
+  add_seam_at_x0(&seamed);
   SimplifyOptions options;
   options.target_ratio = 0.1;
   options.threads = 1;
@@ -323,23 +332,9 @@ TEST(Simplify, SeamVerticesAreLockedUnlessPermissive) {
   TriangleMesh mesh = load_clean_mesh("npm_bunny.obj");
   // Per-corner texture coordinates: a seam along x = 0 (vertices there carry
   // two values, one per side).
-  MeshAttribute& tc = mesh.texcoords;
-  tc.binding = AttributeBinding::kPerCorner;
-  tc.components = 2;
-  tc.values.clear();
-  tc.corners.clear();
+  add_seam_at_x0(&mesh);
+  const MeshAttribute& tc = mesh.texcoords;
   std::set<uint32_t> seam;
-  for (const Triangle& t : mesh.triangles) {
-    const double cx =
-        (double{mesh.positions[t[0]][0]} + mesh.positions[t[1]][0] + mesh.positions[t[2]][0]) / 3;
-    Triangle c;
-    for (int k = 0; k < 3; ++k) {
-      c[k] = static_cast<uint32_t>(tc.values.size() / 2);
-      tc.values.push_back(cx < 0 ? 0.0f : 1.0f);
-      tc.values.push_back(0.0f);
-    }
-    tc.corners.push_back(c);
-  }
   // The seam vertices: used by triangles on both sides.
   std::vector<int> side(mesh.positions.size(), -1);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
