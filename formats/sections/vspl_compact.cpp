@@ -609,9 +609,56 @@ int shift_below(uint64_t magnitude, int bits) {
   return shift;
 }
 
+// The weights of version 3's prediction, in 64ths: of vs, of the wings'
+// midpoint and of the moved vertices' centroid, each against the centroid
+// of vt's fan. The writer's choice (a least-squares fit on the bunny and
+// the armadillo, which agreed within 0.03), stored in the payload.
+struct VtWeights {
+  int64_t vs = 26;
+  int64_t wings = -6;
+  int64_t moved = 12;
+};
+
+// n / d rounded to nearest, ties away from zero. \pre d > 0.
+int64_t rounded_quotient(int64_t n, int64_t d) {
+  const int64_t q = (2 * (n < 0 ? -n : n) + d) / (2 * d);
+  return n < 0 ? -q : q;
+}
+
+// Version 3's point prediction of vt, per axis: the fan's centroid c
+// moved by the weighted offsets of vs, the wings' midpoint and the moved
+// vertices' centroid from c, in one exact rational (below 2^57 for fans
+// of at most 256 entries and 30-bit coordinates).
+void weighted_centroid(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr,
+                       const std::vector<uint32_t>& ring, const VtWeights& w, int64_t* out) {
+  const int64_t k = static_cast<int64_t>(ring.size());
+  int64_t moved = 0;
+  for (uint32_t v : ring)
+    moved += v != vs && v != vl && v != vr ? 1 : 0;
+  const int64_t m = std::max<int64_t>(moved, 1);
+  const uint32_t left = vl == kNoVertex ? vs : vl;
+  const uint32_t right = vr == kNoVertex ? vs : vr;
+  for (int a = 0; a < 3; ++a) {
+    int64_t sum = 0;
+    int64_t moved_sum = 0;
+    for (uint32_t v : ring) {
+      sum += q.get(v, a);
+      if (v != vs && v != vl && v != vr) moved_sum += q.get(v, a);
+    }
+    // c + w_s (s - c) + w_w ((l + r) / 2 - c) + w_m (M / moved - c), all
+    // over 128 k m.
+    int64_t num = 128 * m * sum + 2 * m * w.vs * (k * int64_t{q.get(vs, a)} - sum) +
+                  m * w.wings * (k * (int64_t{q.get(left, a)} + q.get(right, a)) - 2 * sum);
+    if (moved > 0) num += 2 * w.moved * (k * moved_sum - moved * sum);
+    out[a] = rounded_quotient(num, 128 * k * m);
+  }
+}
+
 // `ring` and `closed`: vt's fan after the split (SplitConnectivity::neighbours).
+// `weights`: version 3's, or null for version 2's centroid.
 VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr,
-                           const std::vector<uint32_t>* ring, bool closed) {
+                           const std::vector<uint32_t>* ring, bool closed,
+                           const VtWeights* weights = nullptr) {
   VtPrediction p;
   if (ring->empty()) {
     for (int a = 0; a < 3; ++a) {
@@ -620,19 +667,25 @@ VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl
     }
     return p;
   }
-  // vs counts twice: the simplifier collapsed vt into vs because it was
-  // close, so vt lies nearer to vs than to the rest of its fan (weight 2:
-  // 0.05 bit per split less on the bunny, 0.47 on the armadillo; 3 and 4
-  // were worse).
-  int64_t count = 0;
-  for (uint32_t v : *ring)
-    count += v == vs ? 2 : 1;
+  if (weights != nullptr) {
+    weighted_centroid(q, vs, vl, vr, *ring, *weights, p.centroid);
+  } else {
+    // vs counts twice: the simplifier collapsed vt into vs because it was
+    // close, so vt lies nearer to vs than to the rest of its fan (weight 2:
+    // 0.05 bit per split less on the bunny, 0.47 on the armadillo; 3 and 4
+    // were worse).
+    int64_t count = 0;
+    for (uint32_t v : *ring)
+      count += v == vs ? 2 : 1;
+    for (int a = 0; a < 3; ++a) {
+      int64_t sum = 0;
+      for (uint32_t v : *ring)
+        sum += (v == vs ? 2 : 1) * int64_t{q.get(v, a)};
+      p.centroid[a] = (sum + count / 2) / count;
+    }
+  }
   uint64_t widest_all = 0;
   for (int a = 0; a < 3; ++a) {
-    int64_t sum = 0;
-    for (uint32_t v : *ring)
-      sum += (v == vs ? 2 : 1) * int64_t{q.get(v, a)};
-    p.centroid[a] = (sum + count / 2) / count;
     uint64_t widest = 0;
     for (uint32_t v : *ring) {
       const int64_t d = int64_t{q.get(v, a)} - p.centroid[a];
@@ -737,6 +790,10 @@ constexpr uint32_t kVsBucketsFrom = 128;
 uint32_t vs_bucket_start(uint64_t bucket, uint64_t n) {
   return static_cast<uint32_t>((bucket * n + 63) / 64);
 }
+// The first rank of a class of k ids in its 16th number `bucket`.
+uint32_t rank_bucket_start(uint64_t bucket, uint64_t k) {
+  return static_cast<uint32_t>((bucket * k + 15) / 16);
+}
 
 void encode_vs(RangeEncoder* rc, BitTreeModel* buckets, uint32_t vs, uint32_t n) {
   if (n < kVsBucketsFrom) {
@@ -784,6 +841,162 @@ size_t index_in(const std::vector<uint32_t>& ring, uint32_t v) {
   return static_cast<size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
 }
 
+// ---------------------------------------------------------------------------
+// Layout version 3 (see the file comment): vs by its fan size, vt from a
+// weighted combination of its fan.
+
+// vs's class: the size of its fan when last updated, capped; class 0 (no
+// fan) is never coded, so symbol 0 is the escape to version 2's vs code.
+constexpr uint32_t kVsClasses = 16;
+constexpr uint32_t kVsEscape = 0;
+// Ranks in a class of at least 2 * kRankBuckets ids are coded by their
+// 16th of the class (adaptive per class), then uniformly inside it.
+constexpr uint32_t kRankBuckets = 16;
+
+uint32_t vs_class_of(size_t fan_size) {
+  return static_cast<uint32_t>(std::min<size_t>(fan_size, kVsClasses - 1));
+}
+
+// The vertices of each class as order-statistic sets over vertex ids: a
+// bit per id and a Fenwick tree of the count in each 64-id word. Memory
+// grows with the vertices added (3 bytes a vertex for 16 classes), never
+// with a count read from the file; rank and select are O(log n).
+class VertexClasses {
+ public:
+  // Vertices 0 .. count - 1, in no class until set().
+  explicit VertexClasses(uint32_t count) : classes_(kVsClasses) {
+    for (uint32_t v = 0; v < count; ++v)
+      add_vertex();
+  }
+  // The next vertex id, in no class.
+  void add_vertex() {
+    const uint32_t v = static_cast<uint32_t>(class_.size());
+    class_.push_back(kNone);
+    if (v % 64 != 0) return;
+    for (Set& set : classes_) {
+      set.words.push_back(0);
+      // Fenwick node i (1-based) holds the words (i - lowbit(i), i]; the
+      // new word is empty, so it is the sum of the earlier ones in range.
+      const size_t i = set.words.size();
+      set.tree.push_back(prefix(set, i - 1) - prefix(set, i - (i & (~i + 1))));
+    }
+  }
+  uint32_t class_of(uint32_t v) const { return class_[v]; }
+  uint32_t count(uint32_t c) const { return classes_[c].count; }
+  // Moves v into class c (c < kVsClasses).
+  void set(uint32_t v, uint32_t c) {
+    if (class_[v] == c) return;
+    if (class_[v] != kNone) change(&classes_[class_[v]], v, -1);
+    class_[v] = c;
+    change(&classes_[c], v, +1);
+  }
+  // The number of ids of v's class below v. \pre v is in a class.
+  uint32_t rank(uint32_t v) const {
+    const Set& set = classes_[class_[v]];
+    const uint64_t below = (uint64_t{1} << (v % 64)) - 1;
+    return prefix(set, v / 64) +
+           static_cast<uint32_t>(__builtin_popcountll(set.words[v / 64] & below));
+  }
+  // The id of rank k in class c. \pre k < count(c).
+  uint32_t select(uint32_t c, uint32_t k) const {
+    const Set& set = classes_[c];
+    size_t word = 0;  // Fenwick descent: the largest prefix of words with at most k ids
+    size_t step = 1;
+    while (step * 2 <= set.tree.size())
+      step *= 2;
+    for (; step != 0; step /= 2) {
+      if (word + step <= set.tree.size() && set.tree[word + step - 1] <= k) {
+        word += step;
+        k -= set.tree[word - 1];
+      }
+    }
+    uint64_t bits = set.words[word];
+    for (; k != 0; --k)
+      bits &= bits - 1;
+    return static_cast<uint32_t>(word * 64 + static_cast<size_t>(__builtin_ctzll(bits)));
+  }
+
+ private:
+  static constexpr uint32_t kNone = UINT32_MAX;
+  struct Set {
+    std::vector<uint64_t> words;
+    std::vector<uint32_t> tree;
+    uint32_t count = 0;
+  };
+  // The ids in words [0, w).
+  static uint32_t prefix(const Set& set, size_t w) {
+    uint32_t sum = 0;
+    for (; w != 0; w &= w - 1)
+      sum += set.tree[w - 1];
+    return sum;
+  }
+  static void change(Set* set, uint32_t v, int delta) {
+    set->words[v / 64] ^= uint64_t{1} << (v % 64);
+    set->count += static_cast<uint32_t>(delta);
+    for (size_t i = v / 64 + 1; i <= set->tree.size(); i += i & (~i + 1))
+      set->tree[i - 1] += static_cast<uint32_t>(delta);
+  }
+  std::vector<uint32_t> class_;
+  std::vector<Set> classes_;
+};
+
+struct VsModels {
+  VsModels() : classes(4), ranks(kVsClasses, BitTreeModel(4)) {}
+  BitTreeModel classes;
+  std::vector<BitTreeModel> ranks;
+};
+
+// vs in version 3, from n >= 128 vertices: its class's symbol, then its rank
+// in the class (uniform, or by 16ths when the class is large); the escape,
+// then version 2's code, when its class has fewer than 2 ids (or it has no
+// fan). Either way the last step is uniform over at least 2 values, so each
+// record still narrows the coder's range by at least one bit.
+void encode_vs_v3(RangeEncoder* rc, BitTreeModel* buckets, VsModels* m,
+                  const VertexClasses& classes, uint32_t vs, uint32_t n) {
+  if (n < kVsBucketsFrom) {
+    rc->encode_uniform(vs, n);
+    return;
+  }
+  const uint32_t c = classes.class_of(vs);
+  const uint32_t k = c == kVsEscape ? 0 : classes.count(c);
+  if (k < 2) {
+    m->classes.encode(rc, kVsEscape);
+    encode_vs(rc, buckets, vs, n);
+    return;
+  }
+  m->classes.encode(rc, c);
+  const uint32_t rank = classes.rank(vs);
+  if (k < 2 * kRankBuckets) {
+    rc->encode_uniform(rank, k);
+    return;
+  }
+  const uint32_t bucket = static_cast<uint32_t>(uint64_t{rank} * kRankBuckets / k);
+  m->ranks[c].encode(rc, bucket);
+  const uint32_t start = rank_bucket_start(bucket, k);
+  rc->encode_uniform(rank - start, rank_bucket_start(bucket + 1, k) - start);
+}
+
+bool decode_vs_v3(RangeDecoder* rc, BitTreeModel* buckets, VsModels* m,
+                  const VertexClasses& classes, uint32_t n, uint32_t* vs) {
+  if (n < kVsBucketsFrom) return rc->decode_uniform(n, vs);
+  const uint32_t c = m->classes.decode(rc);
+  if (c == kVsEscape) return decode_vs(rc, buckets, n, vs);
+  const uint32_t k = classes.count(c);
+  if (k < 2) return false;
+  uint32_t rank = 0;
+  if (k < 2 * kRankBuckets) {
+    if (!rc->decode_uniform(k, &rank)) return false;
+  } else {
+    const uint32_t bucket = m->ranks[c].decode(rc);
+    const uint32_t start = rank_bucket_start(bucket, k);
+    uint32_t offset = 0;
+    if (!rc->decode_uniform(rank_bucket_start(bucket + 1, k) - start, &offset)) return false;
+    rank = start + offset;
+  }
+  *vs = classes.select(c, rank);
+  return true;
+}
+
 uint64_t verbatim_bytes(const Fixed& f) {
   const uint64_t r = f.splits;
   const uint64_t per_split = (f.flags & kVsplStoresVsPositions) != 0 ? 24 : 12;
@@ -793,8 +1006,32 @@ uint64_t verbatim_bytes(const Fixed& f) {
   return bytes;
 }
 
+// Every base vertex in the class of its fan size.
+void init_classes(const SplitConnectivity& mesh, uint32_t base, VertexClasses* classes,
+                  std::vector<uint32_t>* fan) {
+  for (uint32_t v = 0; v < base; ++v) {
+    mesh.neighbours(v, fan);
+    classes->set(v, vs_class_of(fan->size()));
+  }
+}
+
+// After a split creating vt: the fan sizes that can have changed (vs's,
+// vt's, the wings'; a moved vertex trades vs for vt) set their classes.
+void update_classes(const SplitConnectivity& mesh, uint32_t vs, uint32_t vt, uint32_t vl,
+                    uint32_t vr, size_t vt_fan, VertexClasses* classes,
+                    std::vector<uint32_t>* fan) {
+  classes->add_vertex();
+  classes->set(vt, vs_class_of(vt_fan));
+  for (uint32_t v : {vs, vl, vr}) {
+    if (v == kNoVertex) continue;
+    mesh.neighbours(v, fan);
+    classes->set(v, vs_class_of(fan->size()));
+  }
+}
+
+// Versions 2 and 3 (see the file comment).
 Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
-                        VsplCompactStats* stats) {
+                        uint8_t version, VsplCompactStats* stats) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
   LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
   Fixed f;
@@ -809,8 +1046,14 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
 
   Bytes out;
   ByteWriter writer(&out);
-  writer.write(uint8_t{2});
+  writer.write(version);
   writer.write_bytes(raw, f.bytes);
+  const bool v3 = version == 3;
+  const VtWeights weights;
+  if (v3 && f.quantized) {
+    for (int64_t w : {weights.vs, weights.wings, weights.moved})
+      writer.write(static_cast<uint8_t>(static_cast<int8_t>(w)));
+  }
   const size_t verbatim_start = out.size();
   if (!f.quantized) writer.write_bytes(raw + parts.positions_offset, parts.positions_bytes);
   const uint64_t attributes = verbatim_bytes(f) - (f.quantized ? 0 : parts.positions_bytes);
@@ -840,10 +1083,18 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   }
   std::vector<uint32_t> vt_ring;
   std::vector<int64_t> ids;
+  VsModels vs_models;
+  VertexClasses classes(v3 ? f.base : 0);
+  std::vector<uint32_t> fan;
+  if (v3) init_classes(mesh, f.base, &classes, &fan);
   for (size_t i = 0; i < splits.size(); ++i) {
     const VertexSplit& s = splits[i];
     const uint32_t n = f.base + static_cast<uint32_t>(i);
-    encode_vs(&rc, &m.vs_buckets, s.vs, n);
+    if (v3) {
+      encode_vs_v3(&rc, &m.vs_buckets, &vs_models, classes, s.vs, n);
+    } else {
+      encode_vs(&rc, &m.vs_buckets, s.vs, n);
+    }
     spend(&cost.vs_bits);
 
     const bool closed = mesh.neighbours(s.vs, &ring);
@@ -877,11 +1128,13 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
     spend(&cost.wing_bits);
     mesh.split(s.vs, s.vl, s.vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
+    if (v3) update_classes(mesh, s.vs, n, s.vl, s.vr, vt_ring.size(), &classes, &fan);
 
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
       const size_t scale = scale_context(qp, s.vs, s.vl, s.vr);
-      const VtPrediction p = predict_vt_v2(qp, s.vs, s.vl, s.vr, &vt_ring, vt_closed);
+      const VtPrediction p =
+          predict_vt_v2(qp, s.vs, s.vl, s.vr, &vt_ring, vt_closed, v3 ? &weights : nullptr);
       uint32_t value[6] = {};
       for (size_t c = 0; c < per_split; ++c)
         ints.read(f.bits, &value[c]);
@@ -921,7 +1174,16 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed_for_base(data, size, base, &f));
   const uint64_t r = f.splits;
-  const size_t pos = 1 + f.bytes;
+  const bool v3 = data[0] == 3;
+  size_t pos = 1 + f.bytes;
+  VtWeights weights;
+  if (v3 && f.quantized) {
+    if (size - pos < 3) return bad_compact("payload ends inside the prediction weights");
+    weights.vs = static_cast<int8_t>(data[pos]);
+    weights.wings = static_cast<int8_t>(data[pos + 1]);
+    weights.moved = static_cast<int8_t>(data[pos + 2]);
+    pos += 3;
+  }
   const uint64_t verbatim = verbatim_bytes(f);
   if (verbatim > size - pos) {
     return bad_compact(string_printf("%u splits need %" PRIu64 " verbatim bytes, %zu remain",
@@ -980,6 +1242,10 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   std::vector<int64_t> ids;
   uint32_t previous_error = 0;
   int64_t previous_delta = 0;
+  VsModels vs_models;
+  VertexClasses classes(v3 ? f.base : 0);
+  std::vector<uint32_t> fan;
+  if (v3) init_classes(mesh, f.base, &classes, &fan);
   for (uint32_t i = 0; i < f.splits; ++i) {
     const uint32_t n = f.base + i;
     // The message prefix is built only on failure: a string per record
@@ -988,7 +1254,9 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
       return bad_compact(string_printf("split %u: ", i) + detail);
     };
     uint32_t vs = 0;
-    if (!decode_vs(&rc, &m.vs_buckets, n, &vs)) return bad("vs out of range");
+    if (v3 ? !decode_vs_v3(&rc, &m.vs_buckets, &vs_models, classes, n, &vs)
+           : !decode_vs(&rc, &m.vs_buckets, n, &vs))
+      return bad("vs out of range");
 
     const bool closed = mesh.neighbours(vs, &ring);
     if (closed && f.quantized) start_at_farthest(q.front(), vs, &ring);
@@ -1027,11 +1295,13 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
     topology_out.write(vr == kNoVertex ? n : vr, bits_for_count(uint64_t{n} + 1));
     mesh.split(vs, vl, vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
+    if (v3) update_classes(mesh, vs, n, vl, vr, vt_ring.size(), &classes, &fan);
 
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
       const size_t scale = scale_context(qp, vs, vl, vr);
-      const VtPrediction p = predict_vt_v2(qp, vs, vl, vr, &vt_ring, vt_closed);
+      const VtPrediction p =
+          predict_vt_v2(qp, vs, vl, vr, &vt_ring, vt_closed, v3 ? &weights : nullptr);
       uint32_t value[6] = {};
       int64_t residual[3] = {};
       for (size_t c = 0; c < per_split; ++c) {
@@ -1108,9 +1378,10 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
                                   const VsplCompactOptions& options) {
   try {
     if (options.version == 1) return encode_v1(raw, raw_size, base);
-    if (options.version == 2) return encode_v2(raw, raw_size, base, options.stats);
+    if (options.version == 2 || options.version == 3)
+      return encode_v2(raw, raw_size, base, options.version, options.stats);
     if (options.version == 0) {
-      LODBAKE_ASSIGN_OR_RETURN(Bytes v2, encode_v2(raw, raw_size, base, options.stats));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v2, encode_v2(raw, raw_size, base, 3, options.stats));
       uint32_t splits = 0;
       std::memcpy(&splits, raw, 4);  // encode_v2 checked the payload
       if (splits >= kVersion1Candidates) return v2;
@@ -1128,9 +1399,9 @@ Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const Triang
   try {
     if (size < 1) return bad_compact("payload is empty");
     if (data[0] == 1) return decode_v1(data, size, base);
-    if (data[0] == 2) return decode_v2(data, size, base);
+    if (data[0] == 2 || data[0] == 3) return decode_v2(data, size, base);
     return bad_compact(
-        string_printf("layout version %u is unknown (this reader knows 1 and 2)", data[0]));
+        string_printf("layout version %u is unknown (this reader knows 1 to 3)", data[0]));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact VSPL");
   }

@@ -17,8 +17,8 @@
 
 namespace lodbake {
 
-/// The newest layout version; readers accept 1 and 2.
-inline constexpr uint8_t kVsplCompactVersion = 2;
+/// The newest layout version; readers accept 1, 2 and 3.
+inline constexpr uint8_t kVsplCompactVersion = 3;
 
 /// What each part of a version-2 payload costs, in bits: the range coder's
 /// information content of the part's decisions (the stream's 5 framing
