@@ -857,10 +857,85 @@ uint32_t vs_class_of(size_t fan_size) {
   return static_cast<uint32_t>(std::min<size_t>(fan_size, kVsClasses - 1));
 }
 
-// The vertices of each class as order-statistic sets over vertex ids: a
-// bit per id and a Fenwick tree of the count in each 64-id word. Memory
-// grows with the vertices added (3 bytes a vertex for 16 classes), never
-// with a count read from the file; rank and select are O(log n).
+// A set of ids in [0, size()) with rank and select in O(log n): a bit per
+// id and a Fenwick tree of the count in each 64-id word (0.19 bytes an id).
+class OrderedIds {
+ public:
+  size_t size() const { return 64 * words_.size(); }
+  uint32_t count() const { return count_; }
+  // Room for ids below `ids`, the new ones absent. Memory grows with what
+  // the caller adds, never with a count read from a file.
+  void grow(size_t ids) {
+    while (size() < ids) {
+      words_.push_back(0);
+      // Fenwick node i (1-based) holds the words (i - lowbit(i), i]; the
+      // new word is empty, so it is the sum of the earlier ones in range.
+      const size_t i = words_.size();
+      tree_.push_back(prefix(i - 1) - prefix(i - (i & (~i + 1))));
+    }
+  }
+  // Every id in [0, ids) present (size() rounds up to a word).
+  void fill(size_t ids) {
+    words_.assign((ids + 63) / 64, ~uint64_t{0});
+    if (ids % 64 != 0) words_.back() = (uint64_t{1} << (ids % 64)) - 1;
+    tree_.assign(words_.size(), 0);
+    for (size_t i = 1; i <= tree_.size(); ++i) {
+      tree_[i - 1] += static_cast<uint32_t>(__builtin_popcountll(words_[i - 1]));
+      const size_t up = i + (i & (~i + 1));
+      if (up <= tree_.size()) tree_[up - 1] += tree_[i - 1];
+    }
+    count_ = static_cast<uint32_t>(ids);
+  }
+  bool contains(uint32_t v) const { return ((words_[v / 64] >> (v % 64)) & 1) != 0; }
+  // Adds an absent v or removes a present one. \pre v < size().
+  void flip(uint32_t v) {
+    const bool add = !contains(v);
+    words_[v / 64] ^= uint64_t{1} << (v % 64);
+    const uint32_t delta = add ? 1u : UINT32_MAX;
+    count_ += delta;
+    for (size_t i = v / 64 + 1; i <= tree_.size(); i += i & (~i + 1))
+      tree_[i - 1] += delta;
+  }
+  // The number of ids below v (any v; all of them from size() up).
+  uint32_t below(uint64_t v) const {
+    if (v >= size()) return count_;
+    const uint64_t mask = (uint64_t{1} << (v % 64)) - 1;
+    return prefix(static_cast<size_t>(v / 64)) +
+           static_cast<uint32_t>(__builtin_popcountll(words_[v / 64] & mask));
+  }
+  // The id of rank k. \pre k < count().
+  uint32_t select(uint32_t k) const {
+    size_t word = 0;  // Fenwick descent: the longest prefix of words with at most k ids
+    size_t step = 1;
+    while (step * 2 <= tree_.size())
+      step *= 2;
+    for (; step != 0; step /= 2) {
+      if (word + step <= tree_.size() && tree_[word + step - 1] <= k) {
+        word += step;
+        k -= tree_[word - 1];
+      }
+    }
+    uint64_t bits = words_[word];
+    for (; k != 0; --k)
+      bits &= bits - 1;
+    return static_cast<uint32_t>(word * 64 + static_cast<size_t>(__builtin_ctzll(bits)));
+  }
+
+ private:
+  // The ids in words [0, w).
+  uint32_t prefix(size_t w) const {
+    uint32_t sum = 0;
+    for (; w != 0; w &= w - 1)
+      sum += tree_[w - 1];
+    return sum;
+  }
+  std::vector<uint64_t> words_;
+  std::vector<uint32_t> tree_;
+  uint32_t count_ = 0;
+};
+
+// The vertices of each class, as OrderedIds (3 bytes a vertex for 16
+// classes).
 class VertexClasses {
  public:
   // Vertices 0 .. count - 1, in no class until set().
@@ -870,74 +945,28 @@ class VertexClasses {
   }
   // The next vertex id, in no class.
   void add_vertex() {
-    const uint32_t v = static_cast<uint32_t>(class_.size());
     class_.push_back(kNone);
-    if (v % 64 != 0) return;
-    for (Set& set : classes_) {
-      set.words.push_back(0);
-      // Fenwick node i (1-based) holds the words (i - lowbit(i), i]; the
-      // new word is empty, so it is the sum of the earlier ones in range.
-      const size_t i = set.words.size();
-      set.tree.push_back(prefix(set, i - 1) - prefix(set, i - (i & (~i + 1))));
-    }
+    for (OrderedIds& set : classes_)
+      set.grow(class_.size());
   }
   uint32_t class_of(uint32_t v) const { return class_[v]; }
-  uint32_t count(uint32_t c) const { return classes_[c].count; }
+  uint32_t count(uint32_t c) const { return classes_[c].count(); }
   // Moves v into class c (c < kVsClasses).
   void set(uint32_t v, uint32_t c) {
     if (class_[v] == c) return;
-    if (class_[v] != kNone) change(&classes_[class_[v]], v, -1);
+    if (class_[v] != kNone) classes_[class_[v]].flip(v);
     class_[v] = c;
-    change(&classes_[c], v, +1);
+    classes_[c].flip(v);
   }
   // The number of ids of v's class below v. \pre v is in a class.
-  uint32_t rank(uint32_t v) const {
-    const Set& set = classes_[class_[v]];
-    const uint64_t below = (uint64_t{1} << (v % 64)) - 1;
-    return prefix(set, v / 64) +
-           static_cast<uint32_t>(__builtin_popcountll(set.words[v / 64] & below));
-  }
+  uint32_t rank(uint32_t v) const { return classes_[class_[v]].below(v); }
   // The id of rank k in class c. \pre k < count(c).
-  uint32_t select(uint32_t c, uint32_t k) const {
-    const Set& set = classes_[c];
-    size_t word = 0;  // Fenwick descent: the largest prefix of words with at most k ids
-    size_t step = 1;
-    while (step * 2 <= set.tree.size())
-      step *= 2;
-    for (; step != 0; step /= 2) {
-      if (word + step <= set.tree.size() && set.tree[word + step - 1] <= k) {
-        word += step;
-        k -= set.tree[word - 1];
-      }
-    }
-    uint64_t bits = set.words[word];
-    for (; k != 0; --k)
-      bits &= bits - 1;
-    return static_cast<uint32_t>(word * 64 + static_cast<size_t>(__builtin_ctzll(bits)));
-  }
+  uint32_t select(uint32_t c, uint32_t k) const { return classes_[c].select(k); }
 
  private:
   static constexpr uint32_t kNone = UINT32_MAX;
-  struct Set {
-    std::vector<uint64_t> words;
-    std::vector<uint32_t> tree;
-    uint32_t count = 0;
-  };
-  // The ids in words [0, w).
-  static uint32_t prefix(const Set& set, size_t w) {
-    uint32_t sum = 0;
-    for (; w != 0; w &= w - 1)
-      sum += set.tree[w - 1];
-    return sum;
-  }
-  static void change(Set* set, uint32_t v, int delta) {
-    set->words[v / 64] ^= uint64_t{1} << (v % 64);
-    set->count += static_cast<uint32_t>(delta);
-    for (size_t i = v / 64 + 1; i <= set->tree.size(); i += i & (~i + 1))
-      set->tree[i - 1] += static_cast<uint32_t>(delta);
-  }
   std::vector<uint32_t> class_;
-  std::vector<Set> classes_;
+  std::vector<OrderedIds> classes_;
 };
 
 struct VsModels {
@@ -1076,9 +1105,23 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   };
   const bool with_permutation = (f.flags & kVsplStoresPermutation) != 0;
   const std::vector<uint32_t>& input = section.input_vertex;
+  // Version 3: the input ids not yet coded; decode_vspl checked that the
+  // permutation is one.
+  OrderedIds unused;
+  if (v3 && with_permutation) unused.fill(input.size());
+  auto encode_input = [&](size_t context, int64_t predicted, uint32_t id) {
+    if (v3) {
+      m.permutation.encode(
+          &rc, context,
+          int64_t{unused.below(id)} - int64_t{unused.below(static_cast<uint64_t>(predicted))});
+      unused.flip(id);
+    } else {
+      m.permutation.encode(&rc, context, int64_t{id} - predicted);
+    }
+  };
   if (with_permutation) {
     for (uint32_t v = 0; v < f.base; ++v)
-      m.permutation.encode(&rc, 0, int64_t{input[v]} - (v == 0 ? 0 : int64_t{input[v - 1]} + 1));
+      encode_input(0, v == 0 ? 0 : int64_t{input[v - 1]} + 1, input[v]);
     spend(&cost.permutation_bits);
   }
   std::vector<uint32_t> vt_ring;
@@ -1162,7 +1205,7 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
 
     if (with_permutation) {
       const InputPrediction p = predict_input(input, s.vs, vt_ring, &ids);
-      m.permutation.encode(&rc, p.context, int64_t{input[n]} - p.value);
+      encode_input(p.context, p.value, input[n]);
       spend(&cost.permutation_bits);
     }
   }
@@ -1219,10 +1262,27 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   const uint64_t full = uint64_t{f.base} + r;
   // The input ids decoded so far: the base's first, then one per record.
   std::vector<uint32_t> input;
+  // Version 3: the input ids not yet decoded (r is bounded by the stream
+  // size above, so the set's 0.19 bytes an id are too).
+  OrderedIds unused;
+  if (v3 && with_permutation) unused.fill(static_cast<size_t>(full));
   auto decode_input = [&](size_t context, int64_t predicted, uint64_t v) -> Status {
     int64_t delta = 0;
     if (!m.permutation.decode(&rc, context, &delta))
       return bad_compact("a permutation code is out of range");
+    if (v3) {
+      // The rank of the id among the unused ones, against the prediction's.
+      const int64_t rank = int64_t{unused.below(static_cast<uint64_t>(predicted))} + delta;
+      if (rank < 0 || rank >= int64_t{unused.count()}) {
+        return bad_compact(string_printf("input vertex rank %" PRId64 " of vertex %" PRIu64
+                                         " outside the %u unused ids",
+                                         rank, v, unused.count()));
+      }
+      const uint32_t id = unused.select(static_cast<uint32_t>(rank));
+      unused.flip(id);
+      input.push_back(id);
+      return Status::ok();
+    }
     const int64_t value = predicted + delta;
     if (value < 0 || static_cast<uint64_t>(value) >= full) {
       return bad_compact(string_printf("input vertex %" PRId64 " of vertex %" PRIu64
