@@ -594,11 +594,16 @@ struct VtPrediction {
     return centroid[axis] + (num < 0 ? -q : q);
   }
   bool flipped = false;  // the fan's normal pointed down the dominant axis
-  // The context of coordinate order[c]: its axis's spread, for the third
-  // apart when the normal was flipped.
+  // Version 3, with a plane: the bit length of the fan's mean distance
+  // from the plane along the dominant axis, which scales the third
+  // residual better than the axis's spread; kNoRelief otherwise.
+  static constexpr size_t kNoRelief = SIZE_MAX;
+  size_t relief = kNoRelief;
+  // The context of coordinate order[c]: its axis's spread (or the relief),
+  // for the third apart when the normal was flipped.
   size_t context(int c) const {
     const size_t slot = c == 2 && flipped ? 6 : static_cast<size_t>(c);
-    return slot * kScaleContexts + spread[order[c]];
+    return slot * kScaleContexts + (c == 2 && relief != kNoRelief ? relief : spread[order[c]]);
   }
 };
 
@@ -627,29 +632,32 @@ int64_t rounded_quotient(int64_t n, int64_t d) {
 
 // Version 3's point prediction of vt, per axis: the fan's centroid c
 // moved by the weighted offsets of vs, the wings' midpoint and the moved
-// vertices' centroid from c, in one exact rational (below 2^57 for fans
-// of at most 256 entries and 30-bit coordinates).
+// vertices' centroid from c, in one exact rational (below 2^58 for fans
+// of at most 256 entries, 30-bit coordinates and weights of at most 2).
 void weighted_centroid(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr,
                        const std::vector<uint32_t>& ring, const VtWeights& w, int64_t* out) {
   const int64_t k = static_cast<int64_t>(ring.size());
   int64_t moved = 0;
-  for (uint32_t v : ring)
-    moved += v != vs && v != vl && v != vr ? 1 : 0;
+  int64_t sum[3] = {0, 0, 0};
+  int64_t moved_sum[3] = {0, 0, 0};
+  for (uint32_t v : ring) {
+    const bool is_moved = v != vs && v != vl && v != vr;
+    moved += is_moved ? 1 : 0;
+    for (int a = 0; a < 3; ++a) {
+      const int64_t x = q.get(v, a);
+      sum[a] += x;
+      moved_sum[a] += is_moved ? x : 0;
+    }
+  }
   const int64_t m = std::max<int64_t>(moved, 1);
   const uint32_t left = vl == kNoVertex ? vs : vl;
   const uint32_t right = vr == kNoVertex ? vs : vr;
   for (int a = 0; a < 3; ++a) {
-    int64_t sum = 0;
-    int64_t moved_sum = 0;
-    for (uint32_t v : ring) {
-      sum += q.get(v, a);
-      if (v != vs && v != vl && v != vr) moved_sum += q.get(v, a);
-    }
     // c + w_s (s - c) + w_w ((l + r) / 2 - c) + w_m (M / moved - c), all
     // over 128 k m.
-    int64_t num = 128 * m * sum + 2 * m * w.vs * (k * int64_t{q.get(vs, a)} - sum) +
-                  m * w.wings * (k * (int64_t{q.get(left, a)} + q.get(right, a)) - 2 * sum);
-    if (moved > 0) num += 2 * w.moved * (k * moved_sum - moved * sum);
+    int64_t num = 128 * m * sum[a] + 2 * m * w.vs * (k * int64_t{q.get(vs, a)} - sum[a]) +
+                  m * w.wings * (k * (int64_t{q.get(left, a)} + q.get(right, a)) - 2 * sum[a]);
+    if (moved > 0) num += 2 * w.moved * (k * moved_sum[a] - moved * sum[a]);
     out[a] = rounded_quotient(num, 128 * k * m);
   }
 }
@@ -738,6 +746,23 @@ VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl
     if (a != dominant) p.order[k++] = a;
   }
   p.order[2] = dominant;
+  if (weights != nullptr) {
+    // Mean |n . (u - c)| / n_D over the fan: the height of its vertices
+    // above the plane through the prediction, along D (below 2^60: n below
+    // 2^16 per axis; the prediction is within 3 * 2^31 of the 30-bit
+    // centroid for any stored weights, so offsets are below 2^33; at most
+    // 256 entries).
+    uint64_t height = 0;
+    for (uint32_t u : *ring) {
+      int64_t dot = 0;
+      for (int a = 0; a < 3; ++a)
+        dot += p.normal[a] * (int64_t{q.get(u, a)} - p.centroid[a]);
+      height += static_cast<uint64_t>(dot < 0 ? -dot : dot);
+    }
+    const uint64_t mean = height / (static_cast<uint64_t>(p.normal[dominant]) * ring->size());
+    p.relief = std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(mean)),
+                                kScaleContexts - 1);
+  }
   return p;
 }
 
@@ -934,38 +959,44 @@ class OrderedIds {
   uint32_t count_ = 0;
 };
 
-// The vertices of each class, as OrderedIds (3 bytes a vertex for 16
-// classes).
+// The vertices by class, each class an OrderedIds (3 bytes a vertex for
+// 16 classes): a vertex's class is its degree (a count update_classes
+// keeps: its fan size on records that fit the mesh), capped at 15.
 class VertexClasses {
  public:
-  // Vertices 0 .. count - 1, in no class until set().
+  // Vertices 0 .. count - 1, of degree 0.
   explicit VertexClasses(uint32_t count) : classes_(kVsClasses) {
     for (uint32_t v = 0; v < count; ++v)
-      add_vertex();
+      add_vertex(0);
   }
-  // The next vertex id, in no class.
-  void add_vertex() {
-    class_.push_back(kNone);
-    for (OrderedIds& set : classes_)
-      set.grow(class_.size());
+  // The next vertex id, of degree d.
+  void add_vertex(uint32_t d) {
+    const uint32_t v = static_cast<uint32_t>(degree_.size());
+    degree_.push_back(d);
+    if (v % 64 == 0) {
+      for (OrderedIds& set : classes_)
+        set.grow(degree_.size());
+    }
+    classes_[class_of(v)].flip(v);
   }
-  uint32_t class_of(uint32_t v) const { return class_[v]; }
+  uint32_t degree(uint32_t v) const { return degree_[v]; }
+  uint32_t class_of(uint32_t v) const { return vs_class_of(degree_[v]); }
   uint32_t count(uint32_t c) const { return classes_[c].count(); }
-  // Moves v into class c (c < kVsClasses).
-  void set(uint32_t v, uint32_t c) {
-    if (class_[v] == c) return;
-    if (class_[v] != kNone) classes_[class_[v]].flip(v);
-    class_[v] = c;
-    classes_[c].flip(v);
+  void set_degree(uint32_t v, uint32_t d) {
+    const uint32_t from = class_of(v);
+    degree_[v] = d;
+    const uint32_t to = class_of(v);
+    if (from == to) return;
+    classes_[from].flip(v);
+    classes_[to].flip(v);
   }
-  // The number of ids of v's class below v. \pre v is in a class.
-  uint32_t rank(uint32_t v) const { return classes_[class_[v]].below(v); }
+  // The number of ids of v's class below v.
+  uint32_t rank(uint32_t v) const { return classes_[class_of(v)].below(v); }
   // The id of rank k in class c. \pre k < count(c).
   uint32_t select(uint32_t c, uint32_t k) const { return classes_[c].select(k); }
 
  private:
-  static constexpr uint32_t kNone = UINT32_MAX;
-  std::vector<uint32_t> class_;
+  std::vector<uint32_t> degree_;
   std::vector<OrderedIds> classes_;
 };
 
@@ -1035,26 +1066,30 @@ uint64_t verbatim_bytes(const Fixed& f) {
   return bytes;
 }
 
-// Every base vertex in the class of its fan size.
+// Every base vertex's degree: its fan size.
 void init_classes(const SplitConnectivity& mesh, uint32_t base, VertexClasses* classes,
                   std::vector<uint32_t>* fan) {
   for (uint32_t v = 0; v < base; ++v) {
     mesh.neighbours(v, fan);
-    classes->set(v, vs_class_of(fan->size()));
+    classes->set_degree(v, static_cast<uint32_t>(fan->size()));
   }
 }
 
-// After a split creating vt: the fan sizes that can have changed (vs's,
-// vt's, the wings'; a moved vertex trades vs for vt) set their classes.
-void update_classes(const SplitConnectivity& mesh, uint32_t vs, uint32_t vt, uint32_t vl,
-                    uint32_t vr, size_t vt_fan, VertexClasses* classes,
-                    std::vector<uint32_t>* fan) {
-  classes->add_vertex();
-  classes->set(vt, vs_class_of(vt_fan));
-  for (uint32_t v : {vs, vl, vr}) {
-    if (v == kNoVertex) continue;
-    mesh.neighbours(v, fan);
-    classes->set(v, vs_class_of(fan->size()));
+// After a split creating vt, the degrees as the split changes fan sizes,
+// without walking more fans: vt's is its fan's size; vs trades the moved
+// vertices (vt's fan but for vs and the wings) for vt; each wing gains vt;
+// a moved vertex trades vs for vt. Exact on records that fit the mesh;
+// on others, merely the same in encoder and decoder.
+void update_classes(uint32_t vs, uint32_t vl, uint32_t vr, const std::vector<uint32_t>& vt_fan,
+                    VertexClasses* classes) {
+  uint32_t moved = 0;
+  for (uint32_t v : vt_fan)
+    moved += v != vs && v != vl && v != vr ? 1 : 0;
+  classes->add_vertex(static_cast<uint32_t>(vt_fan.size()));  // vt
+  const uint32_t d = classes->degree(vs) + 1;
+  classes->set_degree(vs, d > moved ? d - moved : 0);
+  for (uint32_t v : {vl, vr}) {
+    if (v != kNoVertex) classes->set_degree(v, classes->degree(v) + 1);
   }
 }
 
@@ -1171,7 +1206,7 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
     spend(&cost.wing_bits);
     mesh.split(s.vs, s.vl, s.vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
-    if (v3) update_classes(mesh, s.vs, n, s.vl, s.vr, vt_ring.size(), &classes, &fan);
+    if (v3) update_classes(s.vs, s.vl, s.vr, vt_ring, &classes);
 
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
@@ -1355,7 +1390,7 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
     topology_out.write(vr == kNoVertex ? n : vr, bits_for_count(uint64_t{n} + 1));
     mesh.split(vs, vl, vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
-    if (v3) update_classes(mesh, vs, n, vl, vr, vt_ring.size(), &classes, &fan);
+    if (v3) update_classes(vs, vl, vr, vt_ring, &classes);
 
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
