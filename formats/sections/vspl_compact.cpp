@@ -6,6 +6,46 @@
 // fan offset), entropy coded with the LZMA range coder
 // (formats/support/range_coder.h).
 //
+// Layout version 3 (written by default), measured like version 2 below
+// (bunny; armadillo and dragon in docs/benchmarks.md); it changes three
+// parts and keeps the rest of version 2:
+// - vs by its degree (its fan size, kept from what each record already
+//   knows, capped at 15): a half-edge collapse leaves vs with the fans of
+//   vs and vt together, so the vertices split next have large fans (the
+//   bunny's vs mostly 7 or 8, its vertices mostly 6). The degree class is
+//   coded adaptively, then vs's rank among the class's ids (by 16ths,
+//   adaptive per class, which keeps version 2's "rarely a young vertex"),
+//   from order-statistic sets: 13.22 -> 12.55 (armadillo 12.86 -> 12.45,
+//   dragon 16.83 -> 16.55, whose irregular scan has broad degrees). 64ths
+//   of the class instead of 16ths, the previous vs's class as context, the
+//   degree against the neighbours' mean degree, or a class by the fan's
+//   mean edge length as well: within 0.03. Ranking by last use (vs, vt or
+//   wing) instead of by id: 0.3 worse.
+// - vt from the fan's centroid c plus 26/64 (vs - c), -6/64 (wings'
+//   midpoint - c) and 12/64 (moved vertices' centroid - c): the weights of
+//   a least-squares fit (bunny and armadillo agree within 1/64; the
+//   dragon's fit has -2/64 for the wings; weights 1 to 4/64 off cost the
+//   bunny and armadillo 0.01 to 0.07), stored in the payload;
+//   "vs twice" was the valence-dependent special case: 21.00 -> 20.71
+//   (armadillo 22.64 -> 22.17). The last axis takes the fan's mean height
+//   above the plane as context instead of its spread: 20.57 (22.13). Also
+//   tried: the multi-parallelogram across the fan's edges (alone 1.8
+//   worse; as a fourth weight 0.25 better but a fan walk per edge; its
+//   height above the plane as correction or sign context, worse); the
+//   polygon's area or perimeter centroid (worse); shearing the second
+//   tangent axis along vs's direction (worse); the error as a position
+//   context, coding it first (worse: dilution, no shared information);
+//   3 or 4 adaptive mantissa bits (same).
+// - The permutation by ranks: a valid permutation's next id is one of the
+//   unused ones, so its rank among them is coded against the prediction's
+//   rank (same median prediction and contexts): 9.93 -> 9.08 (armadillo
+//   11.88 -> 10.62, dragon 8.78 -> 7.76). Predicting from the nearest fan
+//   id with its index, the mean or a trimmed mean: worse than the median.
+// Not changed: the errors (the largest of the last 4 differences' lengths
+// as context: 0.05 better on the bunny and armadillo, 0.02 worse on the
+// dragon), the wings.
+// Decoding is 12-15% slower than version 2 (the class and rank sets).
+//
 // Layout version 2, measured on the Stanford bunny's full PM (34780 splits,
 // 14-bit positions; bits per split; each step with LZMA's 11-bit
 // probabilities, whose 16-bit replacement then took 0.3 bit more off:
@@ -506,12 +546,12 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
 }
 
 // ---------------------------------------------------------------------------
-// Layout version 2 (see the file comment).
+// Layout versions 2 and 3 (see the file comment).
 
 // From this many splits on, the writer does not try version 1: version 2
-// is smaller on every real mesh from a few hundred splits up (the 2324-split
-// golden mushroom's VSPL: 20 against 25.5 kB), and trying both doubles
-// the time.
+// (and 3) is smaller on every real mesh from a few hundred splits up (the
+// 2324-split golden mushroom's VSPL: 20 against 25.5 kB), and trying both
+// doubles the time.
 constexpr uint32_t kVersion1Candidates = 4096;
 
 constexpr uint32_t kWingNone = 62;    // first-wing and lone-wing symbol: no such wing
@@ -1476,12 +1516,12 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
     if (options.version == 2 || options.version == 3)
       return encode_v2(raw, raw_size, base, options.version, options.stats);
     if (options.version == 0) {
-      LODBAKE_ASSIGN_OR_RETURN(Bytes v2, encode_v2(raw, raw_size, base, 3, options.stats));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v3, encode_v2(raw, raw_size, base, 3, options.stats));
       uint32_t splits = 0;
       std::memcpy(&splits, raw, 4);  // encode_v2 checked the payload
-      if (splits >= kVersion1Candidates) return v2;
+      if (splits >= kVersion1Candidates) return v3;
       LODBAKE_ASSIGN_OR_RETURN(Bytes v1, encode_v1(raw, raw_size, base));
-      return v1.size() < v2.size() ? v1 : v2;
+      return v1.size() < v3.size() ? v1 : v3;
     }
     return invalid_input(
         string_printf("cannot encode compact VSPL: layout version %u is unknown", options.version));

@@ -330,7 +330,9 @@ TEST(CompactVspl, DefaultKeepsTheSmallerLayout) {
     }
     EXPECT_EQ(sizes[0], std::min(sizes[1], sizes[3]));
     // Version 3's class and weight models pay off on a real mesh.
-    if (pm.splits.size() > 1000) EXPECT_LT(sizes[3], sizes[2]);
+    if (pm.splits.size() > 1000) {
+      EXPECT_LT(sizes[3], sizes[2]);
+    }
   }
 }
 
