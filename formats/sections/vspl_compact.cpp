@@ -6,6 +6,46 @@
 // fan offset), entropy coded with the LZMA range coder
 // (formats/support/range_coder.h).
 //
+// Layout version 3 (written by default), measured like version 2 below
+// (bunny; armadillo and dragon in docs/benchmarks.md); it changes three
+// parts and keeps the rest of version 2:
+// - vs by its degree (its fan size, kept from what each record already
+//   knows, capped at 15): a half-edge collapse leaves vs with the fans of
+//   vs and vt together, so the vertices split next have large fans (the
+//   bunny's vs mostly 7 or 8, its vertices mostly 6). The degree class is
+//   coded adaptively, then vs's rank among the class's ids (by 16ths,
+//   adaptive per class, which keeps version 2's "rarely a young vertex"),
+//   from order-statistic sets: 13.22 -> 12.55 (armadillo 12.86 -> 12.45,
+//   dragon 16.83 -> 16.55, whose irregular scan has broad degrees). 64ths
+//   of the class instead of 16ths, the previous vs's class as context, the
+//   degree against the neighbours' mean degree, or a class by the fan's
+//   mean edge length as well: within 0.03. Ranking by last use (vs, vt or
+//   wing) instead of by id: 0.3 worse.
+// - vt from the fan's centroid c plus 26/64 (vs - c), -6/64 (wings'
+//   midpoint - c) and 12/64 (moved vertices' centroid - c): the weights of
+//   a least-squares fit (bunny and armadillo agree within 1/64; the
+//   dragon's fit has -2/64 for the wings; weights 1 to 4/64 off cost the
+//   bunny and armadillo 0.01 to 0.07), stored in the payload;
+//   "vs twice" was the valence-dependent special case: 21.00 -> 20.71
+//   (armadillo 22.64 -> 22.17). The last axis takes the fan's mean height
+//   above the plane as context instead of its spread: 20.57 (22.13). Also
+//   tried: the multi-parallelogram across the fan's edges (alone 1.8
+//   worse; as a fourth weight 0.25 better but a fan walk per edge; its
+//   height above the plane as correction or sign context, worse); the
+//   polygon's area or perimeter centroid (worse); shearing the second
+//   tangent axis along vs's direction (worse); the error as a position
+//   context, coding it first (worse: dilution, no shared information);
+//   3 or 4 adaptive mantissa bits (same).
+// - The permutation by ranks: a valid permutation's next id is one of the
+//   unused ones, so its rank among them is coded against the prediction's
+//   rank (same median prediction and contexts): 9.93 -> 9.08 (armadillo
+//   11.88 -> 10.62, dragon 8.78 -> 7.76). Predicting from the nearest fan
+//   id with its index, the mean or a trimmed mean: worse than the median.
+// Not changed: the errors (the largest of the last 4 differences' lengths
+// as context: 0.05 better on the bunny and armadillo, 0.02 worse on the
+// dragon), the wings.
+// Decoding is 12-15% slower than version 2 (the class and rank sets).
+//
 // Layout version 2, measured on the Stanford bunny's full PM (34780 splits,
 // 14-bit positions; bits per split; each step with LZMA's 11-bit
 // probabilities, whose 16-bit replacement then took 0.3 bit more off:
@@ -506,12 +546,12 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
 }
 
 // ---------------------------------------------------------------------------
-// Layout version 2 (see the file comment).
+// Layout versions 2 and 3 (see the file comment).
 
 // From this many splits on, the writer does not try version 1: version 2
-// is smaller on every real mesh from a few hundred splits up (the 2324-split
-// golden mushroom's VSPL: 20 against 25.5 kB), and trying both doubles
-// the time.
+// (and 3) is smaller on every real mesh from a few hundred splits up (the
+// 2324-split golden mushroom's VSPL: 20 against 25.5 kB), and trying both
+// doubles the time.
 constexpr uint32_t kVersion1Candidates = 4096;
 
 constexpr uint32_t kWingNone = 62;    // first-wing and lone-wing symbol: no such wing
@@ -594,11 +634,16 @@ struct VtPrediction {
     return centroid[axis] + (num < 0 ? -q : q);
   }
   bool flipped = false;  // the fan's normal pointed down the dominant axis
-  // The context of coordinate order[c]: its axis's spread, for the third
-  // apart when the normal was flipped.
+  // Version 3, with a plane: the bit length of the fan's mean distance
+  // from the plane along the dominant axis, which scales the third
+  // residual better than the axis's spread; kNoRelief otherwise.
+  static constexpr size_t kNoRelief = SIZE_MAX;
+  size_t relief = kNoRelief;
+  // The context of coordinate order[c]: its axis's spread (or the relief),
+  // for the third apart when the normal was flipped.
   size_t context(int c) const {
     const size_t slot = c == 2 && flipped ? 6 : static_cast<size_t>(c);
-    return slot * kScaleContexts + spread[order[c]];
+    return slot * kScaleContexts + (c == 2 && relief != kNoRelief ? relief : spread[order[c]]);
   }
 };
 
@@ -609,9 +654,59 @@ int shift_below(uint64_t magnitude, int bits) {
   return shift;
 }
 
+// The weights of version 3's prediction, in 64ths: of vs, of the wings'
+// midpoint and of the moved vertices' centroid, each against the centroid
+// of vt's fan. The writer's choice (a least-squares fit on the bunny and
+// the armadillo, which agreed within 0.03), stored in the payload.
+struct VtWeights {
+  int64_t vs = 26;
+  int64_t wings = -6;
+  int64_t moved = 12;
+};
+
+// n / d rounded to nearest, ties away from zero. \pre d > 0.
+int64_t rounded_quotient(int64_t n, int64_t d) {
+  const int64_t q = (2 * (n < 0 ? -n : n) + d) / (2 * d);
+  return n < 0 ? -q : q;
+}
+
+// Version 3's point prediction of vt, per axis: the fan's centroid c
+// moved by the weighted offsets of vs, the wings' midpoint and the moved
+// vertices' centroid from c, in one exact rational (below 2^58 for fans
+// of at most 256 entries, 30-bit coordinates and weights of at most 2).
+void weighted_centroid(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr,
+                       const std::vector<uint32_t>& ring, const VtWeights& w, int64_t* out) {
+  const int64_t k = static_cast<int64_t>(ring.size());
+  int64_t moved = 0;
+  int64_t sum[3] = {0, 0, 0};
+  int64_t moved_sum[3] = {0, 0, 0};
+  for (uint32_t v : ring) {
+    const bool is_moved = v != vs && v != vl && v != vr;
+    moved += is_moved ? 1 : 0;
+    for (int a = 0; a < 3; ++a) {
+      const int64_t x = q.get(v, a);
+      sum[a] += x;
+      moved_sum[a] += is_moved ? x : 0;
+    }
+  }
+  const int64_t m = std::max<int64_t>(moved, 1);
+  const uint32_t left = vl == kNoVertex ? vs : vl;
+  const uint32_t right = vr == kNoVertex ? vs : vr;
+  for (int a = 0; a < 3; ++a) {
+    // c + w_s (s - c) + w_w ((l + r) / 2 - c) + w_m (M / moved - c), all
+    // over 128 k m.
+    int64_t num = 128 * m * sum[a] + 2 * m * w.vs * (k * int64_t{q.get(vs, a)} - sum[a]) +
+                  m * w.wings * (k * (int64_t{q.get(left, a)} + q.get(right, a)) - 2 * sum[a]);
+    if (moved > 0) num += 2 * w.moved * (k * moved_sum[a] - moved * sum[a]);
+    out[a] = rounded_quotient(num, 128 * k * m);
+  }
+}
+
 // `ring` and `closed`: vt's fan after the split (SplitConnectivity::neighbours).
+// `weights`: version 3's, or null for version 2's centroid.
 VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl, uint32_t vr,
-                           const std::vector<uint32_t>* ring, bool closed) {
+                           const std::vector<uint32_t>* ring, bool closed,
+                           const VtWeights* weights = nullptr) {
   VtPrediction p;
   if (ring->empty()) {
     for (int a = 0; a < 3; ++a) {
@@ -620,19 +715,25 @@ VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl
     }
     return p;
   }
-  // vs counts twice: the simplifier collapsed vt into vs because it was
-  // close, so vt lies nearer to vs than to the rest of its fan (weight 2:
-  // 0.05 bit per split less on the bunny, 0.47 on the armadillo; 3 and 4
-  // were worse).
-  int64_t count = 0;
-  for (uint32_t v : *ring)
-    count += v == vs ? 2 : 1;
+  if (weights != nullptr) {
+    weighted_centroid(q, vs, vl, vr, *ring, *weights, p.centroid);
+  } else {
+    // vs counts twice: the simplifier collapsed vt into vs because it was
+    // close, so vt lies nearer to vs than to the rest of its fan (weight 2:
+    // 0.05 bit per split less on the bunny, 0.47 on the armadillo; 3 and 4
+    // were worse).
+    int64_t count = 0;
+    for (uint32_t v : *ring)
+      count += v == vs ? 2 : 1;
+    for (int a = 0; a < 3; ++a) {
+      int64_t sum = 0;
+      for (uint32_t v : *ring)
+        sum += (v == vs ? 2 : 1) * int64_t{q.get(v, a)};
+      p.centroid[a] = (sum + count / 2) / count;
+    }
+  }
   uint64_t widest_all = 0;
   for (int a = 0; a < 3; ++a) {
-    int64_t sum = 0;
-    for (uint32_t v : *ring)
-      sum += (v == vs ? 2 : 1) * int64_t{q.get(v, a)};
-    p.centroid[a] = (sum + count / 2) / count;
     uint64_t widest = 0;
     for (uint32_t v : *ring) {
       const int64_t d = int64_t{q.get(v, a)} - p.centroid[a];
@@ -685,6 +786,23 @@ VtPrediction predict_vt_v2(const QuantizedPositions& q, uint32_t vs, uint32_t vl
     if (a != dominant) p.order[k++] = a;
   }
   p.order[2] = dominant;
+  if (weights != nullptr) {
+    // Mean |n . (u - c)| / n_D over the fan: the height of its vertices
+    // above the plane through the prediction, along D (below 2^60: n below
+    // 2^16 per axis; the prediction is within 3 * 2^31 of the 30-bit
+    // centroid for any stored weights, so offsets are below 2^33; at most
+    // 256 entries).
+    uint64_t height = 0;
+    for (uint32_t u : *ring) {
+      int64_t dot = 0;
+      for (int a = 0; a < 3; ++a)
+        dot += p.normal[a] * (int64_t{q.get(u, a)} - p.centroid[a]);
+      height += static_cast<uint64_t>(dot < 0 ? -dot : dot);
+    }
+    const uint64_t mean = height / (static_cast<uint64_t>(p.normal[dominant]) * ring->size());
+    p.relief = std::min<size_t>(static_cast<size_t>(AdaptiveIntModel::length_of(mean)),
+                                kScaleContexts - 1);
+  }
   return p;
 }
 
@@ -737,6 +855,10 @@ constexpr uint32_t kVsBucketsFrom = 128;
 uint32_t vs_bucket_start(uint64_t bucket, uint64_t n) {
   return static_cast<uint32_t>((bucket * n + 63) / 64);
 }
+// The first rank of a class of k ids in its 16th number `bucket`.
+uint32_t rank_bucket_start(uint64_t bucket, uint64_t k) {
+  return static_cast<uint32_t>((bucket * k + 15) / 16);
+}
 
 void encode_vs(RangeEncoder* rc, BitTreeModel* buckets, uint32_t vs, uint32_t n) {
   if (n < kVsBucketsFrom) {
@@ -784,6 +906,197 @@ size_t index_in(const std::vector<uint32_t>& ring, uint32_t v) {
   return static_cast<size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
 }
 
+// ---------------------------------------------------------------------------
+// Layout version 3 (see the file comment): vs by its fan size, vt from a
+// weighted combination of its fan.
+
+// vs's class: the size of its fan when last updated, capped; class 0 (no
+// fan) is never coded, so symbol 0 is the escape to version 2's vs code.
+constexpr uint32_t kVsClasses = 16;
+constexpr uint32_t kVsEscape = 0;
+// Ranks in a class of at least 2 * kRankBuckets ids are coded by their
+// 16th of the class (adaptive per class), then uniformly inside it.
+constexpr uint32_t kRankBuckets = 16;
+
+uint32_t vs_class_of(size_t fan_size) {
+  return static_cast<uint32_t>(std::min<size_t>(fan_size, kVsClasses - 1));
+}
+
+// A set of ids in [0, size()) with rank and select in O(log n): a bit per
+// id and a Fenwick tree of the count in each 64-id word (0.19 bytes an id).
+class OrderedIds {
+ public:
+  size_t size() const { return 64 * words_.size(); }
+  uint32_t count() const { return count_; }
+  // Room for ids below `ids`, the new ones absent. Memory grows with what
+  // the caller adds, never with a count read from a file.
+  void grow(size_t ids) {
+    while (size() < ids) {
+      words_.push_back(0);
+      // Fenwick node i (1-based) holds the words (i - lowbit(i), i]; the
+      // new word is empty, so it is the sum of the earlier ones in range.
+      const size_t i = words_.size();
+      tree_.push_back(prefix(i - 1) - prefix(i - (i & (~i + 1))));
+    }
+  }
+  // Every id in [0, ids) present (size() rounds up to a word).
+  void fill(size_t ids) {
+    words_.assign((ids + 63) / 64, ~uint64_t{0});
+    if (ids % 64 != 0) words_.back() = (uint64_t{1} << (ids % 64)) - 1;
+    tree_.assign(words_.size(), 0);
+    for (size_t i = 1; i <= tree_.size(); ++i) {
+      tree_[i - 1] += static_cast<uint32_t>(__builtin_popcountll(words_[i - 1]));
+      const size_t up = i + (i & (~i + 1));
+      if (up <= tree_.size()) tree_[up - 1] += tree_[i - 1];
+    }
+    count_ = static_cast<uint32_t>(ids);
+  }
+  bool contains(uint32_t v) const { return ((words_[v / 64] >> (v % 64)) & 1) != 0; }
+  // Adds an absent v or removes a present one. \pre v < size().
+  void flip(uint32_t v) {
+    const bool add = !contains(v);
+    words_[v / 64] ^= uint64_t{1} << (v % 64);
+    const uint32_t delta = add ? 1u : UINT32_MAX;
+    count_ += delta;
+    for (size_t i = v / 64 + 1; i <= tree_.size(); i += i & (~i + 1))
+      tree_[i - 1] += delta;
+  }
+  // The number of ids below v (any v; all of them from size() up).
+  uint32_t below(uint64_t v) const {
+    if (v >= size()) return count_;
+    const uint64_t mask = (uint64_t{1} << (v % 64)) - 1;
+    return prefix(static_cast<size_t>(v / 64)) +
+           static_cast<uint32_t>(__builtin_popcountll(words_[v / 64] & mask));
+  }
+  // The id of rank k. \pre k < count().
+  uint32_t select(uint32_t k) const {
+    size_t word = 0;  // Fenwick descent: the longest prefix of words with at most k ids
+    size_t step = 1;
+    while (step * 2 <= tree_.size())
+      step *= 2;
+    for (; step != 0; step /= 2) {
+      if (word + step <= tree_.size() && tree_[word + step - 1] <= k) {
+        word += step;
+        k -= tree_[word - 1];
+      }
+    }
+    uint64_t bits = words_[word];
+    for (; k != 0; --k)
+      bits &= bits - 1;
+    return static_cast<uint32_t>(word * 64 + static_cast<size_t>(__builtin_ctzll(bits)));
+  }
+
+ private:
+  // The ids in words [0, w).
+  uint32_t prefix(size_t w) const {
+    uint32_t sum = 0;
+    for (; w != 0; w &= w - 1)
+      sum += tree_[w - 1];
+    return sum;
+  }
+  std::vector<uint64_t> words_;
+  std::vector<uint32_t> tree_;
+  uint32_t count_ = 0;
+};
+
+// The vertices by class, each class an OrderedIds (3 bytes a vertex for
+// 16 classes): a vertex's class is its degree (a count update_classes
+// keeps: its fan size on records that fit the mesh), capped at 15.
+class VertexClasses {
+ public:
+  // Vertices 0 .. count - 1, of degree 0.
+  explicit VertexClasses(uint32_t count) : classes_(kVsClasses) {
+    for (uint32_t v = 0; v < count; ++v)
+      add_vertex(0);
+  }
+  // The next vertex id, of degree d.
+  void add_vertex(uint32_t d) {
+    const uint32_t v = static_cast<uint32_t>(degree_.size());
+    degree_.push_back(d);
+    if (v % 64 == 0) {
+      for (OrderedIds& set : classes_)
+        set.grow(degree_.size());
+    }
+    classes_[class_of(v)].flip(v);
+  }
+  uint32_t degree(uint32_t v) const { return degree_[v]; }
+  uint32_t class_of(uint32_t v) const { return vs_class_of(degree_[v]); }
+  uint32_t count(uint32_t c) const { return classes_[c].count(); }
+  void set_degree(uint32_t v, uint32_t d) {
+    const uint32_t from = class_of(v);
+    degree_[v] = d;
+    const uint32_t to = class_of(v);
+    if (from == to) return;
+    classes_[from].flip(v);
+    classes_[to].flip(v);
+  }
+  // The number of ids of v's class below v.
+  uint32_t rank(uint32_t v) const { return classes_[class_of(v)].below(v); }
+  // The id of rank k in class c. \pre k < count(c).
+  uint32_t select(uint32_t c, uint32_t k) const { return classes_[c].select(k); }
+
+ private:
+  std::vector<uint32_t> degree_;
+  std::vector<OrderedIds> classes_;
+};
+
+struct VsModels {
+  VsModels() : classes(4), ranks(kVsClasses, BitTreeModel(4)) {}
+  BitTreeModel classes;
+  std::vector<BitTreeModel> ranks;
+};
+
+// vs in version 3, from n >= 128 vertices: its class's symbol, then its rank
+// in the class (uniform, or by 16ths when the class is large); the escape,
+// then version 2's code, when its class has fewer than 2 ids (or it has no
+// fan). Either way the last step is uniform over at least 2 values, so each
+// record still narrows the coder's range by at least one bit.
+void encode_vs_v3(RangeEncoder* rc, BitTreeModel* buckets, VsModels* m,
+                  const VertexClasses& classes, uint32_t vs, uint32_t n) {
+  if (n < kVsBucketsFrom) {
+    rc->encode_uniform(vs, n);
+    return;
+  }
+  const uint32_t c = classes.class_of(vs);
+  const uint32_t k = c == kVsEscape ? 0 : classes.count(c);
+  if (k < 2) {
+    m->classes.encode(rc, kVsEscape);
+    encode_vs(rc, buckets, vs, n);
+    return;
+  }
+  m->classes.encode(rc, c);
+  const uint32_t rank = classes.rank(vs);
+  if (k < 2 * kRankBuckets) {
+    rc->encode_uniform(rank, k);
+    return;
+  }
+  const uint32_t bucket = static_cast<uint32_t>(uint64_t{rank} * kRankBuckets / k);
+  m->ranks[c].encode(rc, bucket);
+  const uint32_t start = rank_bucket_start(bucket, k);
+  rc->encode_uniform(rank - start, rank_bucket_start(bucket + 1, k) - start);
+}
+
+bool decode_vs_v3(RangeDecoder* rc, BitTreeModel* buckets, VsModels* m,
+                  const VertexClasses& classes, uint32_t n, uint32_t* vs) {
+  if (n < kVsBucketsFrom) return rc->decode_uniform(n, vs);
+  const uint32_t c = m->classes.decode(rc);
+  if (c == kVsEscape) return decode_vs(rc, buckets, n, vs);
+  const uint32_t k = classes.count(c);
+  if (k < 2) return false;
+  uint32_t rank = 0;
+  if (k < 2 * kRankBuckets) {
+    if (!rc->decode_uniform(k, &rank)) return false;
+  } else {
+    const uint32_t bucket = m->ranks[c].decode(rc);
+    const uint32_t start = rank_bucket_start(bucket, k);
+    uint32_t offset = 0;
+    if (!rc->decode_uniform(rank_bucket_start(bucket + 1, k) - start, &offset)) return false;
+    rank = start + offset;
+  }
+  *vs = classes.select(c, rank);
+  return true;
+}
+
 uint64_t verbatim_bytes(const Fixed& f) {
   const uint64_t r = f.splits;
   const uint64_t per_split = (f.flags & kVsplStoresVsPositions) != 0 ? 24 : 12;
@@ -793,8 +1106,36 @@ uint64_t verbatim_bytes(const Fixed& f) {
   return bytes;
 }
 
+// Every base vertex's degree: its fan size.
+void init_classes(const SplitConnectivity& mesh, uint32_t base, VertexClasses* classes,
+                  std::vector<uint32_t>* fan) {
+  for (uint32_t v = 0; v < base; ++v) {
+    mesh.neighbours(v, fan);
+    classes->set_degree(v, static_cast<uint32_t>(fan->size()));
+  }
+}
+
+// After a split creating vt, the degrees as the split changes fan sizes,
+// without walking more fans: vt's is its fan's size; vs trades the moved
+// vertices (vt's fan but for vs and the wings) for vt; each wing gains vt;
+// a moved vertex trades vs for vt. Exact on records that fit the mesh;
+// on others, merely the same in encoder and decoder.
+void update_classes(uint32_t vs, uint32_t vl, uint32_t vr, const std::vector<uint32_t>& vt_fan,
+                    VertexClasses* classes) {
+  uint32_t moved = 0;
+  for (uint32_t v : vt_fan)
+    moved += v != vs && v != vl && v != vr ? 1 : 0;
+  classes->add_vertex(static_cast<uint32_t>(vt_fan.size()));  // vt
+  const uint32_t d = classes->degree(vs) + 1;
+  classes->set_degree(vs, d > moved ? d - moved : 0);
+  for (uint32_t v : {vl, vr}) {
+    if (v != kNoVertex) classes->set_degree(v, classes->degree(v) + 1);
+  }
+}
+
+// Versions 2 and 3 (see the file comment).
 Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
-                        VsplCompactStats* stats) {
+                        uint8_t version, VsplCompactStats* stats) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
   LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
   Fixed f;
@@ -809,8 +1150,14 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
 
   Bytes out;
   ByteWriter writer(&out);
-  writer.write(uint8_t{2});
+  writer.write(version);
   writer.write_bytes(raw, f.bytes);
+  const bool v3 = version == 3;
+  const VtWeights weights;
+  if (v3 && f.quantized) {
+    for (int64_t w : {weights.vs, weights.wings, weights.moved})
+      writer.write(static_cast<uint8_t>(static_cast<int8_t>(w)));
+  }
   const size_t verbatim_start = out.size();
   if (!f.quantized) writer.write_bytes(raw + parts.positions_offset, parts.positions_bytes);
   const uint64_t attributes = verbatim_bytes(f) - (f.quantized ? 0 : parts.positions_bytes);
@@ -833,17 +1180,39 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   };
   const bool with_permutation = (f.flags & kVsplStoresPermutation) != 0;
   const std::vector<uint32_t>& input = section.input_vertex;
+  // Version 3: the input ids not yet coded; decode_vspl checked that the
+  // permutation is one.
+  OrderedIds unused;
+  if (v3 && with_permutation) unused.fill(input.size());
+  auto encode_input = [&](size_t context, int64_t predicted, uint32_t id) {
+    if (v3) {
+      m.permutation.encode(
+          &rc, context,
+          int64_t{unused.below(id)} - int64_t{unused.below(static_cast<uint64_t>(predicted))});
+      unused.flip(id);
+    } else {
+      m.permutation.encode(&rc, context, int64_t{id} - predicted);
+    }
+  };
   if (with_permutation) {
     for (uint32_t v = 0; v < f.base; ++v)
-      m.permutation.encode(&rc, 0, int64_t{input[v]} - (v == 0 ? 0 : int64_t{input[v - 1]} + 1));
+      encode_input(0, v == 0 ? 0 : int64_t{input[v - 1]} + 1, input[v]);
     spend(&cost.permutation_bits);
   }
   std::vector<uint32_t> vt_ring;
   std::vector<int64_t> ids;
+  VsModels vs_models;
+  VertexClasses classes(v3 ? f.base : 0);
+  std::vector<uint32_t> fan;
+  if (v3) init_classes(mesh, f.base, &classes, &fan);
   for (size_t i = 0; i < splits.size(); ++i) {
     const VertexSplit& s = splits[i];
     const uint32_t n = f.base + static_cast<uint32_t>(i);
-    encode_vs(&rc, &m.vs_buckets, s.vs, n);
+    if (v3) {
+      encode_vs_v3(&rc, &m.vs_buckets, &vs_models, classes, s.vs, n);
+    } else {
+      encode_vs(&rc, &m.vs_buckets, s.vs, n);
+    }
     spend(&cost.vs_bits);
 
     const bool closed = mesh.neighbours(s.vs, &ring);
@@ -877,11 +1246,13 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
     spend(&cost.wing_bits);
     mesh.split(s.vs, s.vl, s.vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
+    if (v3) update_classes(s.vs, s.vl, s.vr, vt_ring, &classes);
 
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
       const size_t scale = scale_context(qp, s.vs, s.vl, s.vr);
-      const VtPrediction p = predict_vt_v2(qp, s.vs, s.vl, s.vr, &vt_ring, vt_closed);
+      const VtPrediction p =
+          predict_vt_v2(qp, s.vs, s.vl, s.vr, &vt_ring, vt_closed, v3 ? &weights : nullptr);
       uint32_t value[6] = {};
       for (size_t c = 0; c < per_split; ++c)
         ints.read(f.bits, &value[c]);
@@ -909,7 +1280,7 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
 
     if (with_permutation) {
       const InputPrediction p = predict_input(input, s.vs, vt_ring, &ids);
-      m.permutation.encode(&rc, p.context, int64_t{input[n]} - p.value);
+      encode_input(p.context, p.value, input[n]);
       spend(&cost.permutation_bits);
     }
   }
@@ -921,7 +1292,16 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed_for_base(data, size, base, &f));
   const uint64_t r = f.splits;
-  const size_t pos = 1 + f.bytes;
+  const bool v3 = data[0] == 3;
+  size_t pos = 1 + f.bytes;
+  VtWeights weights;
+  if (v3 && f.quantized) {
+    if (size - pos < 3) return bad_compact("payload ends inside the prediction weights");
+    weights.vs = static_cast<int8_t>(data[pos]);
+    weights.wings = static_cast<int8_t>(data[pos + 1]);
+    weights.moved = static_cast<int8_t>(data[pos + 2]);
+    pos += 3;
+  }
   const uint64_t verbatim = verbatim_bytes(f);
   if (verbatim > size - pos) {
     return bad_compact(string_printf("%u splits need %" PRIu64 " verbatim bytes, %zu remain",
@@ -957,10 +1337,27 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   const uint64_t full = uint64_t{f.base} + r;
   // The input ids decoded so far: the base's first, then one per record.
   std::vector<uint32_t> input;
+  // Version 3: the input ids not yet decoded (r is bounded by the stream
+  // size above, so the set's 0.19 bytes an id are too).
+  OrderedIds unused;
+  if (v3 && with_permutation) unused.fill(static_cast<size_t>(full));
   auto decode_input = [&](size_t context, int64_t predicted, uint64_t v) -> Status {
     int64_t delta = 0;
     if (!m.permutation.decode(&rc, context, &delta))
       return bad_compact("a permutation code is out of range");
+    if (v3) {
+      // The rank of the id among the unused ones, against the prediction's.
+      const int64_t rank = int64_t{unused.below(static_cast<uint64_t>(predicted))} + delta;
+      if (rank < 0 || rank >= int64_t{unused.count()}) {
+        return bad_compact(string_printf("input vertex rank %" PRId64 " of vertex %" PRIu64
+                                         " outside the %u unused ids",
+                                         rank, v, unused.count()));
+      }
+      const uint32_t id = unused.select(static_cast<uint32_t>(rank));
+      unused.flip(id);
+      input.push_back(id);
+      return Status::ok();
+    }
     const int64_t value = predicted + delta;
     if (value < 0 || static_cast<uint64_t>(value) >= full) {
       return bad_compact(string_printf("input vertex %" PRId64 " of vertex %" PRIu64
@@ -980,6 +1377,10 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   std::vector<int64_t> ids;
   uint32_t previous_error = 0;
   int64_t previous_delta = 0;
+  VsModels vs_models;
+  VertexClasses classes(v3 ? f.base : 0);
+  std::vector<uint32_t> fan;
+  if (v3) init_classes(mesh, f.base, &classes, &fan);
   for (uint32_t i = 0; i < f.splits; ++i) {
     const uint32_t n = f.base + i;
     // The message prefix is built only on failure: a string per record
@@ -988,7 +1389,9 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
       return bad_compact(string_printf("split %u: ", i) + detail);
     };
     uint32_t vs = 0;
-    if (!decode_vs(&rc, &m.vs_buckets, n, &vs)) return bad("vs out of range");
+    if (v3 ? !decode_vs_v3(&rc, &m.vs_buckets, &vs_models, classes, n, &vs)
+           : !decode_vs(&rc, &m.vs_buckets, n, &vs))
+      return bad("vs out of range");
 
     const bool closed = mesh.neighbours(vs, &ring);
     if (closed && f.quantized) start_at_farthest(q.front(), vs, &ring);
@@ -1027,11 +1430,13 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
     topology_out.write(vr == kNoVertex ? n : vr, bits_for_count(uint64_t{n} + 1));
     mesh.split(vs, vl, vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
+    if (v3) update_classes(vs, vl, vr, vt_ring, &classes);
 
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
       const size_t scale = scale_context(qp, vs, vl, vr);
-      const VtPrediction p = predict_vt_v2(qp, vs, vl, vr, &vt_ring, vt_closed);
+      const VtPrediction p =
+          predict_vt_v2(qp, vs, vl, vr, &vt_ring, vt_closed, v3 ? &weights : nullptr);
       uint32_t value[6] = {};
       int64_t residual[3] = {};
       for (size_t c = 0; c < per_split; ++c) {
@@ -1108,14 +1513,15 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
                                   const VsplCompactOptions& options) {
   try {
     if (options.version == 1) return encode_v1(raw, raw_size, base);
-    if (options.version == 2) return encode_v2(raw, raw_size, base, options.stats);
+    if (options.version == 2 || options.version == 3)
+      return encode_v2(raw, raw_size, base, options.version, options.stats);
     if (options.version == 0) {
-      LODBAKE_ASSIGN_OR_RETURN(Bytes v2, encode_v2(raw, raw_size, base, options.stats));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v3, encode_v2(raw, raw_size, base, 3, options.stats));
       uint32_t splits = 0;
       std::memcpy(&splits, raw, 4);  // encode_v2 checked the payload
-      if (splits >= kVersion1Candidates) return v2;
+      if (splits >= kVersion1Candidates) return v3;
       LODBAKE_ASSIGN_OR_RETURN(Bytes v1, encode_v1(raw, raw_size, base));
-      return v1.size() < v2.size() ? v1 : v2;
+      return v1.size() < v3.size() ? v1 : v3;
     }
     return invalid_input(
         string_printf("cannot encode compact VSPL: layout version %u is unknown", options.version));
@@ -1128,9 +1534,9 @@ Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const Triang
   try {
     if (size < 1) return bad_compact("payload is empty");
     if (data[0] == 1) return decode_v1(data, size, base);
-    if (data[0] == 2) return decode_v2(data, size, base);
+    if (data[0] == 2 || data[0] == 3) return decode_v2(data, size, base);
     return bad_compact(
-        string_printf("layout version %u is unknown (this reader knows 1 and 2)", data[0]));
+        string_printf("layout version %u is unknown (this reader knows 1 to 3)", data[0]));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while decoding compact VSPL");
   }

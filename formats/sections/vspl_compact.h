@@ -1,11 +1,15 @@
 // The compact codec (codec 1) of the VSPL section: a lossless recoding of a
-// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 2: the
-// connectivity replayed split by split, wings coded by their place in vs's
-// current fan, quantized positions predicted from vt's fan, errors and the
-// permutation as predicted differences, all through an adaptive range
-// coder. Version 1 (still read, and written when smaller, on tiny PMs, or
-// on request): wings from lists of known neighbours, Exp-Golomb codes,
-// permutation verbatim. Decoding gives back the raw payload byte for byte.
+// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 3: the
+// connectivity replayed split by split, vs by its degree class and rank,
+// wings coded by their place in vs's current fan, quantized positions
+// predicted from vt's fan by stored weights, errors as predicted
+// differences and the permutation as ranks among the unused ids, all
+// through an adaptive range coder. Version 2 (still read, and written on
+// request): vs by its 64th of the ids, vt from the fan's centroid, the
+// permutation as id differences. Version 1 (still read, and written when
+// smaller, on tiny PMs, or on request): wings from lists of known
+// neighbours, Exp-Golomb codes, permutation verbatim. Decoding gives back
+// the raw payload byte for byte.
 #pragma once
 
 #include <cstddef>
@@ -17,10 +21,10 @@
 
 namespace lodbake {
 
-/// The newest layout version; readers accept 1 and 2.
-inline constexpr uint8_t kVsplCompactVersion = 2;
+/// The newest layout version; readers accept 1, 2 and 3.
+inline constexpr uint8_t kVsplCompactVersion = 3;
 
-/// What each part of a version-2 payload costs, in bits: the range coder's
+/// What each part of a version-2 or -3 payload costs, in bits: the range coder's
 /// information content of the part's decisions (the stream's 5 framing
 /// bytes excluded), and the bytes copied verbatim.
 struct VsplCompactStats {
@@ -33,12 +37,12 @@ struct VsplCompactStats {
 };
 
 struct VsplCompactOptions {
-  /// 1 or 2; 0 (the default): below 4096 splits, writes both and keeps the
-  /// smaller, version 2 on a tie (version 2's adaptive models need a few
-  /// hundred splits to learn, so version 1 stays smaller on tiny
-  /// progressive meshes); from 4096 splits on, version 2.
+  /// 1, 2 or 3; 0 (the default): below 4096 splits, writes versions 1 and
+  /// 3 and keeps the smaller, version 3 on a tie (its adaptive models need
+  /// a few hundred splits to learn, so version 1 stays smaller on tiny
+  /// progressive meshes); from 4096 splits on, version 3.
   uint8_t version = 0;
-  /// Filled in with the version-2 encoding's costs when not null.
+  /// Filled in with the range-coded encoding's costs when not null.
   VsplCompactStats* stats = nullptr;
 };
 
@@ -61,7 +65,7 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
 ///         needing more bits than remain, an index, residual or code out of
 ///         range, a record with both wings missing or a repeated vertex,
 ///         nonzero padding bits (version 1), a range-coded stream that is
-///         not canonical (version 2) or trailing bytes; kRuntime when memory
+///         not canonical (versions 2 and 3) or trailing bytes; kRuntime when memory
 ///         runs out. Never throws.
 Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const TriangleMesh& base);
 

@@ -1,7 +1,7 @@
 // Fuzz target for the compact VSPL decoder (codec 1). Input: a u32 byte
 // count n, n bytes of a raw BASE payload, then the compact VSPL payload
 // decoded against that BASE (the corpus holds real pairs written by
-// lodbake-pack, in both layout versions). Invariant: when the result is a
+// lodbake-pack, in every layout version). Invariant: when the result is a
 // valid raw VSPL payload, encoding it compactly again in the input's layout
 // version (and in the writer's default choice) and decoding gives the same
 // raw bytes.

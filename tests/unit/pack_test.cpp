@@ -162,8 +162,8 @@ class CompactVspl : public ::testing::TestWithParam<int> {};
 
 // Compact coding is lossless: the raw payload comes back byte for byte, for
 // float32 and quantized positions, half and optimal placement (stored vs
-// positions), attributes and boundary splits, in both layout versions (1
-// still read and written on request). Encoding is deterministic, and
+// positions), attributes and boundary splits, in every layout version (1
+// and 2 still read and written on request). Encoding is deterministic, and
 // re-encoding what was decoded gives the same bytes.
 TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
   const int bits = GetParam();
@@ -176,7 +176,7 @@ TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
     options.quantize = bits != 0;
     options.bits = bits == 0 ? 16 : bits;
     Bytes raw = encode_vspl(pm, options).value();
-    for (uint8_t version : {1, 2}) {
+    for (uint8_t version : {1, 2, 3}) {
       VsplCompactOptions compact_options;
       compact_options.version = version;
       Result<Bytes> compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options);
@@ -197,10 +197,10 @@ TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
 
 INSTANTIATE_TEST_SUITE_P(Bits, CompactVspl, ::testing::Values(0, 8, 14, 30));
 
-// Version 2 on a real mesh: ids identical, positions within the stated
+// Version 3 (the default) on a real mesh: ids identical, positions within the stated
 // quantization, and the codec's own connectivity replay ends with exactly
 // the triangles of lib/simplify's replay (so every wing was found in its fan).
-TEST(CompactVsplVersion2, RealMeshKeepsIdsAndPositionsAndFindsEveryWing) {
+TEST(CompactVsplVersion3, RealMeshKeepsIdsAndPositionsAndFindsEveryWing) {
   const ProgressiveMesh pm = record_pm(load_clean_mesh("cgal_elephant-with-holes.off"));
   ASSERT_FALSE(pm.splits.empty());
   VsplEncodeOptions options;
@@ -245,14 +245,14 @@ TEST(CompactVsplVersion2, RealMeshKeepsIdsAndPositionsAndFindsEveryWing) {
 }
 
 // Every truncation and flipped bits fail cleanly (ASan and UBSan check the
-// decoder's reads) or decode to something else, in both versions.
+// decoder's reads) or decode to something else, in every version.
 TEST(CompactVsplHostile, TruncatedAndFlippedPayloads) {
   const ProgressiveMesh pm = record_pm(attributed_grid(5));
   VsplEncodeOptions options;
   options.quantize = true;
   options.bits = 12;
   Bytes raw = encode_vspl(pm, options).value();
-  for (uint8_t version : {1, 2}) {
+  for (uint8_t version : {1, 2, 3}) {
     VsplCompactOptions compact_options;
     compact_options.version = version;
     Bytes compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options).value();
@@ -276,10 +276,10 @@ TEST(CompactVsplHostile, TruncatedAndFlippedPayloads) {
     }
   }
   Bytes wrong_version = encode_vspl_compact(raw.data(), raw.size(), pm.base).value();
-  wrong_version[0] = 3;
+  wrong_version[0] = 4;
   Result<Bytes> refused = decode_vspl_compact(wrong_version.data(), wrong_version.size(), pm.base);
   ASSERT_FALSE(refused.is_ok());
-  EXPECT_NE(refused.status().message().find("layout version 3 is unknown"), std::string::npos);
+  EXPECT_NE(refused.status().message().find("layout version 4 is unknown"), std::string::npos);
 }
 
 // Hostile records that the format accepts but that do not fit the mesh
@@ -301,16 +301,19 @@ TEST(CompactVsplHostile, RecordsThatDoNotFitTheMeshStillRoundTrip) {
     options.quantize = quantize;
     const Result<Bytes> raw = encode_vspl(pm, options);
     ASSERT_TRUE(raw.is_ok()) << raw.status().message();
-    VsplCompactOptions version2;
-    version2.version = 2;
-    const Bytes compact =
-        encode_vspl_compact(raw.value().data(), raw.value().size(), pm.base, version2).value();
-    EXPECT_EQ(decode_vspl_compact(compact.data(), compact.size(), pm.base).value(), raw.value());
+    for (uint8_t version : {2, 3}) {
+      VsplCompactOptions compact_options;
+      compact_options.version = version;
+      const Bytes compact =
+          encode_vspl_compact(raw.value().data(), raw.value().size(), pm.base, compact_options)
+              .value();
+      EXPECT_EQ(decode_vspl_compact(compact.data(), compact.size(), pm.base).value(), raw.value());
+    }
   }
 }
 
 // By default the writer keeps the smaller layout: version 1 for a tiny PM,
-// whose adaptive models have no time to learn, version 2 for a real mesh.
+// whose adaptive models have no time to learn, version 3 for a real mesh.
 TEST(CompactVspl, DefaultKeepsTheSmallerLayout) {
   for (const ProgressiveMesh& pm : {record_pm(attributed_grid(3)),
                                     record_pm(load_clean_mesh("cgal_elephant-with-holes.off"))}) {
@@ -318,14 +321,18 @@ TEST(CompactVspl, DefaultKeepsTheSmallerLayout) {
     options.quantize = true;
     options.bits = 14;
     const Bytes raw = encode_vspl(pm, options).value();
-    size_t sizes[3] = {};
-    for (uint8_t version : {0, 1, 2}) {
+    size_t sizes[4] = {};
+    for (uint8_t version : {0, 1, 2, 3}) {
       VsplCompactOptions compact_options;
       compact_options.version = version;
       sizes[version] =
           encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options).value().size();
     }
-    EXPECT_EQ(sizes[0], std::min(sizes[1], sizes[2]));
+    EXPECT_EQ(sizes[0], std::min(sizes[1], sizes[3]));
+    // Version 3's class and weight models pay off on a real mesh.
+    if (pm.splits.size() > 1000) {
+      EXPECT_LT(sizes[3], sizes[2]);
+    }
   }
 }
 
