@@ -98,9 +98,11 @@ struct Candidate {
 // (upper digit, lower digit, listing order) in one go.
 //
 // The listing comes in two parts (the first and second half of the live
-// triangles), each with its own buffer and upper-digit counts, so that two
-// threads can list and scatter at once: part 0's candidates go before part
-// 1's in every bucket, which is the listing order of one thread.
+// triangles), each with its own region of items_ and its own upper-digit
+// counts, so that two threads can list and scatter at once: part 0's
+// candidates go before part 1's in every bucket, which is the listing order
+// of one thread. The scatter empties the regions into scratch_ before the
+// sorted buckets are written back to items_, so one array serves both.
 class CandidateList {
  public:
   static constexpr int kParts = 2;
@@ -109,7 +111,7 @@ class CandidateList {
   void clear(const size_t max_count[kParts]) {
     size_t total = 0;
     for (int p = 0; p < kParts; ++p) {
-      reserve(&parts_[p], max_count[p]);
+      part_start_[p] = total;
       part_size_[p] = 0;
       std::fill(part_counts_[p], part_counts_[p] + kBuckets, 0u);
       total += max_count[p];
@@ -121,7 +123,7 @@ class CandidateList {
 
   // Called by part p's thread only.
   void push_back(int p, const Candidate& c) {
-    parts_[p].data[part_size_[p]++] = c;
+    items_.data[part_start_[p] + part_size_[p]++] = c;
     ++part_counts_[p][upper(c)];
   }
   size_t size() const { return size_; }
@@ -142,7 +144,7 @@ class CandidateList {
     split.run(
         [this](int p) {
           uint32_t* fill = part_fill_[p];
-          const Candidate* src = parts_[p].data.get();
+          const Candidate* src = items_.data.get() + part_start_[p];
           Candidate* dst = scratch_.data.get();
           for (size_t i = 0, n = part_size_[p]; i < n; ++i)
             dst[fill[upper(src[i])]++] = src[i];
@@ -223,12 +225,12 @@ class CandidateList {
     sorted_end_ = end;
   }
 
-  Buffer parts_[kParts];
+  size_t part_start_[kParts] = {};  // each part's region of items_ while listing
   size_t part_size_[kParts] = {};
   uint32_t part_counts_[kParts][kBuckets] = {};
   uint32_t part_fill_[kParts][kBuckets] = {};
   Buffer scratch_;  // grouped by the upper digit
-  Buffer items_;    // sorted, bucket by bucket
+  Buffer items_;    // the parts' listings, then sorted, bucket by bucket
   size_t size_ = 0;
   uint32_t bucket_end_[kBuckets + 1] = {};
   uint32_t next_bucket_ = 0;
