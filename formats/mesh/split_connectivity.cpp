@@ -139,6 +139,14 @@ bool SplitConnectivity::neighbours(uint32_t vs, std::vector<uint32_t>* ring) con
   return returned && walked == pairs;
 }
 
+void SplitConnectivity::prefetch_faces(uint32_t v) const {
+  if (v >= vertex_count()) return;
+  const size_t count = std::min<size_t>(vertex_faces_.count(v), 16);
+  const uint32_t* faces = vertex_faces_.data(v);
+  for (size_t i = 0; i < count; ++i)
+    __builtin_prefetch(&faces_[faces[i]]);
+}
+
 void SplitConnectivity::split(uint32_t vs, uint32_t vl, uint32_t vr) {
   const uint32_t vt = vertex_count();
   vertex_faces_.add_vertex();

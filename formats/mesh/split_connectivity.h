@@ -54,6 +54,10 @@ class SplitConnectivity {
   /// is): starts loading v's face list. No effect on the mesh.
   /// \pre v < vertex_count().
   void prefetch(uint32_t v) const { vertex_faces_.prefetch(v); }
+  /// A hint that v's fan is walked soon: starts loading the faces of v's
+  /// list (read from the list, so best after prefetch(v) had time to load
+  /// it). No effect on the mesh; any v.
+  void prefetch_faces(uint32_t v) const;
 
  private:
   // Each vertex's faces in insertion order: up to kInline inline in one

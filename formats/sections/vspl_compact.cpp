@@ -1226,6 +1226,13 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   for (size_t i = 0; i < splits.size(); ++i) {
     const VertexSplit& s = splits[i];
     const uint32_t n = f.base + static_cast<uint32_t>(i);
+    // The writer knows the next records' vs: their fans' loads start two
+    // and one records ahead (the decoder learns vs only when it reads it).
+    if (i + 2 < splits.size() && splits[i + 2].vs < n) mesh.prefetch(splits[i + 2].vs);
+    if (i + 1 < splits.size()) {
+      mesh.prefetch_faces(splits[i + 1].vs);
+      if (v3 && splits[i + 1].vs < n) classes.prefetch(splits[i + 1].vs);
+    }
     if (v3) {
       encode_vs_v3(&rc, &m.vs_buckets, &vs_models, classes, s.vs, n);
     } else {
