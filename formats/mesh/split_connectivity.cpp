@@ -33,8 +33,14 @@ void SplitConnectivity::FaceLists::push(uint32_t v, uint32_t f) {
     return;
   }
   if (l.spill == kNoSpill) {
-    l.spill = static_cast<uint32_t>(spills_.size());
-    spills_.emplace_back(l.head, l.head + l.count);
+    if (free_spills_.empty()) {
+      l.spill = static_cast<uint32_t>(spills_.size());
+      spills_.emplace_back();
+    } else {
+      l.spill = free_spills_.back();
+      free_spills_.pop_back();
+    }
+    spills_[l.spill].assign(l.head, l.head + l.count);
   }
   spills_[l.spill].push_back(f);
   ++l.count;
@@ -47,6 +53,12 @@ void SplitConnectivity::FaceLists::erase(uint32_t v, uint32_t f) {
     const auto it = std::find(spill.begin(), spill.end(), f);
     if (it == spill.end()) return;
     spill.erase(it);
+    if (spill.size() <= kInline) {
+      std::copy(spill.begin(), spill.end(), l.head);
+      spill.clear();
+      free_spills_.push_back(l.spill);
+      l.spill = kNoSpill;
+    }
   } else {
     uint32_t* end = l.head + l.count;
     uint32_t* it = std::find(l.head, end, f);
@@ -125,6 +137,14 @@ bool SplitConnectivity::neighbours(uint32_t vs, std::vector<uint32_t>* ring) con
   }
   std::sort(ring->begin() + static_cast<std::ptrdiff_t>(first_rest), ring->end());
   return returned && walked == pairs;
+}
+
+void SplitConnectivity::prefetch_faces(uint32_t v) const {
+  if (v >= vertex_count()) return;
+  const size_t count = std::min<size_t>(vertex_faces_.count(v), 16);
+  const uint32_t* faces = vertex_faces_.data(v);
+  for (size_t i = 0; i < count; ++i)
+    __builtin_prefetch(&faces_[faces[i]]);
 }
 
 void SplitConnectivity::split(uint32_t vs, uint32_t vl, uint32_t vr) {

@@ -201,15 +201,6 @@ AdaptiveIntModel::AdaptiveIntModel(size_t contexts)
     : lengths_(contexts, BitTreeModel(6)),
       mantissa_(contexts * (kMaxLength + 1) * (size_t{1} << kAdaptiveBits), kBitModelHalf) {}
 
-int AdaptiveIntModel::length_of(uint64_t value) {
-  int n = 0;
-  while (value != 0) {
-    ++n;
-    value >>= 1;
-  }
-  return n;
-}
-
 void AdaptiveIntModel::encode(RangeEncoder* rc, size_t context, uint64_t value) {
   const int length = length_of(value);
   lengths_[context].encode(rc, static_cast<uint32_t>(length));

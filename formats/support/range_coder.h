@@ -125,7 +125,7 @@ class AdaptiveIntModel {
   bool decode(RangeDecoder* rc, size_t context, uint64_t* value);
   /// The bit length of the last value coded in `context`'s slot: callers
   /// use it to pick the next context.
-  static int length_of(uint64_t value);
+  static int length_of(uint64_t value) { return value == 0 ? 0 : 64 - __builtin_clzll(value); }
 
  private:
   std::vector<BitTreeModel> lengths_;
