@@ -427,6 +427,30 @@ Status read_fixed_for_base(const uint8_t* data, size_t size, const TriangleMesh&
   return Status::ok();
 }
 
+// The raw VSPL records a decoder rebuilds, in the raw layout's three
+// streams: bit-packed topology (vs, then each wing or n for none), the
+// bit-packed quantized positions, and the float32 error bits.
+struct RawRecords {
+  Bytes topology;
+  Bytes positions;
+  Bytes errors;
+  BitWriter topology_out{&topology};
+  BitWriter positions_out{&positions};
+  ByteWriter errors_out{&errors};
+
+  // The topology of split n (vt = n), with kNoVertex for a missing wing.
+  void write_topology(uint32_t vs, uint32_t vl, uint32_t vr, uint32_t n) {
+    const int wing_bits = bits_for_count(uint64_t{n} + 1);
+    topology_out.write(vs, bits_for_count(n));
+    topology_out.write(vl == kNoVertex ? n : vl, wing_bits);
+    topology_out.write(vr == kNoVertex ? n : vr, wing_bits);
+  }
+  void finish() {
+    topology_out.finish();
+    positions_out.finish();
+  }
+};
+
 Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& base) {
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed_for_base(data, size, base, &f));
@@ -451,12 +475,7 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
   const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
   const size_t per_split = with_vs ? 6 : 3;
 
-  Bytes topology;
-  Bytes positions;
-  Bytes errors;
-  BitWriter topology_out(&topology);
-  BitWriter positions_out(&positions);
-  ByteWriter errors_out(&errors);
+  RawRecords raw;
   std::vector<QuantizedPositions> q;
   if (f.quantized) q.emplace_back(f, base.positions);
   NeighbourLists lists(f.base, base.triangles);
@@ -487,9 +506,9 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
         if (wing > n) return bad_compact(string_printf("split %u: wing %u out of range", i, wing));
       }
     }
-    topology_out.write(vs, bits_for_count(n));
-    topology_out.write(wing_value[0], bits_for_count(uint64_t{n} + 1));
-    topology_out.write(wing_value[1], bits_for_count(uint64_t{n} + 1));
+    const uint32_t vl = wing_value[0] == n ? kNoVertex : wing_value[0];
+    const uint32_t vr = wing_value[1] == n ? kNoVertex : wing_value[1];
+    raw.write_topology(vs, vl, vr, n);
     if (f.quantized) {
       QuantizedPositions& qp = q.front();
       uint32_t value[6] = {};
@@ -498,8 +517,6 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
         uint64_t z = 0;
         if (!read_exp_golomb(&in, order[a], kMaxGolombPrefix, &z))
           return bad_compact("stream ends inside a position");
-        const uint32_t vl = wing_value[0] == n ? kNoVertex : wing_value[0];
-        const uint32_t vr = wing_value[1] == n ? kNoVertex : wing_value[1];
         const int64_t predicted = c < 3 ? qp.predict_vt(vs, vl, vr, a) : int64_t{qp.get(vs, a)};
         const int64_t v = predicted + unzigzag64(z);
         if (v < 0 || v > int64_t{qp.steps()}) {
@@ -507,7 +524,7 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
               "split %u: position coordinate %" PRId64 " outside 0..%u", i, v, qp.steps()));
         }
         value[c] = static_cast<uint32_t>(v);
-        positions_out.write(value[c], f.bits);
+        raw.positions_out.write(value[c], f.bits);
       }
       qp.apply_split(vs, value, with_vs);
     }
@@ -518,12 +535,10 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
     if (bits < 0 || bits > int64_t{UINT32_MAX})
       return bad_compact(string_printf("split %u: error bits out of range", i));
     previous = static_cast<uint32_t>(bits);
-    errors_out.write(previous);
-    lists.split(vs, n, wing_value[0] == n ? kNoVertex : wing_value[0],
-                wing_value[1] == n ? kNoVertex : wing_value[1]);
+    raw.errors_out.write(previous);
+    lists.split(vs, n, vl, vr);
   }
-  topology_out.finish();
-  positions_out.finish();
+  raw.finish();
   if (!in.padding_is_zero()) return bad_compact("nonzero padding bits after the stream");
   pos += in.bytes_consumed();
 
@@ -538,16 +553,17 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
         string_printf("%zu bytes follow the stream, the flags need %" PRIu64, size - pos, tail));
   }
   Bytes out;
-  out.reserve(f.bytes + topology.size() + positions.size() + errors.size() + (size - pos));
+  out.reserve(f.bytes + raw.topology.size() + raw.positions.size() + raw.errors.size() +
+              (size - pos));
   out.insert(out.end(), data + 1, data + 1 + f.bytes);
-  out.insert(out.end(), topology.begin(), topology.end());
+  out.insert(out.end(), raw.topology.begin(), raw.topology.end());
   const uint64_t float_bytes = f.quantized ? 0 : 12 * per_split / 3 * r;
   if (f.quantized) {
-    out.insert(out.end(), positions.begin(), positions.end());
+    out.insert(out.end(), raw.positions.begin(), raw.positions.end());
   } else {
     out.insert(out.end(), data + pos, data + pos + float_bytes);
   }
-  out.insert(out.end(), errors.begin(), errors.end());
+  out.insert(out.end(), raw.errors.begin(), raw.errors.end());
   out.insert(out.end(), data + pos + float_bytes, data + size);
   return out;
 }
@@ -1355,12 +1371,7 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
 
   RangeDecoder rc(stream, stream_size);
   if (!rc.valid_start()) return bad_compact("the range-coded stream has no valid start");
-  Bytes topology;
-  Bytes positions;
-  Bytes errors;
-  BitWriter topology_out(&topology);
-  BitWriter positions_out(&positions);
-  ByteWriter errors_out(&errors);
+  RawRecords raw;
   Models m;
   SplitConnectivity mesh(f.base, base.triangles);
   std::vector<QuantizedPositions> q;
@@ -1461,9 +1472,7 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
     }
     if (vl == kNoVertex && vr == kNoVertex) return bad("both wings are missing");
     if (vl == vs || vr == vs || (vl == vr && vl != kNoVertex)) return bad("a repeated vertex");
-    topology_out.write(vs, bits_for_count(n));
-    topology_out.write(vl == kNoVertex ? n : vl, bits_for_count(uint64_t{n} + 1));
-    topology_out.write(vr == kNoVertex ? n : vr, bits_for_count(uint64_t{n} + 1));
+    raw.write_topology(vs, vl, vr, n);
     mesh.split(vs, vl, vr);
     const bool vt_closed = mesh.neighbours(n, &vt_ring);
     if (v3) update_classes(vs, vl, vr, vt_ring, &classes);
@@ -1491,7 +1500,7 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
         value[c < 3 ? a : c] = static_cast<uint32_t>(v);
       }
       for (size_t c = 0; c < per_split; ++c)
-        positions_out.write(value[c], f.bits);
+        raw.positions_out.write(value[c], f.bits);
       qp.apply_split(vs, value, with_vs);
     }
 
@@ -1502,15 +1511,14 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
     if (bits < 0 || bits > int64_t{UINT32_MAX}) return bad("error bits out of range");
     previous_error = static_cast<uint32_t>(bits);
     previous_delta = delta;
-    errors_out.write(previous_error);
+    raw.errors_out.write(previous_error);
     if (with_permutation) {
       const InputPrediction p = predict_input(input, vs, vt_ring, &ids);
       LODBAKE_RETURN_IF_ERROR(decode_input(p.context, p.value, n));
     }
     if (rc.overrun()) return bad("the stream ends inside the record");
   }
-  topology_out.finish();
-  positions_out.finish();
+  raw.finish();
 
   Bytes permutation;
   if (with_permutation) {
@@ -1528,16 +1536,16 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
   const uint64_t float_bytes = f.quantized ? 0 : 4 * per_split * r;
   const uint8_t* verbatim_data = data + pos;
   Bytes out;
-  out.reserve(f.bytes + topology.size() + positions.size() + errors.size() + verbatim +
+  out.reserve(f.bytes + raw.topology.size() + raw.positions.size() + raw.errors.size() + verbatim +
               permutation.size());
   out.insert(out.end(), data + 1, data + 1 + f.bytes);
-  out.insert(out.end(), topology.begin(), topology.end());
+  out.insert(out.end(), raw.topology.begin(), raw.topology.end());
   if (f.quantized) {
-    out.insert(out.end(), positions.begin(), positions.end());
+    out.insert(out.end(), raw.positions.begin(), raw.positions.end());
   } else {
     out.insert(out.end(), verbatim_data, verbatim_data + float_bytes);
   }
-  out.insert(out.end(), errors.begin(), errors.end());
+  out.insert(out.end(), raw.errors.begin(), raw.errors.end());
   out.insert(out.end(), verbatim_data + float_bytes, verbatim_data + verbatim);
   out.insert(out.end(), permutation.begin(), permutation.end());
   return out;
