@@ -716,6 +716,27 @@ Result<VsplParts> locate_vspl_parts(const uint8_t* data, size_t size) {
   return parts;
 }
 
+Result<Bytes> round_vspl_errors(const uint8_t* data, size_t size, int significant_bits) {
+  if (significant_bits < kMinSignificantBits || significant_bits > kMaxSignificantBits) {
+    return invalid_input(string_printf("error bits %d outside %d..%d", significant_bits,
+                                       kMinSignificantBits, kMaxSignificantBits));
+  }
+  LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(data, size));
+  Bytes out(data, data + size);
+  auto round_at = [&](size_t offset) {
+    float value = 0;
+    std::memcpy(&value, out.data() + offset, 4);
+    value = round_up_to_significant_bits(value, significant_bits);
+    std::memcpy(out.data() + offset, &value, 4);
+  };
+  // Rounding is monotone, so the rounded range is the rounded records' range.
+  round_at(kVsplErrorRangeOffset);
+  round_at(kVsplErrorRangeOffset + 4);
+  for (uint32_t i = 0; i < parts.summary.split_count; ++i)
+    round_at(parts.errors_offset + size_t{4} * i);
+  return out;
+}
+
 namespace {
 
 // One attribute of the joined PM: BASE's per-vertex values, then the split

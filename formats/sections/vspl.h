@@ -34,6 +34,8 @@ inline constexpr uint8_t kVsplKnownFlags =
 
 /// The bytes before the quantization box and the records.
 inline constexpr size_t kVsplFixedBytes = 19;
+/// Where the fixed fields' error range (min, max: two float32) starts.
+inline constexpr size_t kVsplErrorRangeOffset = 11;
 
 struct VsplEncodeOptions {
   bool quantize = false;  ///< false: float32 positions (exact round trip)
@@ -125,6 +127,15 @@ struct VsplParts {
 
 /// The parts of a payload whose size checks out (as read_vspl_summary()).
 Result<VsplParts> locate_vspl_parts(const uint8_t* data, size_t size);
+
+/// The payload with every record's error and the header's error range
+/// rounded up to `significant_bits` (round_up_to_significant_bits()): the
+/// lossy step behind `lodbake-pack --error-bits`, after which the compact
+/// codec stores each error in fewer bits (layout version 4). Everything else
+/// is unchanged, byte for byte; rounding a rounded payload changes nothing.
+/// \return locate_vspl_parts()'s error for a payload whose parts do not add
+///         up; kInvalidInput for significant_bits outside 1..24.
+Result<Bytes> round_vspl_errors(const uint8_t* data, size_t size, int significant_bits);
 
 /// Joins a decoded BASE mesh and a VSPL section decoded against its
 /// positions into a progressive mesh. ProgressiveMesh::normals (texcoords)

@@ -1,5 +1,7 @@
 // The compact codec (codec 1) of the VSPL section: a lossless recoding of a
-// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 3: the
+// raw VSPL payload (docs/format.md "Compact VSPL"). Layout version 4 is
+// version 3 with the errors' common zero low bits left out (errors rounded
+// by round_vspl_errors()), written when there are any. Layout version 3: the
 // connectivity replayed split by split, vs by its degree class and rank,
 // wings coded by their place in vs's current fan, quantized positions
 // predicted from vt's fan by stored weights, errors as predicted
@@ -21,8 +23,8 @@
 
 namespace lodbake {
 
-/// The newest layout version; readers accept 1, 2 and 3.
-inline constexpr uint8_t kVsplCompactVersion = 3;
+/// The newest layout version; readers accept 1 to 4.
+inline constexpr uint8_t kVsplCompactVersion = 4;
 
 /// What each part of a version-2 or -3 payload costs, in bits: the range coder's
 /// information content of the part's decisions (the stream's 5 framing
@@ -37,10 +39,12 @@ struct VsplCompactStats {
 };
 
 struct VsplCompactOptions {
-  /// 1, 2 or 3; 0 (the default): below 4096 splits, writes versions 1 and
-  /// 3 and keeps the smaller, version 3 on a tie (its adaptive models need
-  /// a few hundred splits to learn, so version 1 stays smaller on tiny
-  /// progressive meshes); from 4096 splits on, version 3.
+  /// 1 to 4; 0 (the default): the newest that pays, N = 4 when the errors
+  /// have common zero low bits (rounded with round_vspl_errors()), else
+  /// N = 3; below 4096 splits, writes versions 1 and N and keeps the
+  /// smaller, N on a tie (its adaptive models need a few hundred splits to
+  /// learn, so version 1 stays smaller on tiny progressive meshes); from
+  /// 4096 splits on, version N.
   uint8_t version = 0;
   /// Filled in with the range-coded encoding's costs when not null.
   VsplCompactStats* stats = nullptr;

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "formats/support/bit_packing.h"
+
 namespace lodbake {
 
 uint32_t quantization_steps(int bits) {
@@ -65,6 +67,21 @@ double quantization_error_bound(const Vec3f& box_min, const Vec3f& box_max, int 
         bound, extent * (0.5 / steps + std::ldexp(1.0, -40)) + magnitude * std::ldexp(1.0, -23));
   }
   return bound;
+}
+
+// On the bit pattern: IEEE floats of one sign order like their patterns'
+// magnitudes, so clearing the low bits truncates the magnitude and adding
+// one unit of the kept bits after setting them rounds it up (a carry into
+// the exponent is the next binade's first value).
+float round_up_to_significant_bits(float x, int bits) {
+  const int drop = kMaxSignificantBits - bits;
+  if (drop <= 0 || !std::isfinite(x)) return x;
+  const uint32_t mask = (uint32_t{1} << drop) - 1;
+  const uint32_t pattern = float_bits(x);
+  if ((pattern & mask) == 0) return x;
+  if (std::signbit(x)) return bits_float(pattern & ~mask);  // towards zero is up
+  const float up = bits_float((pattern | mask) + 1);
+  return std::isfinite(up) ? up : x;
 }
 
 }  // namespace lodbake

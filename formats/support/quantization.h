@@ -46,4 +46,17 @@ bool is_valid_quantization_box(const Vec3f& box_min, const Vec3f& box_max, int* 
 /// \pre box finite with min <= max per axis; bits in 1..30.
 double quantization_error_bound(const Vec3f& box_min, const Vec3f& box_max, int bits);
 
+inline constexpr int kMinSignificantBits = 1;
+inline constexpr int kMaxSignificantBits = 24;  ///< float32's: keeps every value
+
+/// `x` rounded towards +infinity to `bits` significant bits (the leading one
+/// and bits - 1 mantissa bits), so that a bound stays a bound: the result is
+/// the smallest float >= x whose lowest 24 - bits mantissa bits are zero.
+/// Non-finite values, values that already fit, and positive values whose
+/// rounding would overflow to infinity come back unchanged. Monotone and
+/// idempotent; bits = 24 is the identity. Used to quantize collapse errors
+/// (docs/format.md "Compact VSPL", version 4).
+/// \pre bits in kMinSignificantBits..kMaxSignificantBits.
+float round_up_to_significant_bits(float x, int bits);
+
 }  // namespace lodbake

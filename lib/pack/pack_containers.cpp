@@ -361,6 +361,10 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
         quantize.bits = bits;
         LODBAKE_ASSIGN_OR_RETURN(raw, encode_vspl(pm, quantize));
       }
+      if (options.error_bits != 0) {
+        LODBAKE_ASSIGN_OR_RETURN(raw,
+                                 round_vspl_errors(raw.data(), raw.size(), options.error_bits));
+      }
       LODBAKE_ASSIGN_OR_RETURN(VsplSection section,
                                decode_vspl(raw.data(), raw.size(), written_base->positions));
       result.splits = section.splits.size();

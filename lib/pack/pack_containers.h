@@ -25,6 +25,9 @@ struct RepackOptions {
   /// Quantize float32 (or differently quantized) BASE and VSPL positions to
   /// this many bits (1..30); 0 keeps the positions' encoding.
   int quantize_bits = 0;
+  /// Round VSPL collapse errors up to this many significant bits (1..24,
+  /// round_vspl_errors()); 0 keeps them as they are.
+  int error_bits = 0;
   /// Store VSPL and the kinds of formats/sections/compact_sections.h with
   /// the compact codec (else raw).
   bool compact = true;

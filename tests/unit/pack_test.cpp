@@ -176,7 +176,7 @@ TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
     options.quantize = bits != 0;
     options.bits = bits == 0 ? 16 : bits;
     Bytes raw = encode_vspl(pm, options).value();
-    for (uint8_t version : {1, 2, 3}) {
+    for (uint8_t version : {1, 2, 3, 4}) {
       VsplCompactOptions compact_options;
       compact_options.version = version;
       Result<Bytes> compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options);
@@ -252,10 +252,16 @@ TEST(CompactVsplHostile, TruncatedAndFlippedPayloads) {
   options.quantize = true;
   options.bits = 12;
   Bytes raw = encode_vspl(pm, options).value();
-  for (uint8_t version : {1, 2, 3}) {
+  // Version 4 with errors rounded to 6 bits, so that its shift is not 0.
+  const Bytes rounded = round_vspl_errors(raw.data(), raw.size(), 6).value();
+  for (uint8_t version : {1, 2, 3, 4}) {
+    if (version == 4) raw = rounded;
     VsplCompactOptions compact_options;
     compact_options.version = version;
     Bytes compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options).value();
+    if (version == 4) {
+      ASSERT_GT(compact[1 + kVsplFixedBytes + 24], 0);  // the shift, after the box
+    }
     for (size_t n = 0; n < compact.size(); ++n) {
       Result<Bytes> cut = decode_vspl_compact(compact.data(), n, pm.base);
       EXPECT_FALSE(cut.is_ok()) << n;
@@ -276,10 +282,10 @@ TEST(CompactVsplHostile, TruncatedAndFlippedPayloads) {
     }
   }
   Bytes wrong_version = encode_vspl_compact(raw.data(), raw.size(), pm.base).value();
-  wrong_version[0] = 4;
+  wrong_version[0] = 5;
   Result<Bytes> refused = decode_vspl_compact(wrong_version.data(), wrong_version.size(), pm.base);
   ASSERT_FALSE(refused.is_ok());
-  EXPECT_NE(refused.status().message().find("layout version 4 is unknown"), std::string::npos);
+  EXPECT_NE(refused.status().message().find("layout version 5 is unknown"), std::string::npos);
 }
 
 // Hostile records that the format accepts but that do not fit the mesh
@@ -301,7 +307,7 @@ TEST(CompactVsplHostile, RecordsThatDoNotFitTheMeshStillRoundTrip) {
     options.quantize = quantize;
     const Result<Bytes> raw = encode_vspl(pm, options);
     ASSERT_TRUE(raw.is_ok()) << raw.status().message();
-    for (uint8_t version : {2, 3}) {
+    for (uint8_t version : {2, 3, 4}) {
       VsplCompactOptions compact_options;
       compact_options.version = version;
       const Bytes compact =
@@ -334,6 +340,81 @@ TEST(CompactVspl, DefaultKeepsTheSmallerLayout) {
       EXPECT_LT(sizes[3], sizes[2]);
     }
   }
+}
+
+// Errors rounded up to fewer significant bits (lodbake-pack --error-bits):
+// nothing else in the payload changes, every error stays a bound within a
+// relative 2^(1 - bits), rounding again changes nothing, and the default
+// writer then takes version 4, which leaves the errors' zero low bits out.
+TEST(CompactVsplVersion4, RoundedErrorsCostFewerBitsAndDecodeExactly) {
+  const ProgressiveMesh pm = record_pm(load_clean_mesh("cgal_elephant-with-holes.off"));
+  VsplEncodeOptions options;
+  options.quantize = true;
+  options.bits = 14;
+  const Bytes raw = encode_vspl(pm, options).value();
+  const VsplParts parts = locate_vspl_parts(raw.data(), raw.size()).value();
+  size_t v3_size = 0;
+  double v3_error_bits = 0;
+  for (int bits : {24, 12, 8, 1}) {
+    const Bytes rounded = round_vspl_errors(raw.data(), raw.size(), bits).value();
+    EXPECT_EQ(round_vspl_errors(rounded.data(), rounded.size(), bits).value(), rounded);
+    // Only the error range and the errors differ.
+    const size_t errors_end = parts.errors_offset + 4 * pm.splits.size();
+    EXPECT_TRUE(std::equal(raw.begin() + kVsplErrorRangeOffset + 8,
+                           raw.begin() + static_cast<std::ptrdiff_t>(parts.errors_offset),
+                           rounded.begin() + kVsplErrorRangeOffset + 8));
+    EXPECT_TRUE(std::equal(raw.begin() + static_cast<std::ptrdiff_t>(errors_end), raw.end(),
+                           rounded.begin() + static_cast<std::ptrdiff_t>(errors_end)));
+    const VsplSection section =
+        decode_vspl(rounded.data(), rounded.size(), pm.base.positions).value();
+    for (size_t i = 0; i < pm.splits.size(); ++i) {
+      const float exact = pm.splits[i].error;
+      const float e = section.splits[i].error;
+      EXPECT_GE(e, exact);
+      EXPECT_LE(e - exact, std::ldexp(std::fabs(exact), 1 - bits)) << i;
+    }
+    VsplCompactStats stats;
+    VsplCompactOptions compact_options;
+    compact_options.stats = &stats;
+    const Bytes compact =
+        encode_vspl_compact(rounded.data(), rounded.size(), pm.base, compact_options).value();
+    EXPECT_EQ(compact[0], bits == 24 ? 3 : 4);
+    EXPECT_EQ(decode_vspl_compact(compact.data(), compact.size(), pm.base).value(), rounded);
+    if (bits == 24) {
+      v3_size = compact.size();
+      v3_error_bits = stats.error_bits;
+    } else {
+      EXPECT_LT(compact.size(), v3_size);
+      EXPECT_LT(stats.error_bits, v3_error_bits / 2);
+    }
+  }
+  EXPECT_FALSE(round_vspl_errors(raw.data(), raw.size(), 0).is_ok());
+  EXPECT_FALSE(round_vspl_errors(raw.data(), raw.size(), 25).is_ok());
+}
+
+// A version-4 payload whose shift is not the errors' largest is refused:
+// version 3's stream of rounded errors behind a shift of 0 decodes to the
+// same raw payload as the canonical version 4.
+TEST(CompactVsplVersion4, RefusesAShiftSmallerThanTheErrorsAllow) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(8));
+  VsplEncodeOptions options;
+  options.quantize = false;
+  const Bytes raw = encode_vspl(pm, options).value();
+  const Bytes rounded = round_vspl_errors(raw.data(), raw.size(), 4).value();
+  VsplCompactOptions v3;
+  v3.version = 3;
+  Bytes forged = encode_vspl_compact(rounded.data(), rounded.size(), pm.base, v3).value();
+  forged[0] = 4;
+  forged.insert(forged.begin() + 1 + kVsplFixedBytes, uint8_t{0});
+  Result<Bytes> refused = decode_vspl_compact(forged.data(), forged.size(), pm.base);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_NE(refused.status().message().find("error shift 0 is not the errors' largest"),
+            std::string::npos)
+      << refused.status().message();
+  forged[1 + kVsplFixedBytes] = 32;
+  refused = decode_vspl_compact(forged.data(), forged.size(), pm.base);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_NE(refused.status().message().find("error shift 32 outside 0..31"), std::string::npos);
 }
 
 TEST(DracoBase, KeepsVertexAndTriangleIdsWithinTheQuantizationStep) {
@@ -395,6 +476,21 @@ TEST(Repack, RoundTripKeepsIdsAndPositionsWithinQuantization) {
   bounding_box(exact, &lo, &hi);
   EXPECT_LE(max_position_error(full_positions(q), exact), quantization_error_bound(lo, hi, 14));
 
+  // Errors rounded up to 8 significant bits: the same PM but for the
+  // errors, each within a relative 2^-7 above its exact value.
+  RepackOptions rounded = quantized;
+  rounded.error_bits = 8;
+  const PackResult packed_rounded = repack({original}, rounded);
+  ProgressiveMesh r = read_pm(packed_rounded.file);
+  ASSERT_EQ(r.splits.size(), q.splits.size());
+  for (size_t i = 0; i < r.splits.size(); ++i) {
+    EXPECT_GE(r.splits[i].error, q.splits[i].error);
+    EXPECT_LE(r.splits[i].error - q.splits[i].error, std::ldexp(q.splits[i].error, -7));
+    r.splits[i].error = q.splits[i].error;
+  }
+  EXPECT_EQ(r, q);
+  EXPECT_LT(packed_rounded.file.size(), repack({original}, quantized).file.size());
+
   if (draco_codec_built()) {
     RepackOptions draco;
     draco.draco = true;
@@ -415,11 +511,14 @@ TEST(Repack, RoundTripKeepsIdsAndPositionsWithinQuantization) {
 TEST(Repack, PackingAPackedFileGivesTheSameBytes) {
   const ProgressiveMesh pm = record_pm(load_clean_mesh("c3d_spot.obj"), true);
   const Bytes original = pm_container(pm);
-  std::vector<RepackOptions> variants(4);
+  std::vector<RepackOptions> variants(6);
   variants[1].quantize_bits = 12;
   variants[2].compact = false;
   variants[3].draco = draco_codec_built();
   variants[3].draco_options.compression_level = 10;
+  variants[4].error_bits = 8;
+  variants[5].quantize_bits = 14;
+  variants[5].error_bits = 5;
   for (const RepackOptions& options : variants) {
     const Bytes once = repack({original}, options).file;
     const Bytes twice = repack({once}, options).file;

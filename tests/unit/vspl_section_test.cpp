@@ -175,6 +175,40 @@ ProgressiveMesh round_trip(const ProgressiveMesh& pm, const VsplEncodeOptions& o
   return std::move(joined).value();
 }
 
+// Rounding errors to fewer significant bits (lodbake-pack --error-bits):
+// up, never down, to the next value with that many bits; values that fit
+// and non-finite ones unchanged; 24 bits is float32 itself.
+TEST(RoundUpToSignificantBits, RoundsTowardsPlusInfinityAndKeepsWhatFits) {
+  EXPECT_EQ(round_up_to_significant_bits(1.0f, 1), 1.0f);
+  EXPECT_EQ(round_up_to_significant_bits(1.5f, 2), 1.5f);
+  EXPECT_EQ(round_up_to_significant_bits(1.25f, 2), 1.5f);
+  EXPECT_EQ(round_up_to_significant_bits(1.75f, 2), 2.0f);  // carries into the exponent
+  EXPECT_EQ(round_up_to_significant_bits(1.005f, 8), 1.0f + 1.0f / 128);
+  EXPECT_EQ(round_up_to_significant_bits(-1.25f, 2), -1.0f);  // towards +infinity
+  EXPECT_EQ(round_up_to_significant_bits(0.0f, 4), 0.0f);
+  const float max = std::numeric_limits<float>::max();
+  EXPECT_EQ(round_up_to_significant_bits(max, 8), max);  // would overflow: kept
+  EXPECT_TRUE(std::isinf(round_up_to_significant_bits(INFINITY, 8)));
+  EXPECT_TRUE(std::isnan(round_up_to_significant_bits(NAN, 8)));
+  const float tiny = std::numeric_limits<float>::denorm_min() * 3;
+  // A subnormal's pattern rounds like any other: up to the smallest normal.
+  EXPECT_EQ(round_up_to_significant_bits(tiny, 1), std::numeric_limits<float>::min());
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> value(0.0f, 1000.0f);
+  for (int i = 0; i < 2000; ++i) {
+    const float x = value(random);
+    const int bits = 1 + i % 24;
+    const float r = round_up_to_significant_bits(x, bits);
+    EXPECT_GE(r, x);
+    EXPECT_LE(r - x, std::ldexp(x, 1 - bits));
+    EXPECT_EQ(round_up_to_significant_bits(r, bits), r);
+    EXPECT_EQ(float_bits(r) & ((1u << (24 - bits)) - 1), 0u);
+    if (bits == 24) {
+      EXPECT_EQ(r, x);
+    }
+  }
+}
+
 TEST(VsplSection, Float32RoundTripIsExact) {
   VsplSummary summary;
   const ProgressiveMesh tetra = tetrahedron_pm();

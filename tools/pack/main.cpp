@@ -20,6 +20,7 @@
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
+#include "formats/support/quantization.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/pack/pack_containers.h"
 #include "tools/common/cli.h"
@@ -36,6 +37,7 @@ struct PackOptions {
   std::string output;
   bool repair = false;
   int quantize_bits = 0;  // 0: float32 positions (containers: keep the encoding)
+  int error_bits = 0;     // 0: keep VSPL's errors as they are
   bool draco = false;
   int qp = 14;
   int cl = 7;
@@ -89,6 +91,8 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
       {"drop", repack_options.drop},
       {"keep", repack_options.keep}};
   if (options.draco) meta_options["draco_options"] = {{"qp", options.qp}, {"cl", options.cl}};
+  // Only when given, so that the files of earlier versions stay the same.
+  if (options.error_bits != 0) meta_options["error_bits"] = options.error_bits;
   size_t failed = inputs.size();
   Result<PackResult> packed = repack_containers(inputs, repack_options, meta_options, &failed);
   if (!packed.is_ok())
@@ -109,7 +113,11 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
       js["stored_after"] = s.stored_after;
       js["decoded_after"] = s.decoded_after;
       js["bits_per_vertex"] = per(s.stored_after, r.vertices);
-      if (s.tag == "VSPL") js["bits_per_split"] = per(s.stored_after, r.splits);
+      if (s.tag == "VSPL") {
+        js["bits_per_split"] = per(s.stored_after, r.splits);
+        js["error_bits"] =
+            options.error_bits == 0 ? nlohmann::json(nullptr) : nlohmann::json(options.error_bits);
+      }
     }
     sections.push_back(std::move(js));
   }
@@ -148,7 +156,12 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
   for (const PackedSection& s : r.sections) {
     if (s.tag == "VSPL" && s.action != "dropped" && r.splits > 0)
       std::cout << "VSPL: " << per(s.stored_after, r.splits) << " bits per vertex split ("
-                << r.splits << " splits)\n";
+                << r.splits << " splits"
+                << (options.error_bits != 0
+                        ? ", errors rounded up to " + std::to_string(options.error_bits) +
+                              " significant bits"
+                        : std::string())
+                << ")\n";
   }
   return 0;
 }
@@ -250,6 +263,10 @@ int main(int argc, char** argv) {
       "quantize", po::value<int>(&options.quantize_bits)->value_name("BITS"),
       "store positions quantized to BITS (1..30) bits per coordinate instead of float32 "
       "(containers: BASE and VSPL positions not already at BITS)")(
+      "error-bits", po::value<int>(&options.error_bits)->value_name("BITS"),
+      "containers: round VSPL collapse errors up to BITS (1..24) significant bits, so "
+      "that the compact codec stores fewer bits per error (lossy; 24 keeps float32's "
+      "full precision)")(
       "draco", po::bool_switch(&options.draco),
       "containers: store BASE as a Draco bitstream (vertex ids kept); a float32 VSPL is "
       "quantized to --qp bits")("qp", po::value<int>(&options.qp)->value_name("BITS"),
@@ -272,6 +289,10 @@ int main(int argc, char** argv) {
     return tool.usage_error("--qp takes 1 to 30 bits, not " + std::to_string(options.qp));
   if (options.cl < 0 || options.cl > 10)
     return tool.usage_error("--cl takes 0 to 10, not " + std::to_string(options.cl));
+  if (tool.has("error-bits") &&
+      (options.error_bits < kMinSignificantBits || options.error_bits > kMaxSignificantBits))
+    return tool.usage_error("--error-bits takes 1 to 24 bits, not " +
+                            std::to_string(options.error_bits));
   RepackOptions repack_options;
   std::string bad;
   if (!parse_tags(options.drop, &repack_options.drop, &bad) ||
@@ -292,8 +313,10 @@ int main(int argc, char** argv) {
     if (inputs.size() != 1)
       return tool.usage_error("expected one MESH (or containers), got " +
                               std::to_string(inputs.size()));
-    if (options.draco || options.raw || !options.drop.empty() || !options.keep.empty())
-      return tool.usage_error("--draco, --raw, --drop and --keep apply to .lbk inputs");
+    if (options.draco || options.raw || !options.drop.empty() || !options.keep.empty() ||
+        options.error_bits != 0)
+      return tool.usage_error(
+          "--draco, --raw, --error-bits, --drop and --keep apply to .lbk inputs");
     return tool.run([&] { return pack(tool, inputs.front(), options); });
   }
   for (const std::string& input : inputs) {
@@ -305,6 +328,7 @@ int main(int argc, char** argv) {
   if (options.draco && !draco_codec_built())
     return tool.fail("", unsupported("--draco: this build has no Draco codec"));
   repack_options.quantize_bits = options.quantize_bits;
+  repack_options.error_bits = options.error_bits;
   repack_options.compact = !options.raw;
   repack_options.draco = options.draco;
   repack_options.draco_options.quantization_bits = options.qp;
