@@ -100,6 +100,8 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
   const PackResult& r = packed.value();
   Status written = write_file_atomic(options.output, r.file);
   if (!written.is_ok()) return tool.fail(options.output, written);
+  if (options.error_bits != 0 && r.splits == 0)
+    tool.warn(options.output, "--error-bits changed nothing: the output has no VSPL records");
 
   nlohmann::json sections = nlohmann::json::array();
   for (const PackedSection& s : r.sections) {
