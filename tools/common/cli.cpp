@@ -10,6 +10,39 @@
 #include "formats/support/version.h"
 
 namespace lodbake::cli {
+namespace {
+
+template <typename T>
+bool holds(const po::value_semantic* semantic) {
+  return dynamic_cast<const po::typed_value<T>*>(semantic) != nullptr;
+}
+
+// Boost's lexical_cast reads "-5" into an unsigned option as 2^64 - 5 (or
+// 2^32 - 5) without complaint, which would turn `--triangles -5` into "no
+// limit": such a value is refused like any other invalid argument.
+void refuse_negative_unsigned(const po::parsed_options& parsed,
+                              const po::options_description& all) {
+  for (const po::option& option : parsed.options) {
+    if (option.unregistered || option.string_key.empty()) continue;
+    const po::option_description* description = all.find_nothrow(option.string_key, false);
+    if (description == nullptr) continue;
+    const po::value_semantic* semantic = description->semantic().get();
+    if (!holds<unsigned short>(semantic) && !holds<unsigned>(semantic) &&
+        !holds<unsigned long>(semantic) && !holds<unsigned long long>(semantic))
+      continue;
+    for (const std::string& token : option.value) {
+      size_t first = token.find_first_not_of(" \t");
+      if (first != std::string::npos && token[first] == '-') {
+        po::invalid_option_value error(token);
+        error.set_option_name(option.string_key);
+        error.set_prefix(po::command_line_style::allow_long);
+        throw error;
+      }
+    }
+  }
+}
+
+}  // namespace
 
 const char* exit_code_help() {
   return "Exit codes:\n"
@@ -58,13 +91,14 @@ std::optional<int> Tool::parse(int argc, char** argv) {
   po::options_description all;
   all.add(options_).add(hidden_);
   try {
-    po::store(
+    po::parsed_options parsed =
         po::command_line_parser(argc, argv)
             .options(all)
             .positional(positional_)
             .style(po::command_line_style::unix_style ^ po::command_line_style::allow_guessing)
-            .run(),
-        vm_);
+            .run();
+    refuse_negative_unsigned(parsed, all);
+    po::store(parsed, vm_);
     if (vm_.count("help")) {
       print_help();
       return 0;

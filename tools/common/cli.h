@@ -33,7 +33,8 @@ class Tool {
 
   // Parses the command line. Returns an exit code when the tool must stop
   // now (--help or --version printed: 0; a usage error printed: 1), or
-  // nothing when it should go on.
+  // nothing when it should go on. A negative number given to an option of
+  // an unsigned type is a usage error (Boost would wrap it around).
   std::optional<int> parse(int argc, char** argv);
 
   const po::variables_map& args() const { return vm_; }
