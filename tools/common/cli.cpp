@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -90,6 +91,10 @@ std::optional<int> Tool::single_positional(const std::string& name, const std::s
 std::optional<int> Tool::parse(int argc, char** argv) {
   po::options_description all;
   all.add(options_).add(hidden_);
+  // Known before parsing, so that a usage error is reported as JSON too.
+  for (int i = 1; i < argc && std::strcmp(argv[i], "--") != 0; ++i) {
+    if (std::strcmp(argv[i], "--json") == 0) json_ = true;
+  }
   try {
     po::parsed_options parsed =
         po::command_line_parser(argc, argv)
@@ -148,7 +153,15 @@ int Tool::usage_error(const std::string& message) const {
   while (!text.empty() && (text.back() == '.' || text.back() == ' '))
     text.pop_back();
   std::cerr << name_ << ": error: " << text << ". See '" << name_ << " --help'.\n";
-  return static_cast<int>(ErrorKind::kUsage);
+  const int code = static_cast<int>(ErrorKind::kUsage);
+  if (json_ && !json_printed_) {
+    print_json({{"schema", "lodbake.error/1"},
+                {"tool", name_},
+                {"file", ""},
+                {"error", text},
+                {"exit_code", code}});
+  }
+  return code;
 }
 
 void Tool::warn(const std::string& file, const std::string& message) const {

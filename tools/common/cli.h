@@ -64,7 +64,8 @@ class Tool {
   // Linux are bytes) get U+FFFD for each bad byte instead of making the dump
   // throw.
   void print_json(const nlohmann::json& report) const;
-  // Prints a usage error ending in "See 'name --help'." and returns 1.
+  // Prints a usage error ending in "See 'name --help'." and returns 1; with
+  // --json also the JSON error report (lodbake.error/1, `file` empty).
   int usage_error(const std::string& message) const;
   // "name: warning: FILE: message", unless --quiet.
   void warn(const std::string& file, const std::string& message) const;
