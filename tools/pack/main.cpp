@@ -322,9 +322,12 @@ int main(int argc, char** argv) {
     return tool.run([&] { return pack(tool, inputs.front(), options); });
   }
   for (const std::string& input : inputs) {
-    if (!is_container_file(input))
-      return tool.usage_error("'" + input +
-                              "' is not a lodbake container (a mesh is packed alone)");
+    if (is_container_file(input)) continue;
+    // A missing or unreadable input (or a folder) is an I/O error, not a
+    // mesh given among containers.
+    Result<Bytes> readable = read_file(input);
+    if (!readable.is_ok()) return tool.fail(input, readable.status());
+    return tool.usage_error("'" + input + "' is not a lodbake container (a mesh is packed alone)");
   }
   if (options.repair) return tool.usage_error("--repair applies to a mesh input");
   if (options.draco && !draco_codec_built())
