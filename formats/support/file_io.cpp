@@ -72,10 +72,15 @@ bool same_file(const std::string& a, const std::string& b) {
          sa.st_ino == sb.st_ino;
 }
 
-Status write_file_atomic(const std::string& path, const uint8_t* data, size_t size) {
-  // The rename below would replace whatever is at `path`: refuse anything but
-  // a regular file there, so that `-o /dev/null` run as root or `-o` naming a
-  // FIFO never swaps a device node or pipe for a regular file.
+namespace {
+
+// Writes `data` to a new temporary file beside `path` and returns its name;
+// refuses a `path` that exists and is not a regular file.
+Result<std::string> write_temporary_beside(const std::string& path, const uint8_t* data,
+                                           size_t size) {
+  // The rename into place would replace whatever is at `path`: refuse
+  // anything but a regular file there, so that `-o /dev/null` run as root or
+  // `-o` naming a FIFO never swaps a device node or pipe for a regular file.
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) return io_error("is a directory");
@@ -109,10 +114,47 @@ Status write_file_atomic(const std::string& path, const uint8_t* data, size_t si
     ::unlink(temp.c_str());
     return io_error("close failed: " + errno_text());
   }
+  return temp;
+}
+
+Status rename_into_place(const std::string& temp, const std::string& path) {
   if (::rename(temp.c_str(), path.c_str()) != 0) {
     std::string message = "cannot rename the temporary file into place: " + errno_text();
     ::unlink(temp.c_str());
     return io_error(message);
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Status write_file_atomic(const std::string& path, const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(std::string temp, write_temporary_beside(path, data, size));
+  return rename_into_place(temp, path);
+}
+
+StagedOutputs::~StagedOutputs() {
+  for (const File& file : files_)
+    ::unlink(file.temp.c_str());
+}
+
+Status StagedOutputs::stage(const std::string& path, const uint8_t* data, size_t size) {
+  LODBAKE_ASSIGN_OR_RETURN(std::string temp, write_temporary_beside(path, data, size));
+  files_.push_back({std::move(temp), path});
+  return Status::ok();
+}
+
+Status StagedOutputs::commit(std::string* failed_path) {
+  std::vector<File> files = std::move(files_);
+  files_.clear();
+  for (size_t i = 0; i < files.size(); ++i) {
+    Status renamed = rename_into_place(files[i].temp, files[i].path);
+    if (!renamed.is_ok()) {
+      for (size_t j = i + 1; j < files.size(); ++j)
+        ::unlink(files[j].temp.c_str());
+      if (failed_path != nullptr) *failed_path = files[i].path;
+      return renamed;
+    }
   }
   return Status::ok();
 }

@@ -34,4 +34,33 @@ inline Status write_file_atomic(const std::string& path, const std::string& data
   return write_file_atomic(path, reinterpret_cast<const uint8_t*>(data.data()), data.size());
 }
 
+// The outputs of a run that writes several files, written all or none: stage()
+// writes each to a temporary file beside its path (refusing what
+// write_file_atomic refuses), and only commit() renames them into place, in
+// the order staged. Temporary files not committed are removed when the object
+// is destroyed, so a run that fails before commit() leaves no output at all.
+class StagedOutputs {
+ public:
+  StagedOutputs() = default;
+  ~StagedOutputs();
+  StagedOutputs(const StagedOutputs&) = delete;
+  StagedOutputs& operator=(const StagedOutputs&) = delete;
+
+  Status stage(const std::string& path, const uint8_t* data, size_t size);
+  Status stage(const std::string& path, const Bytes& data) {
+    return stage(path, data.data(), data.size());
+  }
+  // Renames every staged file into place. When a rename fails, `*failed_path`
+  // (when given) names that output and the remaining temporary files are
+  // removed; the outputs renamed before it stay.
+  Status commit(std::string* failed_path = nullptr);
+
+ private:
+  struct File {
+    std::string temp;
+    std::string path;
+  };
+  std::vector<File> files_;
+};
+
 }  // namespace lodbake

@@ -94,6 +94,43 @@ TEST(FileIo, WritingOverAFifoOrAFolderIsRefusedAndLeavesItInPlace) {
   EXPECT_TRUE(S_ISDIR(st.st_mode));
 }
 
+bool exists(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+TEST(FileIo, StagedOutputsAppearOnlyOnCommit) {
+  std::string a = ::testing::TempDir() + "lodbake_staged_a.bin";
+  std::string b = ::testing::TempDir() + "lodbake_staged_b.bin";
+  ::unlink(a.c_str());
+  ::unlink(b.c_str());
+  StagedOutputs outputs;
+  ASSERT_TRUE(outputs.stage(a, Bytes{1, 2, 3}).is_ok());
+  ASSERT_TRUE(outputs.stage(b, Bytes{4}).is_ok());
+  EXPECT_FALSE(exists(a));
+  EXPECT_FALSE(exists(b));
+  ASSERT_TRUE(outputs.commit().is_ok());
+  Result<Bytes> back = read_file(a);
+  ASSERT_TRUE(back.is_ok());
+  EXPECT_EQ(back.value(), (Bytes{1, 2, 3}));
+  EXPECT_TRUE(exists(b));
+}
+
+TEST(FileIo, StagedOutputsNotCommittedLeaveNothing) {
+  std::string a = ::testing::TempDir() + "lodbake_staged_kept.bin";
+  ASSERT_TRUE(write_file_atomic(a, std::string("old")).is_ok());
+  {
+    StagedOutputs outputs;
+    ASSERT_TRUE(outputs.stage(a, Bytes{9}).is_ok());
+    // The second output cannot be written: the run fails before commit().
+    Status s = outputs.stage("/nonexistent/lodbake/out.lbk", Bytes{1});
+    EXPECT_EQ(s.kind(), ErrorKind::kIo);
+  }
+  Result<Bytes> back = read_file(a);  // the earlier file, untouched
+  ASSERT_TRUE(back.is_ok());
+  EXPECT_EQ(std::string(back.value().begin(), back.value().end()), "old");
+}
+
 TEST(ByteReader, ReadsBothEndiansAndStopsAtTheEnd) {
   const uint8_t bytes[] = {0x01, 0x02, 0x03, 0x04, 0x05};
   ByteReader reader(bytes, sizeof(bytes));

@@ -86,11 +86,14 @@ std::string metrics_text(const nlohmann::json& metrics) {
   return text.str();
 }
 
-Status write_mesh(const Tool& tool, const std::string& path, const TriangleMesh& mesh) {
+// Written to a temporary file; `outputs` renames every output into place at
+// the end, so that a run failing at its second output leaves not even the first.
+Status stage_mesh(const Tool& tool, StagedOutputs* outputs, const std::string& path,
+                  const TriangleMesh& mesh) {
   if (drops_attributes(path, mesh))
     tool.warn(path, "this format cannot store the mesh's normals or texture coordinates");
   LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, write_mesh_for_path(path, mesh));
-  return write_file_atomic(path, bytes);
+  return outputs->stage(path, bytes);
 }
 
 Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
@@ -170,6 +173,7 @@ int run(const Tool& tool, Request& request) {
       {"max_collapse_error", result.stats.max_collapse_error}};
   if (loaded.repair) report["repair"] = to_json(*loaded.repair);
 
+  StagedOutputs staged;
   nlohmann::json outputs = nlohmann::json::array();
   if (!ratios.empty()) {
     std::vector<uint64_t> targets;
@@ -182,7 +186,7 @@ int run(const Tool& tool, Request& request) {
       std::string path = lod_path(request.output, i);
       Result<nlohmann::json> metrics = measure(request, loaded.mesh, lods.value()[i]);
       if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
-      Status written = write_mesh(tool, path, lods.value()[i]);
+      Status written = stage_mesh(tool, &staged, path, lods.value()[i]);
       if (!written.is_ok()) return tool.fail(path, written);
       outputs.push_back({{"file", path},
                          {"ratio", ratios[i]},
@@ -195,7 +199,7 @@ int run(const Tool& tool, Request& request) {
     if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
     report["metrics"] = metrics.value();
     if (!request.output.empty()) {
-      Status written = write_mesh(tool, request.output, result.mesh);
+      Status written = stage_mesh(tool, &staged, request.output, result.mesh);
       if (!written.is_ok()) return tool.fail(request.output, written);
       outputs.push_back({{"file", request.output},
                          {"vertices", result.mesh.vertex_count()},
@@ -207,10 +211,13 @@ int run(const Tool& tool, Request& request) {
   if (!request.pm_output.empty()) {
     Result<Bytes> container = pm_container(request, loaded, *result.pm, &report);
     if (!container.is_ok()) return tool.fail(request.pm_output, container.status());
-    Status written = write_file_atomic(request.pm_output, container.value());
+    Status written = staged.stage(request.pm_output, container.value());
     if (!written.is_ok()) return tool.fail(request.pm_output, written);
     report["pm"]["bytes"] = container.value().size();
   }
+  std::string failed_path;
+  if (Status committed = staged.commit(&failed_path); !committed.is_ok())
+    return tool.fail(failed_path, committed);
 
   if (tool.json()) {
     tool.print_json(report);
