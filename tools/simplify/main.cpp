@@ -4,6 +4,7 @@
 // formats/.
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -54,6 +55,18 @@ Result<std::vector<double>> parse_ratios(const std::string& text) {
   }
   if (ratios.empty()) return Status(ErrorKind::kUsage, "--lods needs at least one ratio");
   return ratios;
+}
+
+// True when two output paths name one file, existing or not ("a.obj" and
+// "./a.obj", or a symbolic link to it).
+bool same_output_path(const std::string& a, const std::string& b) {
+  if (same_file(a, b)) return true;
+  std::error_code error_a, error_b;
+  std::filesystem::path full_a =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(a), error_a);
+  std::filesystem::path full_b =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(b), error_b);
+  return error_a || error_b ? a == b : full_a == full_b;
 }
 
 // "out_%d.glb" with index 2 -> "out_2.glb".
@@ -310,7 +323,7 @@ int main(int argc, char** argv) {
     return tool.usage_error("--placement takes 'half' or 'optimal', not '" + request.placement +
                             "'");
   }
-  if (!request.lods.empty()) {
+  if (tool.has("lods")) {
     Result<std::vector<double>> parsed = parse_ratios(request.lods);
     if (!parsed.is_ok()) return tool.usage_error(parsed.status().message());
     request.ratios = parsed.value();
@@ -325,5 +338,8 @@ int main(int argc, char** argv) {
   for (const std::string& out : {request.output, request.pm_output})
     if (!out.empty() && same_file(request.input, out))
       return tool.usage_error("the output '" + out + "' is the input mesh itself");
+  if (!request.output.empty() && !request.pm_output.empty() &&
+      same_output_path(request.output, request.pm_output))
+    return tool.usage_error("-o and --pm name the same file '" + request.pm_output + "'");
   return tool.run([&] { return run(tool, request); });
 }
