@@ -311,7 +311,8 @@ int main(int argc, char** argv) {
     request.options.target_ratio = ratio;
   }
   if (tool.has("error")) {
-    if (!(error >= 0)) return tool.usage_error("--error takes a value >= 0");
+    if (!(error >= 0 && std::isfinite(error)))
+      return tool.usage_error("--error takes a finite value >= 0");
     request.options.max_error = error;
   }
   if (!(request.options.max_normal_change_degrees >= 0 &&

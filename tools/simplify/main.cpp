@@ -4,6 +4,7 @@
 // formats/.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -314,7 +315,8 @@ int main(int argc, char** argv) {
   }
   if (tool.has("triangles")) request.options.target_triangles = triangles;
   if (tool.has("error")) {
-    if (!(error >= 0)) return tool.usage_error("--error takes a value >= 0");
+    if (!(error >= 0 && std::isfinite(error)))
+      return tool.usage_error("--error takes a finite value >= 0");
     request.options.max_error = error;
   }
   if (request.placement == "optimal") {
