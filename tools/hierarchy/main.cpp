@@ -6,6 +6,7 @@
 // as VSPL next to them, so one BASE serves VHIE and VSPL alike. Thin: import,
 // builds and encoding live in lib/ and formats/.
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -373,8 +374,12 @@ int main(int argc, char** argv) {
   }
   if (!request.vhie && !request.dage && !request.vtre)
     return tool.usage_error("--sections must include vhie, dage or vtre");
-  if (!(request.options.max_normal_change_degrees > 0))
-    return tool.usage_error("--max-normal-change takes a positive angle");
+  // As in lodbake-simplify, but for 0, which would refuse every collapse.
+  if (!(request.options.max_normal_change_degrees > 0 &&
+        request.options.max_normal_change_degrees <= 180))
+    return tool.usage_error("--max-normal-change takes degrees in (0, 180]");
+  if (!(request.options.boundary_weight >= 0 && std::isfinite(request.options.boundary_weight)))
+    return tool.usage_error("--boundary-weight takes a finite value >= 0");
   if (same_file(request.input, request.output))
     return tool.usage_error("the output '" + request.output + "' is the input itself");
   return tool.run([&] { return run(tool, request); });
