@@ -9,6 +9,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
@@ -82,7 +83,18 @@ std::string lod_path(const std::string& pattern, size_t index) {
 Result<nlohmann::json> measure(const Request& request, const TriangleMesh& input,
                                const TriangleMesh& output) {
   if (!request.metrics) return nlohmann::json(nullptr);
-  LODBAKE_ASSIGN_OR_RETURN(SurfaceDistance d, measure_surface_distance(input, output));
+  Result<SurfaceDistance> measured = measure_surface_distance(input, output);
+  if (!measured.is_ok()) {
+    // The library's "first mesh" / "second mesh" are the input and the result.
+    std::string message = measured.status().message();
+    for (auto [from, to] : {std::pair<std::string, std::string>{"first mesh", "the input"},
+                            {"second mesh", "the simplified mesh"}}) {
+      if (message.rfind(from, 0) == 0) message = to + message.substr(from.size());
+    }
+    return Status(measured.status().kind(),
+                  "cannot measure the distance to the input (--no-metrics skips it): " + message);
+  }
+  const SurfaceDistance& d = measured.value();
   return nlohmann::json{{"hausdorff_relative", d.hausdorff_relative},
                         {"mean_relative", d.mean_relative},
                         {"hausdorff", d.hausdorff},
