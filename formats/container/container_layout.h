@@ -14,6 +14,15 @@ namespace lodbake {
 /// File signature, PNG style: a high byte (catches 7-bit transfers), the
 /// name, CR LF (catches line-ending conversion), ^Z (stops DOS `type`), LF.
 inline constexpr uint8_t kContainerMagic[8] = {0x89, 'L', 'B', 'K', '\r', '\n', 0x1A, '\n'};
+
+/// True when `data` starts with kContainerMagic.
+inline bool starts_with_container_magic(const uint8_t* data, size_t size) {
+  if (size < sizeof(kContainerMagic)) return false;
+  for (size_t i = 0; i < sizeof(kContainerMagic); ++i) {
+    if (data[i] != kContainerMagic[i]) return false;
+  }
+  return true;
+}
 inline constexpr uint16_t kFormatMajor = 1;
 inline constexpr uint16_t kFormatMinor = 0;
 inline constexpr size_t kHeaderSize = 48;

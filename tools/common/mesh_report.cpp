@@ -1,8 +1,12 @@
 #include "tools/common/mesh_report.h"
 
+#include "formats/container/container_layout.h"
 #include "formats/support/quantization.h"
+#include "lib/meshio/file_name.h"
 
 #include <charconv>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
 
 namespace lodbake::cli {
@@ -147,6 +151,20 @@ MetaInput meta_input(const std::string& path, const LoadedMesh& loaded) {
   size_t slash = path.find_last_of('/');
   std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
   return MetaInput{to_valid_utf8(name), loaded.sha256, loaded.file_bytes};
+}
+
+bool is_container_input(const std::string& path, const Bytes* bytes) {
+  if (lower_extension(path) == "lbk") return true;
+  if (bytes != nullptr) return starts_with_container_magic(bytes->data(), bytes->size());
+  // Only the magic of a regular file is read (opening a FIFO would wait for
+  // a writer): anything else, or an unreadable file, is not one, and the
+  // mesh path then reports why it cannot be read.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  std::ifstream in(path, std::ios::binary);
+  uint8_t head[sizeof(kContainerMagic)] = {};
+  return in.read(reinterpret_cast<char*>(head), sizeof(head)) &&
+         starts_with_container_magic(head, sizeof(head));
 }
 
 }  // namespace lodbake::cli

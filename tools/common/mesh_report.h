@@ -33,6 +33,12 @@ void print_repair_actions(const Tool& tool, const std::string& file, const Repai
 // for strings that must be valid UTF-8 (META) but come from file names.
 std::string to_valid_utf8(const std::string& text);
 
+// Whether a tool's input is a lodbake container rather than a mesh: its
+// magic bytes, or a `.lbk` name (so that a container whose header is broken
+// gets the container reader's error, not "cannot tell the mesh format").
+// `bytes` is the file's content when already read, else null.
+bool is_container_input(const std::string& path, const Bytes* bytes = nullptr);
+
 // Loads a tool's input mesh the way every baking tool does: prints the
 // import notes and repair actions, a warning per problem kept, and how many
 // unreferenced vertices were dropped. Returns 0, or the exit code after

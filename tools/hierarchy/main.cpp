@@ -73,11 +73,6 @@ struct Input {
   std::string source = "mesh";  // or "progressive mesh"
 };
 
-bool looks_like_container(const Bytes& bytes) {
-  return bytes.size() >= sizeof(kContainerMagic) &&
-         std::memcmp(bytes.data(), kContainerMagic, sizeof(kContainerMagic)) == 0;
-}
-
 // A container with BASE + VSPL: the hierarchy is rebuilt from the PM's fully
 // refined mesh, since the PM's greedy collapse order is not balanced.
 int load_pm_input(const Tool& tool, const std::string& path, const Bytes& bytes, Input* in) {
@@ -118,7 +113,7 @@ int run(const Tool& tool, const Request& request) {
   Input in;
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
-  if (looks_like_container(bytes.value())) {
+  if (is_container_input(request.input, &bytes.value())) {
     if (int code = load_pm_input(tool, request.input, bytes.value(), &in); code != 0) return code;
   } else {
     LoadOptions load;
@@ -358,6 +353,9 @@ int main(int argc, char** argv) {
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;
   if (request.output.empty()) return tool.usage_error("missing -o OUT.lbk");
+  // As lodbake-pack: a container's progressive mesh is not repaired.
+  if (request.repair && is_container_input(request.input))
+    return tool.usage_error("--repair applies to a mesh input");
   std::stringstream list(request.sections);
   std::string item;
   while (std::getline(list, item, ',')) {

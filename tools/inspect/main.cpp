@@ -45,11 +45,6 @@ struct InspectOptions {
   std::optional<LodRequest> lod;  // --lod: extract the PM at this level
 };
 
-bool is_container(const Bytes& bytes) {
-  return bytes.size() >= sizeof(kContainerMagic) &&
-         std::memcmp(bytes.data(), kContainerMagic, sizeof(kContainerMagic)) == 0;
-}
-
 std::string hex32(uint32_t value) {
   char text[9];
   std::snprintf(text, sizeof(text), "%08x", value);
@@ -606,7 +601,7 @@ int main(int argc, char** argv) {
   return tool.run([&] {
     Result<Bytes> bytes = read_file(path);
     if (!bytes.is_ok()) return tool.fail(path, bytes.status());
-    if (is_container(bytes.value()) || lower_extension(path) == "lbk")
+    if (is_container_input(path, &bytes.value()))
       return inspect_container(tool, path, bytes.value(), options);
     return inspect_mesh(tool, path, std::move(bytes).value(), options);
   });

@@ -6,12 +6,14 @@
 //   (compact by default, BASE with Draco on request), printing each
 //   section's size before and after.
 // Thin: import, check, repair, packing and encoding live in lib/ and formats/.
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "formats/container/container_layout.h"
 #include "formats/container/container_writer.h"
@@ -60,17 +62,6 @@ bool parse_tags(const std::string& text, std::vector<std::string>* tags, std::st
   return true;
 }
 
-// Told by the magic, not the name; an unreadable file is not one (the
-// mesh path then reports why it cannot be read).
-bool is_container_file(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return false;
-  std::ifstream in(path, std::ios::binary);
-  char head[sizeof(kContainerMagic)] = {};
-  return in.read(head, sizeof(head)) &&
-         std::memcmp(head, kContainerMagic, sizeof(kContainerMagic)) == 0;
-}
-
 double per(uint64_t bytes, uint64_t count) {
   return count == 0 ? 0.0 : 8.0 * static_cast<double>(bytes) / static_cast<double>(count);
 }
@@ -102,6 +93,17 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
   if (!written.is_ok()) return tool.fail(options.output, written);
   if (options.error_bits != 0 && r.splits == 0)
     tool.warn(options.output, "--error-bits changed nothing: the output has no VSPL records");
+  // A tag no input holds is most likely misspelt (tags are case-sensitive).
+  for (const auto& [option, tags] :
+       {std::pair{"--drop", &repack_options.drop}, std::pair{"--keep", &repack_options.keep}}) {
+    for (const std::string& tag : *tags) {
+      const bool found = std::any_of(r.sections.begin(), r.sections.end(),
+                                     [&](const PackedSection& s) { return s.tag == tag; });
+      if (!found)
+        tool.warn("", std::string(option) + " " + tag +
+                          ": no input has that section (tags are case-sensitive)");
+    }
+  }
 
   nlohmann::json sections = nlohmann::json::array();
   for (const PackedSection& s : r.sections) {
@@ -303,7 +305,7 @@ int main(int argc, char** argv) {
 
   bool containers = false;
   for (const std::string& input : inputs) {
-    if (is_container_file(input)) containers = true;
+    if (is_container_input(input)) containers = true;
   }
   for (const std::string& input : inputs) {
     if (same_file(input, options.output)) {
@@ -316,13 +318,13 @@ int main(int argc, char** argv) {
       return tool.usage_error("expected one MESH (or containers), got " +
                               std::to_string(inputs.size()));
     if (options.draco || options.raw || !options.drop.empty() || !options.keep.empty() ||
-        options.error_bits != 0)
+        options.error_bits != 0 || tool.has("qp") || tool.has("cl"))
       return tool.usage_error(
-          "--draco, --raw, --error-bits, --drop and --keep apply to .lbk inputs");
+          "--draco, --qp, --cl, --raw, --error-bits, --drop and --keep apply to .lbk inputs");
     return tool.run([&] { return pack(tool, inputs.front(), options); });
   }
   for (const std::string& input : inputs) {
-    if (is_container_file(input)) continue;
+    if (is_container_input(input)) continue;
     // A missing or unreadable input (or a folder) is an I/O error, not a
     // mesh given among containers.
     Result<Bytes> readable = read_file(input);
@@ -330,6 +332,8 @@ int main(int argc, char** argv) {
     return tool.usage_error("'" + input + "' is not a lodbake container (a mesh is packed alone)");
   }
   if (options.repair) return tool.usage_error("--repair applies to a mesh input");
+  if (!options.draco && (tool.has("qp") || tool.has("cl")))
+    return tool.usage_error("--qp and --cl apply with --draco");
   if (options.draco && !draco_codec_built())
     return tool.fail("", unsupported("--draco: this build has no Draco codec"));
   repack_options.quantize_bits = options.quantize_bits;

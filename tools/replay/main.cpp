@@ -288,6 +288,10 @@ int main(int argc, char** argv) {
                               (sets ? " (its steps are LoDs, not camera frames)" : ""));
     }
   }
+  // A path file's rows carry their own field of view.
+  if (tool.has("fov") && request.path != "scan" && request.path != "orbit")
+    return tool.usage_error("--fov applies to the built-in paths; the rows of --path '" +
+                            request.path + "' give their own fov");
   if (tool.has("percent")) {
     Result<std::vector<double>> parsed = parse_percents(percents);
     if (!parsed.is_ok()) return tool.usage_error(parsed.status().message());

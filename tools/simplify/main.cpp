@@ -349,6 +349,8 @@ int main(int argc, char** argv) {
           "--triangles or --error");
   }
   if (std::optional<int> code = check_quantize_bits(tool, request.quantize_bits)) return *code;
+  if (request.quantize_bits != 0 && request.pm_output.empty())
+    return tool.usage_error("--quantize applies to the --pm container (meshes keep float32)");
   for (const std::string& out : {request.output, request.pm_output})
     if (!out.empty() && same_file(request.input, out))
       return tool.usage_error("the output '" + out + "' is the input mesh itself");

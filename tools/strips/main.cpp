@@ -52,13 +52,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool is_container_file(const std::string& path) {
-  Result<Bytes> bytes = read_file(path);
-  return lower_extension(path) == "lbk" ||
-         (bytes.is_ok() && bytes.value().size() >= sizeof(kContainerMagic) &&
-          std::memcmp(bytes.value().data(), kContainerMagic, sizeof(kContainerMagic)) == 0);
-}
-
 // What the input gives: a mesh (strips-only), or a progressive mesh.
 struct Input {
   MetaInput meta;
@@ -148,8 +141,8 @@ Result<Bytes> finish_container(const Request& request, const Input& in, const By
 
 int run(const Tool& tool, const Request& request) {
   Input in;
-  const int loaded = is_container_file(request.input) ? load_container_input(tool, request, &in)
-                                                      : load_mesh_input(tool, request, &in);
+  const int loaded = is_container_input(request.input) ? load_container_input(tool, request, &in)
+                                                       : load_mesh_input(tool, request, &in);
   if (loaded != 0) return loaded;
   nlohmann::json report = {{"schema", kStripsSchema},
                            {"input", request.input},
