@@ -16,6 +16,7 @@
 //   with known unbounded allocations (tests/fuzz/draco_limits).
 #include "formats/sections/draco_codec.h"
 
+#include <cmath>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -29,6 +30,7 @@
 #include "draco/mesh/mesh.h"
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
+#include "formats/support/quantization.h"
 #include "formats/support/string_format.h"
 
 namespace lodbake {
@@ -54,12 +56,36 @@ int add_attribute(draco::Mesh* mesh, draco::GeometryAttribute::Type type, int co
   return id;
 }
 
+// Draco 1.5.5 quantizes positions over the float range max - min of the
+// widest axis. Past FLT_MAX that range is infinite, the quantized values are
+// garbage and its entropy coder then reads through a null pointer (found by
+// fuzz_draco_base: a Draco BASE decodes to such a mesh, re-encoding crashed).
+// So every coordinate must be finite and every axis's float extent too.
+Status check_position_range(const std::vector<Vec3f>& positions) {
+  for (const Vec3f& p : positions) {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      return unsupported("the Draco codec takes finite positions only");
+  }
+  Vec3f box_min;
+  Vec3f box_max;
+  bounding_box(positions, &box_min, &box_max);
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(box_max[a] - box_min[a])) {
+      return unsupported(string_printf(
+          "the Draco codec cannot quantize positions spanning %g to %g on axis %d (beyond float)",
+          box_min[a], box_max[a], a));
+    }
+  }
+  return Status::ok();
+}
+
 Result<Bytes> encode_unchecked(const TriangleMesh& mesh, const DracoOptions& options) {
   for (const MeshAttribute* attr : {&mesh.normals, &mesh.texcoords}) {
     if (attr->present() && attr->binding != AttributeBinding::kPerVertex)
       return unsupported("the Draco codec stores per-vertex attributes only, not per-corner ones");
   }
   if (mesh.triangles.empty()) return unsupported("the Draco codec needs at least one triangle");
+  LODBAKE_RETURN_IF_ERROR(check_position_range(mesh.positions));
   const size_t v = mesh.vertex_count();
   draco::Mesh out;
   out.set_num_points(static_cast<uint32_t>(v));

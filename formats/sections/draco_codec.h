@@ -28,7 +28,9 @@ struct DracoOptions {
 
 /// Encodes `mesh` (a BASE mesh) with Draco. Deterministic.
 /// \return kUnsupported when the mesh has per-corner normals or texture
-///         coordinates or no triangles (keep such a BASE raw); kInvalidInput
+///         coordinates, no triangles, or positions Draco cannot quantize
+///         (non-finite ones, an axis whose float extent overflows): keep such
+///         a BASE raw; kInvalidInput
 ///         for options out of range; kRuntime when Draco fails.
 Result<Bytes> encode_base_draco(const TriangleMesh& mesh, const DracoOptions& options);
 

@@ -8,9 +8,9 @@
 // - Lengths are stored minus 3 (a strip has at least one window) at the
 //   width of the longest; indices at bits_for_count(vertex count). Both in
 //   one LSB-first bit stream, zero padded to a byte.
-// - Strips over fewer than 3 vertices are refused, so every index costs at
-//   least 2 bits and the index count is bounded by the payload size before
-//   anything is allocated.
+// - Strips over fewer than 3 vertices are refused and a payload without
+//   strips has no indices, so every index costs at least 2 bits and the
+//   index count is bounded by the payload size before anything is allocated.
 #include "formats/sections/strp.h"
 
 #include <algorithm>
@@ -43,6 +43,11 @@ Status check_fixed(const StrpSummary& s, size_t size) {
   if (uint64_t{s.strip_count} * 3 > s.index_count)
     return bad_strp(string_printf("%u strips need at least %" PRIu64 " indices, the header has %u",
                                   s.strip_count, uint64_t{s.strip_count} * 3, s.index_count));
+  // Without strips the index width can be 0 bits (fewer than 3 vertices),
+  // so the size check below would not bound the index count: a 13-byte
+  // payload could make the decoder reserve 2^32 indices (fuzz_strp_section).
+  if (s.strip_count == 0 && s.index_count != 0)
+    return bad_strp(string_printf("no strips, the header has %u indices", s.index_count));
   if (s.length_bits > 32) return bad_strp(string_printf("length width %u above 32", s.length_bits));
   const uint64_t bytes = (stream_bits(s) + 7) / 8;
   if (bytes != size - kStrpFixedBytes)

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -453,6 +454,25 @@ TEST(DracoBase, RefusesPerCornerAttributesAndForeignBitstreams) {
   ASSERT_FALSE(bad.is_ok());
   EXPECT_NE(bad.status().message().find("section BASE: draco: bitstream version 1.0"),
             std::string::npos);
+}
+
+// Draco quantizes over the float extent max - min; an axis from -2e38 to
+// 2e38 overflows it and Draco 1.5.5's encoder then crashed (fuzz_draco_base).
+TEST(DracoBase, RefusesPositionsWhoseExtentOverflowsFloat) {
+  if (!draco_codec_built()) GTEST_SKIP() << "built without the Draco codec";
+  TriangleMesh mesh;
+  mesh.positions = {Vec3f{0, 0, -2e38f}, Vec3f{1, 0, 2e38f}, Vec3f{0, 1, 0}};
+  mesh.triangles = {Triangle{0, 1, 2}};
+  Result<Bytes> refused = encode_base_draco(mesh, DracoOptions{});
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_EQ(refused.status().kind(), ErrorKind::kUnsupported);
+  EXPECT_EQ(refused.status().message(),
+            "the Draco codec cannot quantize positions spanning -2e+38 to 2e+38 on axis 2 "
+            "(beyond float)");
+  mesh.positions[2][0] = std::numeric_limits<float>::quiet_NaN();
+  refused = encode_base_draco(mesh, DracoOptions{});
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_EQ(refused.status().message(), "the Draco codec takes finite positions only");
 }
 
 // Round trip of a whole container, compact and with Draco: same ids, the

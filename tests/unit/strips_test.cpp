@@ -325,6 +325,18 @@ TEST(StripsSection, CodecRoundTripsAndRefusesDamage) {
   EXPECT_TRUE(same_oriented_triangles(extracted.value(), mesh));
 }
 
+// No strips over 0 vertices makes the index width 0 bits, so the payload
+// size cannot bound N; N must then be 0 (fuzz_strp_section: N = 0xfff60000
+// in 13 bytes reserved 16 GiB of indices).
+TEST(StripsSection, RefusesIndicesWithoutStrips) {
+  const Bytes strp = {0, 0, 0, 0, 0, 0, 0, 0, 0x00, 0x00, 0xf6, 0xff, 0};
+  Result<TriangleStrips> decoded = decode_strp(strp.data(), strp.size());
+  ASSERT_FALSE(decoded.is_ok());
+  EXPECT_EQ(decoded.status().message(),
+            "LBK-E023: section STRP: no strips, the header has 4294311936 indices");
+  EXPECT_FALSE(read_strp_summary(strp.data(), strp.size()).is_ok());
+}
+
 // The worked examples of docs/format.md decode to what the text says.
 TEST(FormatExamples, StrpAndSetsBytesOfTheSpecification) {
   const Bytes strp = {0x06, 0, 0, 0, 0x01, 0, 0, 0, 0x06, 0, 0, 0, 0x02, 0x0f, 0x4a, 0x09};
