@@ -53,6 +53,9 @@ Result<std::vector<double>> parse_ratios(const std::string& text) {
     if (item.empty() || end == nullptr || *end != '\0' || !(r > 0 && r <= 1))
       return Status(ErrorKind::kUsage,
                     "--lods takes ratios in (0, 1] separated by commas, not '" + item + "'");
+    // Two levels of one ratio would be two identical files.
+    if (std::find(ratios.begin(), ratios.end(), r) != ratios.end())
+      return Status(ErrorKind::kUsage, "--lods lists the ratio " + item + " twice");
     ratios.push_back(r);
   }
   if (ratios.empty()) return Status(ErrorKind::kUsage, "--lods needs at least one ratio");
@@ -349,6 +352,13 @@ int main(int argc, char** argv) {
           "--triangles or --error");
   }
   if (std::optional<int> code = check_quantize_bits(tool, request.quantize_bits)) return *code;
+  // Checked here too (the engine refuses them as well), so that they are
+  // usage errors, not errors about the input.
+  if (!(request.options.boundary_weight >= 0 && std::isfinite(request.options.boundary_weight)))
+    return tool.usage_error("--boundary-weight takes a finite value >= 0");
+  if (!(request.options.max_normal_change_degrees >= 0 &&
+        request.options.max_normal_change_degrees <= 180))
+    return tool.usage_error("--max-normal-change takes degrees in [0, 180]");
   if (request.quantize_bits != 0 && request.pm_output.empty())
     return tool.usage_error("--quantize applies to the --pm container (meshes keep float32)");
   for (const std::string& out : {request.output, request.pm_output})
