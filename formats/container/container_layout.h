@@ -23,6 +23,7 @@ inline bool starts_with_container_magic(const uint8_t* data, size_t size) {
   }
   return true;
 }
+
 inline constexpr uint16_t kFormatMajor = 1;
 inline constexpr uint16_t kFormatMinor = 0;
 inline constexpr size_t kHeaderSize = 48;

@@ -4,7 +4,6 @@
 // to the bytes actually present instead of rejecting it.
 #include "formats/container/container_listing.h"
 
-#include <cstring>
 #include <new>
 
 #include "formats/container/container_reader.h"
@@ -20,8 +19,7 @@ ContainerListing list_container(const uint8_t* data, size_t size) {
     Result<Container> strict = read_container(data, size);
     if (!strict.is_ok()) listing.status = strict.status();
 
-    listing.magic_ok =
-        size >= sizeof(kContainerMagic) && std::memcmp(data, kContainerMagic, 8) == 0;
+    listing.magic_ok = starts_with_container_magic(data, size);
     if (size < kHeaderSize) return listing;
     listing.header_read = true;
     listing.header = decode_header(data);

@@ -580,7 +580,7 @@ Result<Bytes> decode_v1(const uint8_t* data, size_t size, const TriangleMesh& ba
 }
 
 // ---------------------------------------------------------------------------
-// Layout versions 2 and 3 (see the file comment).
+// Layout versions 2, 3 and 4 (see the file comment).
 
 // From this many splits on, the writer does not try version 1: version 2
 // (and 3) is smaller on every real mesh from a few hundred splits up (the

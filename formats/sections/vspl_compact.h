@@ -26,7 +26,7 @@ namespace lodbake {
 /// The newest layout version; readers accept 1 to 4.
 inline constexpr uint8_t kVsplCompactVersion = 4;
 
-/// What each part of a version-2 or -3 payload costs, in bits: the range coder's
+/// What each part of a version-2, -3 or -4 payload costs, in bits: the range coder's
 /// information content of the part's decisions (the stream's 5 framing
 /// bytes excluded), and the bytes copied verbatim.
 struct VsplCompactStats {
@@ -69,8 +69,9 @@ Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const Tri
 ///         needing more bits than remain, an index, residual or code out of
 ///         range, a record with both wings missing or a repeated vertex,
 ///         nonzero padding bits (version 1), a range-coded stream that is
-///         not canonical (versions 2 and 3) or trailing bytes; kRuntime when memory
-///         runs out. Never throws.
+///         not canonical (versions 2 to 4), an error shift over 31 or not the
+///         errors' largest (version 4) or trailing bytes; kRuntime when
+///         memory runs out. Never throws.
 Result<Bytes> decode_vspl_compact(const uint8_t* data, size_t size, const TriangleMesh& base);
 
 }  // namespace lodbake

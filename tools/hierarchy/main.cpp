@@ -7,7 +7,6 @@
 // builds and encoding live in lib/ and formats/.
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -114,6 +113,8 @@ int run(const Tool& tool, const Request& request) {
   Result<Bytes> bytes = read_file(request.input);
   if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
   if (is_container_input(request.input, &bytes.value())) {
+    // As lodbake-pack: a container's progressive mesh is not repaired.
+    if (request.repair) return tool.usage_error("--repair applies to a mesh input");
     if (int code = load_pm_input(tool, request.input, bytes.value(), &in); code != 0) return code;
   } else {
     LoadOptions load;
@@ -353,9 +354,6 @@ int main(int argc, char** argv) {
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;
   if (request.output.empty()) return tool.usage_error("missing -o OUT.lbk");
-  // As lodbake-pack: a container's progressive mesh is not repaired.
-  if (request.repair && is_container_input(request.input))
-    return tool.usage_error("--repair applies to a mesh input");
   std::stringstream list(request.sections);
   std::string item;
   while (std::getline(list, item, ',')) {

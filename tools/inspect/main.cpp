@@ -25,7 +25,6 @@
 #include "formats/support/bit_packing.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
-#include "lib/meshio/file_name.h"
 #include "lib/meshio/mesh_writers.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/pm_replay.h"

@@ -7,9 +7,6 @@
 //   section's size before and after.
 // Thin: import, check, repair, packing and encoding live in lib/ and formats/.
 #include <algorithm>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>

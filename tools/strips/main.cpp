@@ -3,7 +3,6 @@
 // (lib/strips/sets_build.h), written as a container. Thin: the algorithms
 // live in lib/strips and lib/simplify, the codecs in formats/sections.
 #include <chrono>
-#include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -19,7 +18,6 @@
 #include "formats/support/file_io.h"
 #include "lib/core/sha256.h"
 #include "lib/ingest/load_mesh.h"
-#include "lib/meshio/file_name.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
 #include "lib/strips/sets_build.h"
