@@ -34,6 +34,11 @@
 //   faces (one on a boundary), which rules out tetrahedron pockets, duplicate faces and vanishing
 //   components; no moved face may turn more than max_normal_change_degrees or
 //   become (nearly) degenerate;
+// - height guard (SimplifyOptions::height_guard, half placement): vt may not
+//   lie farther from the plane of a moved face than the pass's error scale
+//   allows. The cost is a mean over vt's faces, which one face tilting away
+//   from the surface (a chord across a thin feature or a curved border)
+//   hardly moves; vt's height above that face bounds how far it strays;
 // - adjacency: per-vertex corner lists (the next and previous vertex of each
 //   face) in one flat array, rebuilt at each pass; a collapse only maps vt to
 //   vs (alias_), lists read during the pass go through that map, and the
@@ -72,6 +77,12 @@ constexpr double kPassLimitFactor = 1.5;
 // less time with it, measured with 4, 8, 16 and 32 (16 kept; the others
 // within 2 %).
 constexpr size_t kListAhead = 16;
+// The height guard's allowance: a moved face may pass at most
+// sqrt(kHeightGuardFactor * scale) from the removed vertex, where scale is
+// the larger of the collapse's cost and the pass's cost limit (both squared
+// lengths). Chosen on the three benchmark meshes in issue 3's fourth round
+// (docs/simplify.md, "The height guard"), then checked on 18 others.
+constexpr double kHeightGuardFactor = 4.0 / 3.0;
 // Below this many live triangles the listing runs on one thread: starting
 // the second costs more than it saves.
 constexpr size_t kParallelListing = 8192;
@@ -266,7 +277,7 @@ struct alignas(32) AlignedQuadric {
   Quadric q;
 };
 
-enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther };
+enum class Verdict { kOk, kNotAnEdge, kTooCostly, kLink, kFlip, kOther, kHeight };
 
 // True when corner values a and b of `attr` differ.
 bool values_differ(const MeshAttribute& attr, uint32_t a, uint32_t b) {
@@ -330,6 +341,7 @@ class Engine {
       max_cost_float_ = std::nextafter(max_cost_float_, std::numeric_limits<float>::infinity());
     }
     cos_limit_ = std::cos(options.max_normal_change_degrees * kPi / 180.0);
+    height_guard_ = options.height_guard && options.placement == Placement::kHalf;
   }
 
   EngineState run() {
@@ -671,16 +683,22 @@ class Engine {
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
       if (c.cost > limit() && past_limit) break;
       if (locked_[c.vt] | locked_[c.vs]) continue;
+      height_scale_ = std::min(limit(), settings_.max_cost);
       // The listed cost is rounded to float; the stop test uses the exact one.
       Verdict verdict = try_collapse(c.vt, c.vs, cost(c.vt, c.vs));
-      if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther) {
+      if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther ||
+          verdict == Verdict::kHeight) {
         // The other direction, when it fits in this pass.
         const double reverse = cost(c.vs, c.vt);
         if (reverse <= limit()) verdict = try_collapse(c.vs, c.vt, reverse);
       }
       if (verdict == Verdict::kOk) {
         ++collapses;
-      } else {
+      } else if (verdict != Verdict::kHeight || past_limit) {
+        // Height refusals move the limit on only once the pass has its
+        // minimum share: early in a pass the limit is low, and moving it
+        // for each of them would let the pass run on into costlier edges
+        // whose faces the guard then allows.
         ++goal_index;
       }
     }
@@ -738,6 +756,8 @@ class Engine {
   Verdict try_collapse(uint32_t vt, uint32_t vs, double exact_cost) {
     if (!(exact_cost <= settings_.max_cost)) return Verdict::kTooCostly;
     const Vec3f p = placement(vt, vs);
+    height_bound_ =
+        height_guard_ ? kHeightGuardFactor * std::max(exact_cost, height_scale_) : kInfinity;
     const Verdict verdict = check(vt, vs, p);
     switch (verdict) {
       case Verdict::kOk:
@@ -752,6 +772,9 @@ class Engine {
         break;
       case Verdict::kOther:
         ++state_.stats.refused_other;
+        break;
+      case Verdict::kHeight:
+        ++state_.stats.refused_height;
         break;
       case Verdict::kNotAnEdge:
       case Verdict::kTooCostly:
@@ -888,6 +911,10 @@ class Engine {
         return Verdict::kOther;
       }
     }
+    // The moved faces before the link condition: with the height guard most
+    // refusals are found here, before vs's fan is read.
+    const Verdict moved = check_moved_faces(info_t.position, vs, p);
+    if (moved != Verdict::kOk) return moved;
     // Link condition: the only common neighbours are the wing vertices.
     const bool optimal = options_.placement == Placement::kOptimal;
     fan_s_.clear();
@@ -905,13 +932,32 @@ class Engine {
         if (!vs_boundary) break;  // inside, every neighbour is some face's next
       }
     }
-    if (!faces_keep_orientation(info_t.position, vs, p, fan_)) return Verdict::kFlip;
     if (optimal && !faces_keep_orientation(info_s.position, vt, p, fan_s_)) {
       return Verdict::kFlip;
     }
     vl_ = vl;
     vr_ = vr;
     shared_ = shared;
+    return Verdict::kOk;
+  }
+
+  // vt's faces not containing vs, moved from `from` (vt's position) to p:
+  // kFlip when one turns by more than the threshold or becomes (nearly)
+  // degenerate, kHeight when `from` lies farther from its new plane than
+  // height_bound_ allows (a squared length), kOk otherwise. One cross product
+  // serves both tests.
+  Verdict check_moved_faces(const Vec3f& from, uint32_t vs, const Vec3f& p) const {
+    const Vec3d pd = to_d(p);
+    const Vec3d a = to_d(from);
+    for (const Corner& corner : fan_) {
+      if (corner.next == vs || corner.prev == vs) continue;
+      const Vec3d b = to_d(vinfo_[corner.next].position);
+      const Vec3d c = to_d(vinfo_[corner.prev].position);
+      Vec3d normal;
+      if (!keeps_orientation(a, b, c, pd, cos_limit_, &normal)) return Verdict::kFlip;
+      const double height = dot(normal, sub(a, pd));  // times |normal|
+      if (height * height > height_bound_ * dot(normal, normal)) return Verdict::kHeight;
+    }
     return Verdict::kOk;
   }
 
@@ -1042,6 +1088,10 @@ class Engine {
   float max_cost_float_ = 0;  // settings_.max_cost rounded up to float
   uint64_t since_progress_ = 0;
   double cos_limit_ = -1;
+  // The height guard (half placement only: in optimal placement vs moves too).
+  bool height_guard_ = false;
+  double height_scale_ = kInfinity;  // the pass's share of the bound, set per candidate
+  double height_bound_ = kInfinity;  // the bound of the collapse being checked
 };
 
 }  // namespace

@@ -70,6 +70,9 @@ Status check_options(const SimplifyOptions& o) {
   if (!(o.max_normal_change_degrees >= 0 && o.max_normal_change_degrees <= 180)) {
     return Status(ErrorKind::kUsage, "maximum normal change must be in [0, 180] degrees");
   }
+  if (o.height_guard && o.placement != Placement::kHalf) {
+    return Status(ErrorKind::kUsage, "the height guard needs half placement");
+  }
   return Status::ok();
 }
 

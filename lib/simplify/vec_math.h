@@ -42,10 +42,11 @@ inline int corner_of(const Triangle& t, uint32_t v) {
 /// p below 1e-10) or its normal turns from (a, b, c)'s by more than the angle
 /// whose cosine is `cos_limit`; true when (a, b, c) itself has no normal.
 inline bool keeps_orientation(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& p,
-                              double cos_limit) {
+                              double cos_limit, Vec3d* new_normal = nullptr) {
   const Vec3d eb = sub(b, p);
   const Vec3d ec = sub(c, p);
   const Vec3d n_new = cross(eb, ec);
+  if (new_normal) *new_normal = n_new;
   const double len_new = dot(n_new, n_new);
   if (!(len_new > 1e-20 * dot(eb, eb) * dot(ec, ec))) return false;
   const Vec3d n_old = cross(sub(b, a), sub(c, a));

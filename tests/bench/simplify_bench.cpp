@@ -24,7 +24,9 @@
 // relative to the input's bounding-box diagonal).
 //
 //   bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] [--peers LIST]
-//                  [--threads N] [--samples N] [--markdown] FILE...
+//                  [--threads N] [--height-guard] [--samples N] [--markdown] FILE...
+//
+// --height-guard runs lodbake with SimplifyOptions::height_guard.
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
@@ -97,10 +99,12 @@ TriangleMesh compact(const std::vector<Vec3f>& positions, const std::vector<Tria
 
 #ifdef LODBAKE_BENCH_WITH_SIMPLIFY
 unsigned lodbake_threads = 1;
+bool lodbake_height_guard = false;
 
 Outcome run_lodbake(const TriangleMesh& input, uint64_t target) {
   lodbake::SimplifyOptions options;
   options.threads = lodbake_threads;
+  options.height_guard = lodbake_height_guard;
   options.placement = lodbake::Placement::kHalf;
   options.target_triangles = target;
   options.record_pm = true;
@@ -337,10 +341,11 @@ std::vector<std::string> split_list(const std::string& text) {
 }
 
 int usage() {
-  std::fprintf(stderr,
-               "usage: bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] "
-               "[--peers lodbake,meshopt,openmesh,cgal] [--threads N] [--samples N] [--markdown] "
-               "FILE...\n");
+  std::fprintf(
+      stderr,
+      "usage: bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] "
+      "[--peers lodbake,meshopt,openmesh,cgal] [--threads N] [--height-guard] [--samples N] "
+      "[--markdown] FILE...\n");
   return 1;
 }
 
@@ -372,6 +377,10 @@ int main(int argc, char** argv) {
       lodbake_threads = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
 #else
       ++i;
+#endif
+    } else if (arg == "--height-guard") {
+#ifdef LODBAKE_BENCH_WITH_SIMPLIFY
+      lodbake_height_guard = true;
 #endif
     } else if (arg == "--samples" && has_value) {
       distance.area_samples = std::strtoull(argv[++i], nullptr, 10);

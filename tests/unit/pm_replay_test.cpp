@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 
 #include "lib/check/mesh_check.h"
 #include "lib/simplify/simplify.h"
@@ -14,10 +15,11 @@
 namespace lodbake {
 namespace {
 
-ProgressiveMesh record(const TriangleMesh& mesh, Placement placement) {
+ProgressiveMesh record(const TriangleMesh& mesh, Placement placement, bool height_guard = false) {
   SimplifyOptions options;
   options.record_pm = true;
   options.placement = placement;
+  options.height_guard = height_guard;
   Result<SimplifyResult> result = simplify(mesh, options);
   EXPECT_TRUE(result.is_ok()) << result.status().message();
   if (!result.is_ok()) return ProgressiveMesh();
@@ -33,16 +35,18 @@ void expect_clean(const TriangleMesh& mesh, const std::string& what) {
   EXPECT_EQ(r.duplicate_triangles, 0u) << what;
 }
 
-class PmReplayOnSharedMesh : public ::testing::TestWithParam<const char*> {};
+// Each mesh without and with the height guard.
+class PmReplayOnSharedMesh : public ::testing::TestWithParam<std::tuple<const char*, bool>> {};
 
 TEST_P(PmReplayOnSharedMesh, FullRefinementIsTheInputAndEveryPrefixIsClean) {
-  TriangleMesh input = load_clean_mesh(GetParam());
+  const char* name = std::get<0>(GetParam());
+  TriangleMesh input = load_clean_mesh(name);
   ASSERT_GT(input.triangles.size(), 0u);
   // Per-corner attributes (spot's) cannot go into a PM; this test is about
   // connectivity and positions.
   input.normals = MeshAttribute();
   input.texcoords = MeshAttribute();
-  const ProgressiveMesh pm = record(input, Placement::kHalf);
+  const ProgressiveMesh pm = record(input, Placement::kHalf, std::get<1>(GetParam()));
   ASSERT_EQ(pm.full_vertex_count(), input.positions.size());
   // Simplified as far as legal: the base is small.
   EXPECT_LT(pm.base.triangles.size(), input.triangles.size() / 4 + 8);
@@ -63,7 +67,7 @@ TEST_P(PmReplayOnSharedMesh, FullRefinementIsTheInputAndEveryPrefixIsClean) {
     ASSERT_EQ(r.mesh().triangles.size(), expected_triangles);
     if (i + 1 == next_sample * splits / samples) {
       ++next_sample;
-      expect_clean(r.mesh(), std::string(GetParam()) + " after " + std::to_string(i + 1));
+      expect_clean(r.mesh(), std::string(name) + " after " + std::to_string(i + 1));
     }
   }
   ASSERT_TRUE(r.fully_refined());
@@ -75,12 +79,15 @@ TEST_P(PmReplayOnSharedMesh, FullRefinementIsTheInputAndEveryPrefixIsClean) {
 
 INSTANTIATE_TEST_SUITE_P(
     SharedMeshes, PmReplayOnSharedMesh,
-    ::testing::Values("cgal_tetrahedron.off", "cgal_cube_quad.off", "igl_decimated-knight.off",
-                      "npm_bunny.obj", "cgal_mushroom.off", "cgal_elephant.off", "c3d_spot.obj",
-                      "cgal_knot2.off", "cgal_fandisk.off", "igl_camelhead.off",
-                      "stanford_bun_zipper.ply", "cgal_elephant-with-holes.off",
-                      "cgal_blobby_3cc.off", "cgal_mpi.off", "igl_fertility.off", "cgal_cheese.off",
-                      "cgal_camel.off", "cgal_ChineseDragon-10kv.off", "c3d_rocker-arm.obj"));
+    ::testing::Combine(::testing::Values("cgal_tetrahedron.off", "cgal_cube_quad.off",
+                                         "igl_decimated-knight.off", "npm_bunny.obj",
+                                         "cgal_mushroom.off", "cgal_elephant.off", "c3d_spot.obj",
+                                         "cgal_knot2.off", "cgal_fandisk.off", "igl_camelhead.off",
+                                         "stanford_bun_zipper.ply", "cgal_elephant-with-holes.off",
+                                         "cgal_blobby_3cc.off", "cgal_mpi.off", "igl_fertility.off",
+                                         "cgal_cheese.off", "cgal_camel.off",
+                                         "cgal_ChineseDragon-10kv.off", "c3d_rocker-arm.obj"),
+                       ::testing::Bool()));
 
 TEST(PmReplay, OptimalPlacementReplaysExactly) {
   const TriangleMesh input = load_clean_mesh("cgal_mushroom.off");

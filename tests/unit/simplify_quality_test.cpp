@@ -16,6 +16,22 @@ namespace {
 // diagonal with the same metric. The issue asks for no larger error than
 // meshoptimizer, in half placement with the PM recorded.
 constexpr double kMeshoptimizerBunny10Percent = 2.93e-3;
+// The same at 1%: 1.354e-2. Without the height guard lodbake's is 1.66e-2
+// there (docs/benchmarks.md); with it 1.20e-2.
+constexpr double kMeshoptimizerBunny1Percent = 1.354e-2;
+
+double bunny_hausdorff(const TriangleMesh& bunny, double ratio, bool height_guard) {
+  SimplifyOptions options;
+  options.target_ratio = ratio;
+  options.record_pm = true;
+  options.height_guard = height_guard;
+  Result<SimplifyResult> result = simplify(bunny, options);
+  EXPECT_TRUE(result.is_ok()) << result.status().message();
+  if (!result.is_ok()) return 0;
+  Result<SurfaceDistance> distance = measure_surface_distance(bunny, result.value().mesh);
+  EXPECT_TRUE(distance.is_ok()) << distance.status().message();
+  return distance.is_ok() ? distance.value().hausdorff_relative : 0;
+}
 
 TEST(SimplifyQuality, BunnyAtTenPercentIsNoWorseThanMeshoptimizer) {
   TriangleMesh bunny = load_clean_mesh("stanford_bun_zipper.ply");
@@ -30,6 +46,19 @@ TEST(SimplifyQuality, BunnyAtTenPercentIsNoWorseThanMeshoptimizer) {
   ASSERT_TRUE(distance.is_ok()) << distance.status().message();
   EXPECT_LT(distance.value().hausdorff_relative, kMeshoptimizerBunny10Percent);
   EXPECT_GT(distance.value().hausdorff_relative, 0.0);
+}
+
+// The height guard is lodbake's answer where the mean quadric error misses
+// a face tilting away: on the bunny it lowers the Hausdorff error at 10%
+// (2.61e-3 -> 1.96e-3) and brings 1% under meshoptimizer's.
+TEST(SimplifyQuality, HeightGuardLowersTheBunnysHausdorffError) {
+  const TriangleMesh bunny = load_clean_mesh("stanford_bun_zipper.ply");
+  const double plain = bunny_hausdorff(bunny, 0.1, false);
+  const double guarded = bunny_hausdorff(bunny, 0.1, true);
+  EXPECT_GT(guarded, 0.0);
+  EXPECT_LT(guarded, plain);
+  EXPECT_LT(guarded, kMeshoptimizerBunny10Percent);
+  EXPECT_LT(bunny_hausdorff(bunny, 0.01, true), kMeshoptimizerBunny1Percent);
 }
 
 }  // namespace

@@ -134,9 +134,10 @@ TEST(Simplify, RunsToTheEndWithoutCriteria) {
 
 TEST(Simplify, IsDeterministic) {
   const TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
-  for (Placement placement : {Placement::kHalf, Placement::kOptimal}) {
+  for (int variant = 0; variant < 3; ++variant) {
     SimplifyOptions options;
-    options.placement = placement;
+    options.placement = variant == 1 ? Placement::kOptimal : Placement::kHalf;
+    options.height_guard = variant == 2;
     options.record_pm = true;
     options.target_ratio = 0.1;
     const SimplifyResult a = run(mesh, options);
@@ -145,6 +146,33 @@ TEST(Simplify, IsDeterministic) {
     ASSERT_TRUE(a.pm && b.pm);
     EXPECT_EQ(*a.pm, *b.pm);
   }
+}
+
+// The guard only adds refusals: on the bunny it refuses thousands of
+// collapses, reaches the same target and gives another sequence.
+TEST(Simplify, HeightGuardRefusesCollapsesAndStillReachesTheTarget) {
+  const TriangleMesh bunny = load_clean_mesh("stanford_bun_zipper.ply");
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  const SimplifyResult plain = run(bunny, options);
+  options.height_guard = true;
+  const SimplifyResult guarded = run(bunny, options);
+  EXPECT_EQ(plain.stats.refused_height, 0u);
+  EXPECT_GT(guarded.stats.refused_height, 1000u);
+  EXPECT_EQ(guarded.stats.output_triangles, plain.stats.output_triangles);
+  EXPECT_FALSE(guarded.mesh == plain.mesh);
+  expect_clean(guarded.mesh);
+}
+
+TEST(Simplify, HeightGuardNeedsHalfPlacement) {
+  const TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
+  SimplifyOptions options;
+  options.placement = Placement::kOptimal;
+  options.height_guard = true;
+  Result<SimplifyResult> r = simplify(mesh, options);
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().kind(), ErrorKind::kUsage);
+  EXPECT_NE(r.status().message().find("half placement"), std::string::npos);
 }
 
 // The listing, the quadric set-up, the input check and the assembly run in
