@@ -913,7 +913,7 @@ class Engine {
     }
     // The moved faces before the link condition: with the height guard most
     // refusals are found here, before vs's fan is read.
-    const Verdict moved = check_moved_faces(info_t.position, vs, p);
+    const Verdict moved = check_moved_faces(info_t.position, vs, p, fan_);
     if (moved != Verdict::kOk) return moved;
     // Link condition: the only common neighbours are the wing vertices.
     const bool optimal = options_.placement == Placement::kOptimal;
@@ -932,8 +932,10 @@ class Engine {
         if (!vs_boundary) break;  // inside, every neighbour is some face's next
       }
     }
-    if (optimal && !faces_keep_orientation(info_s.position, vt, p, fan_s_)) {
-      return Verdict::kFlip;
+    if (optimal) {
+      // vs moves too (the guard is off in optimal placement: kFlip or kOk).
+      const Verdict moved_s = check_moved_faces(info_s.position, vt, p, fan_s_);
+      if (moved_s != Verdict::kOk) return moved_s;
     }
     vl_ = vl;
     vr_ = vr;
@@ -941,16 +943,17 @@ class Engine {
     return Verdict::kOk;
   }
 
-  // vt's faces not containing vs, moved from `from` (vt's position) to p:
-  // kFlip when one turns by more than the threshold or becomes (nearly)
-  // degenerate, kHeight when `from` lies farther from its new plane than
-  // height_bound_ allows (a squared length), kOk otherwise. One cross product
-  // serves both tests.
-  Verdict check_moved_faces(const Vec3f& from, uint32_t vs, const Vec3f& p) const {
+  // The faces of `fan` (around a vertex at `from`) not containing `other`,
+  // moved from `from` to p: kFlip when one turns by more than the threshold
+  // or becomes (nearly) degenerate, kHeight when `from` lies farther from
+  // its new plane than height_bound_ allows (a squared length; infinite
+  // without the guard), kOk otherwise. One cross product serves both tests.
+  Verdict check_moved_faces(const Vec3f& from, uint32_t other, const Vec3f& p,
+                            const std::vector<Corner>& fan) const {
     const Vec3d pd = to_d(p);
     const Vec3d a = to_d(from);
-    for (const Corner& corner : fan_) {
-      if (corner.next == vs || corner.prev == vs) continue;
+    for (const Corner& corner : fan) {
+      if (corner.next == other || corner.prev == other) continue;
       const Vec3d b = to_d(vinfo_[corner.next].position);
       const Vec3d c = to_d(vinfo_[corner.prev].position);
       Vec3d normal;
@@ -959,22 +962,6 @@ class Engine {
       if (height * height > height_bound_ * dot(normal, normal)) return Verdict::kHeight;
     }
     return Verdict::kOk;
-  }
-
-  // Moving a vertex from `from` to p: does every face of its `fan` not
-  // containing `other` keep its orientation within the threshold and stay
-  // non-degenerate?
-  bool faces_keep_orientation(const Vec3f& from, uint32_t other, const Vec3f& p,
-                              const std::vector<Corner>& fan) const {
-    const Vec3d pd = to_d(p);
-    const Vec3d a = to_d(from);
-    for (const Corner& corner : fan) {
-      if (corner.next == other || corner.prev == other) continue;
-      const Vec3d b = to_d(vinfo_[corner.next].position);
-      const Vec3d c = to_d(vinfo_[corner.prev].position);
-      if (!keeps_orientation(a, b, c, pd, cos_limit_)) return false;
-    }
-    return true;
   }
 
   // ---- the collapse ----
