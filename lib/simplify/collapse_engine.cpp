@@ -79,9 +79,12 @@ constexpr double kPassLimitFactor = 1.5;
 constexpr size_t kListAhead = 16;
 // The height guard's allowance: a moved face may pass at most
 // sqrt(kHeightGuardFactor * scale) from the removed vertex, where scale is
-// the larger of the collapse's cost and the pass's cost limit (both squared
-// lengths). Chosen on the three benchmark meshes in issue 3's fourth round
-// (docs/simplify.md, "The height guard"), then checked on 18 others.
+// the larger of the collapse's cost and the pass's cost limit (or max_cost
+// when that is smaller), both squared lengths. On a plane the costs and the
+// heights are both the rounding of the positions, so the guard needs no
+// floor of its own (Simplify.HeightGuardSimplifiesATiltedPlane). Chosen on
+// the three benchmark meshes in issue 3's fourth round (docs/simplify.md,
+// "The height guard"), then checked on 18 others.
 constexpr double kHeightGuardFactor = 4.0 / 3.0;
 // Below this many live triangles the listing runs on one thread: starting
 // the second costs more than it saves.
@@ -668,7 +671,8 @@ class Engine {
     const uint64_t goal = triangle_count_ - target;  // triangles this pass may remove
     // The candidate whose cost sets the limit: the goal's collapse count (most
     // remove two triangles), moved on by every refused candidate, which does
-    // not count towards the goal (as in meshoptimizer).
+    // not count towards the goal (as in meshoptimizer); height refusals only
+    // once the pass has its minimum share (below).
     size_t goal_index = goal / 2;
     auto limit = [&] {
       return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost
@@ -676,6 +680,7 @@ class Engine {
     };
     const uint64_t before = triangle_count_;
     uint64_t collapses = 0;
+    height_scale_ = 0;
     for (size_t i = 0; i < candidates_.size(); ++i) {
       prefetch_candidate(i);
       const Candidate& c = candidates_[i];
@@ -683,7 +688,11 @@ class Engine {
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
       if (c.cost > limit() && past_limit) break;
       if (locked_[c.vt] | locked_[c.vs]) continue;
-      height_scale_ = std::min(limit(), settings_.max_cost);
+      // The guard's scale follows the limit; once refusals have moved the
+      // limit past the list's end it keeps the last finite one, and a pass
+      // that never had one holds each collapse to its own cost.
+      const double scale = std::min(limit(), settings_.max_cost);
+      if (scale < kInfinity) height_scale_ = scale;
       // The listed cost is rounded to float; the stop test uses the exact one.
       Verdict verdict = try_collapse(c.vt, c.vs, cost(c.vt, c.vs));
       if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther ||
@@ -1077,8 +1086,8 @@ class Engine {
   double cos_limit_ = -1;
   // The height guard (half placement only: in optimal placement vs moves too).
   bool height_guard_ = false;
-  double height_scale_ = kInfinity;  // the pass's share of the bound, set per candidate
-  double height_bound_ = kInfinity;  // the bound of the collapse being checked
+  double height_scale_ = 0;          // the pass's limit, as the bound's floor (a squared length)
+  double height_bound_ = kInfinity;  // the collapse being checked: its squared height limit
 };
 
 }  // namespace

@@ -164,6 +164,49 @@ TEST(Simplify, HeightGuardRefusesCollapsesAndStillReachesTheTarget) {
   expect_clean(guarded.mesh);
 }
 
+// A tilted plane far from the origin: the costs, the pass limits and the
+// heights are all the rounding of the float positions, so the guard, which
+// compares heights with costs, must still let the plane be simplified.
+TEST(Simplify, HeightGuardSimplifiesATiltedPlane) {
+  TriangleMesh plane;
+  const int n = 40;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const float x = static_cast<float>(i) / n;
+      const float y = static_cast<float>(j) / n;
+      plane.positions.push_back(
+          {1000 + 0.6f * x + 0.3f * y, -500 + 0.2f * x + 0.7f * y, 250 + 0.4f * x - 0.5f * y});
+    }
+  }
+  for (uint32_t j = 0; j < n; ++j) {
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t a = j * (n + 1) + i;
+      plane.triangles.push_back({a, a + 1, a + n + 2});
+      plane.triangles.push_back({a, a + n + 2, a + n + 1});
+    }
+  }
+  SimplifyOptions options;
+  options.target_ratio = 0.1;
+  options.height_guard = true;
+  const SimplifyResult r = run(plane, options);
+  EXPECT_LE(r.mesh.triangle_count(), plane.triangle_count() / 10);
+  expect_clean(r.mesh);
+}
+
+// With max_error the guard's scale is capped by it; the error bound holds.
+TEST(Simplify, HeightGuardKeepsTheMaxError) {
+  const TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
+  SimplifyOptions options;
+  options.max_error = 0.004;
+  options.height_guard = true;
+  options.record_pm = true;
+  const SimplifyResult r = run(mesh, options);
+  EXPECT_GT(r.stats.collapses, 100u);
+  EXPECT_GT(r.stats.refused_height, 0u);
+  EXPECT_LE(r.stats.max_collapse_error, 0.004);
+  expect_clean(r.mesh);
+}
+
 TEST(Simplify, HeightGuardNeedsHalfPlacement) {
   const TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
   SimplifyOptions options;
