@@ -21,6 +21,7 @@ BENCH_PACKAGES := libopenmesh-apps
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
 
 .PHONY: all deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz bench \
+  bench-heldout \
   format format-check clean
 
 all: build
@@ -96,6 +97,14 @@ BENCH_MESHES := $(BUILD)/data/dragon_vrip.ply $(SHARED_DATA)/meshes/stanford_bun
 BENCH_RUNS ?= 3
 SIMPLIFY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
   $(SHARED_DATA)/meshes/cgal_armadillo.off $(BUILD)/data/dragon_vrip.ply
+# The height guard's check on meshes it was not tuned on: the other clean
+# meshes with at least 1,000 triangles (docs/benchmarks.md, "The height
+# guard"), errors only (one run), without and with the guard.
+HELDOUT_MESHES := $(addprefix $(SHARED_DATA)/meshes/,cgal_ChineseDragon-10kv.off \
+  cgal_blobby_3cc.off cgal_bunny00.off cgal_camel.off cgal_cheese.off \
+  cgal_elephant-with-holes.off cgal_elephant.off cgal_fandisk.off cgal_knot2.off cgal_man.off \
+  cgal_mushroom.off cgal_refined_elephant.off igl_camelhead.off igl_fertility.off \
+  c3d_rocker-arm.obj c3d_spot.obj igl_armadillo.obj npm_bunny.obj)
 # Progressive-mesh container sizes: raw, compact and Draco against OpenMesh's
 # .pm, the streaming paper's vsplit topology and Draco single-rate.
 PACK_BENCH_MESHES := $(SIMPLIFY_BENCH_MESHES)
@@ -116,6 +125,8 @@ bench: bench-deps build
 	  bench_dag bench_fan bench_strips bench_pack bench_section_codecs bench_stream
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --height-guard --peers lodbake,meshopt \
+	  $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) --balanced $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
@@ -125,6 +136,12 @@ bench: bench-deps build
 	tests/bench/pack_sections.sh $(BUILD)/tools $(PACK_SECTIONS_MESHES)
 	$(BUILD)/tests/bench/bench_stream --runs $(BENCH_RUNS) --clients 16 \
 	  $(SHARED_DATA)/meshes/stanford_bun_zipper.ply
+
+bench-heldout: bench-deps build
+	cmake --build $(BUILD) --target bench_simplify
+	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,meshopt --markdown $(HELDOUT_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,meshopt --markdown --height-guard \
+	  $(HELDOUT_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
