@@ -248,6 +248,18 @@ TEST(Simplify, OneThreadAndTwoGiveTheSameResult) {
   const SimplifyResult one = run(seamed, options);
   options.threads = 2;
   EXPECT_EQ(one.mesh, run(seamed, options).mesh);
+  // The height guard's refusals are made in the walk, which one thread runs.
+  SimplifyOptions guarded;
+  guarded.height_guard = true;
+  guarded.record_pm = true;
+  guarded.target_ratio = 0.05;
+  guarded.threads = 1;
+  const SimplifyResult guarded_one = run(bunny, guarded);
+  guarded.threads = 2;
+  const SimplifyResult guarded_two = run(bunny, guarded);
+  EXPECT_EQ(guarded_one.mesh, guarded_two.mesh);
+  EXPECT_EQ(guarded_one.pm, guarded_two.pm);
+  EXPECT_EQ(guarded_one.stats.refused_height, guarded_two.stats.refused_height);
 }
 
 // The input check's two parts report the first problem in vertex order,
