@@ -201,6 +201,14 @@ int run(const Tool& tool, Request& request) {
        {{"vertices", result.mesh.vertex_count()}, {"triangles", result.mesh.triangle_count()}}},
       {"seconds", seconds},
       {"collapses", result.stats.collapses},
+      // Tries refused, by reason (an edge refused in one pass is tried again
+      // in the next): what held the simplification back when it stopped
+      // short of its target.
+      {"refused",
+       {{"link", result.stats.refused_link},
+        {"flip", result.stats.refused_flip},
+        {"other", result.stats.refused_other},
+        {"height", result.stats.refused_height}}},
       {"max_collapse_error", result.stats.max_collapse_error}};
   if (loaded.repair) report["repair"] = to_json(*loaded.repair);
 
@@ -258,8 +266,11 @@ int run(const Tool& tool, Request& request) {
             << " vertices, " << loaded.mesh.triangle_count() << " triangles\n";
   std::cout << "simplified    " << result.mesh.vertex_count() << " vertices, "
             << result.mesh.triangle_count() << " triangles in " << seconds << " s ("
-            << result.stats.collapses << " collapses, largest collapse error "
-            << result.stats.max_collapse_error << " of the diagonal"
+            << result.stats.collapses << " collapses, "
+            << (request.options.height_guard ? std::to_string(result.stats.refused_height) +
+                                                   " tries refused by the height guard, "
+                                             : std::string())
+            << "largest collapse error " << result.stats.max_collapse_error << " of the diagonal"
             << metrics_text(report.value("metrics", nlohmann::json(nullptr))) << ")\n";
   for (const nlohmann::json& out : outputs)
     std::cout << "wrote         " << out["file"].get<std::string>() << ": "
