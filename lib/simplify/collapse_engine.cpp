@@ -686,12 +686,13 @@ class Engine {
       const Candidate& c = candidates_[i];
       if (triangle_count_ <= target || c.cost > max_cost_float_) break;
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
-      if (c.cost > limit() && past_limit) break;
+      const double pass_limit = limit();
+      if (c.cost > pass_limit && past_limit) break;
       if (locked_[c.vt] | locked_[c.vs]) continue;
       // The guard's scale follows the limit; once refusals have moved the
       // limit past the list's end it keeps the last finite one, and a pass
       // that never had one holds each collapse to its own cost.
-      const double scale = std::min(limit(), settings_.max_cost);
+      const double scale = std::min(pass_limit, settings_.max_cost);
       if (scale < kInfinity) height_scale_ = scale;
       // The listed cost is rounded to float; the stop test uses the exact one.
       Verdict verdict = try_collapse(c.vt, c.vs, cost(c.vt, c.vs));

@@ -20,10 +20,7 @@ ProgressiveMesh record(const TriangleMesh& mesh, Placement placement, bool heigh
   options.record_pm = true;
   options.placement = placement;
   options.height_guard = height_guard;
-  Result<SimplifyResult> result = simplify(mesh, options);
-  EXPECT_TRUE(result.is_ok()) << result.status().message();
-  if (!result.is_ok()) return ProgressiveMesh();
-  return *std::move(result).value().pm;
+  return take(simplify(mesh, options), "simplify").pm.value_or(ProgressiveMesh());
 }
 
 void expect_clean(const TriangleMesh& mesh, const std::string& what) {

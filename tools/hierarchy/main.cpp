@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "formats/container/container_layout.h"
 #include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"

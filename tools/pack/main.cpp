@@ -12,7 +12,6 @@
 #include <sstream>
 #include <utility>
 
-#include "formats/container/container_layout.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"

@@ -6,7 +6,6 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "formats/container/container_layout.h"
 #include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
