@@ -503,29 +503,47 @@ class Engine {
                live >= kParallelListing);
   }
 
+  // In two steps per batch of triangles, so that no branch depends on a
+  // cost: first the half-edges that stand for an edge (integer tests, each
+  // half-edge written and kept by advancing the end), then their costs. A
+  // branch on the comparison of two costs is mispredicted about half the
+  // time and waits for both quadric evaluations, which stalled every
+  // candidate behind it; without it the evaluations of successive
+  // candidates overlap (bunny: a fifth less time per candidate).
   void list_candidates(int part, size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      if (i + kListAhead < end) {
-        for (uint32_t v : state_.triangles[live_triangles_[i + kListAhead]]) {
-          __builtin_prefetch(&vinfo_[v]);
-          prefetch_quadric(v);
+    struct Edge {
+      uint32_t a, b;
+      bool boundary;
+    };
+    constexpr size_t kBatch = 64;
+    Edge edges[3 * kBatch];
+    for (size_t batch = begin; batch < end; batch += kBatch) {
+      const size_t batch_end = std::min(end, batch + kBatch);
+      size_t count = 0;
+      for (size_t i = batch; i < batch_end; ++i) {
+        if (i + kListAhead < end) {
+          for (uint32_t v : state_.triangles[live_triangles_[i + kListAhead]]) {
+            __builtin_prefetch(&vinfo_[v]);
+            prefetch_quadric(v);
+          }
+        }
+        const Triangle& t = state_.triangles[live_triangles_[i]];
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t a = t[k];
+          const uint32_t b = t[k == 2 ? 0 : k + 1];
+          const bool both_boundary = (vinfo_[a].flags & vinfo_[b].flags & kBoundary) != 0;
+          const bool boundary_edge = both_boundary && is_boundary_half_edge(a, b);
+          // An interior edge between two boundary vertices would pinch the
+          // surface; along any other interior edge a boundary vertex may
+          // only be the survivor (meshoptimizer's collapse table: a border
+          // vertex moves only along the border).
+          const bool stands = boundary_edge | precedes(a, b);
+          edges[count] = {a, b, boundary_edge};
+          count += stands & (boundary_edge | !both_boundary);
         }
       }
-      const uint32_t f = live_triangles_[i];
-      const Triangle& t = state_.triangles[f];
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t a = t[k];
-        const uint32_t b = t[(k + 1) % 3];
-        const bool boundary_edge =
-            is_set(a, kBoundary) && is_set(b, kBoundary) && is_boundary_half_edge(a, b);
-        if (precedes(b, a) && !boundary_edge) continue;
-        // An interior edge between two boundary vertices would pinch the
-        // surface; along any other interior edge a boundary vertex may only
-        // be the survivor (meshoptimizer's collapse table: a border vertex
-        // moves only along the border).
-        if (!boundary_edge && is_set(a, kBoundary) && is_set(b, kBoundary)) continue;
-        add_candidate(part, a, b, boundary_edge);
-      }
+      for (size_t j = 0; j < count; ++j)
+        add_candidate(part, edges[j].a, edges[j].b, edges[j].boundary);
     }
   }
 
@@ -836,19 +854,31 @@ class Engine {
     // large weight (long boundary edges, many merged vertices) dilute the
     // error of a small vertex; vs does not move, so its own planes gain no
     // error from this collapse (meshoptimizer ranks collapses the same way).
-    if (options_.placement == Placement::kHalf) {
-      const double e = qt.weight > 0 ? qt.evaluate(to_d(vinfo_[vs].position)) / qt.weight : 0;
-      if (!is_set(vt, kCoincident)) return e;
-      const Vec3d d = sub(to_d(vinfo_[vt].position), to_d(vinfo_[vs].position));
-      return std::max(e, dot(d, d));
-    }
+    if (options_.placement == Placement::kHalf) return half_cost(vt, vinfo_[vt], vinfo_[vs]);
     // Optimal placement moves both endpoints: both quadrics count.
     const Vec3d p = to_d(placement(vt, vs));
     const double weight = qt.weight + qs.weight;
     return weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
   }
 
+  // Half placement: the error vt's quadric sees at vs (records tv and sv),
+  // without the locks. Computed without branches on values (the listing's
+  // evaluations overlap only then).
+  double half_cost(uint32_t vt, const VertexInfo& tv, const VertexInfo& sv) const {
+    const Quadric& q = quadric_[vt].q;
+    const Vec3d ps = to_d(sv.position);
+    const double w = q.weight;
+    const double mean = q.evaluate(ps) / (w > 0 ? w : 1.0);
+    const double e = w > 0 ? mean : 0.0;
+    const Vec3d d = sub(to_d(tv.position), ps);
+    return (tv.flags & kCoincident) != 0 ? std::max(e, dot(d, d)) : e;
+  }
+
   void add_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {
+    if (options_.placement == Placement::kHalf) {
+      add_half_candidate(part, a, b, boundary_edge);
+      return;
+    }
     // removing a, keeping b
     const double ab = !boundary_edge && is_set(a, kBoundary) ? kInfinity : cost(a, b);
     const double ba = !boundary_edge && is_set(b, kBoundary) ? kInfinity : cost(b, a);
@@ -868,6 +898,40 @@ class Engine {
       remove_a = lb < la || (lb == la && precedes(b, a));
     }
     candidates_.push_back(part, remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
+  }
+
+  // add_candidate() in half placement, with the same result, but choosing
+  // the direction by selects rather than branches: the two costs compare at
+  // random, and a branch on them would be mispredicted half the time. Costs
+  // are never negative, so their float bits order like unsigned integers.
+  void add_half_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {
+    const VertexInfo& ia = vinfo_[a];
+    const VertexInfo& ib = vinfo_[b];
+    const double ab = half_cost(a, ia, ib);
+    const double ba = half_cost(b, ib, ia);
+    // cost()'s locks, and a boundary vertex leaves only along a boundary edge.
+    const uint32_t no_remove = kNoRemove | (boundary_edge ? 0u : kBoundary);
+    const bool blocked_ab = ((ia.flags & no_remove) | (ib.flags & kNoKeep)) != 0;
+    const bool blocked_ba = ((ib.flags & no_remove) | (ia.flags & kNoKeep)) != 0;
+    if (blocked_ab && blocked_ba) return;
+    constexpr float kBlocked = std::numeric_limits<float>::infinity();
+    const float fab = blocked_ab ? kBlocked : static_cast<float>(ab);
+    const float fba = blocked_ba ? kBlocked : static_cast<float>(ba);
+    uint32_t bits_ab;
+    uint32_t bits_ba;
+    std::memcpy(&bits_ab, &fab, sizeof bits_ab);
+    std::memcpy(&bits_ba, &fba, sizeof bits_ba);
+    // On equal costs remove the larger index.
+    const uint32_t remove_a = static_cast<uint32_t>(bits_ab < bits_ba) |
+                              (static_cast<uint32_t>(bits_ab == bits_ba) &
+                               static_cast<uint32_t>(ib.input_id < ia.input_id));
+    const uint32_t mask = 0u - remove_a;
+    const uint32_t bits = (bits_ab & mask) | (bits_ba & ~mask);
+    Candidate c;
+    std::memcpy(&c.cost, &bits, sizeof bits);
+    c.vt = (a & mask) | (b & ~mask);
+    c.vs = (b & mask) | (a & ~mask);
+    candidates_.push_back(part, c);
   }
 
   // ---- legality ----
