@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 namespace lodbake {
@@ -25,29 +26,73 @@ constexpr uint32_t kNone = 0xffffffffu;
 // Below this many triangles the fan checks run on one thread.
 constexpr size_t kParallelFanCheck = 8192;
 
+// Four vertex ids in one SSE2 register (GCC/Clang vector extensions, which
+// fall back to scalar code elsewhere); comparisons give -1 in equal lanes.
+using Ids = uint32_t __attribute__((vector_size(16)));
+constexpr size_t kLanes = 4;
+// Padding of the lanes past the fan: never a vertex id (ids are below 2^31,
+// build_topology()), and `next` padding never equals `prev` padding.
+constexpr uint32_t kPadNext = 0xffffffffu;
+constexpr uint32_t kPadPrev = 0xfffffffeu;
+
+// For each face i of a fan of k <= 4 * R faces: how many faces share its
+// next, plus how many share its prev (repeats[i]); the last face whose next
+// is i's prev (successor[i], kNone if none); and how many faces have i's
+// next as their prev (preds[i]). Face i sits in lane i % 4 of register
+// i / 4 and each face j is compared with all of them at once, without
+// branches; R is fixed so that the registers stay registers.
+template <size_t R>
+void compare_fan(const FanFace* fan, size_t k, uint32_t* repeats, uint32_t* successor,
+                 uint32_t* preds) {
+  // Built in registers: scalar stores read back as one vector would wait
+  // for the stores to retire (a failed store forwarding).
+  auto next_of = [fan, k](size_t i) { return i < k ? fan[i].next : kPadNext; };
+  auto prev_of = [fan, k](size_t i) { return i < k ? fan[i].prev : kPadPrev; };
+  Ids nexts[R];
+  Ids prevs[R];
+  Ids repeat_count[R];
+  Ids successor_of[R];
+  Ids pred_count[R];
+  for (size_t r = 0; r < R; ++r) {
+    const size_t i = r * kLanes;
+    nexts[r] = Ids{next_of(i), next_of(i + 1), next_of(i + 2), next_of(i + 3)};
+    prevs[r] = Ids{prev_of(i), prev_of(i + 1), prev_of(i + 2), prev_of(i + 3)};
+    repeat_count[r] = Ids{};
+    successor_of[r] = Ids{} + kNone;
+    pred_count[r] = Ids{};
+  }
+  for (size_t j = 0; j < k; ++j) {
+    const Ids next = Ids{} + fan[j].next;
+    const Ids prev = Ids{} + fan[j].prev;
+    const Ids index = Ids{} + static_cast<uint32_t>(j);
+    for (size_t r = 0; r < R; ++r) {
+      repeat_count[r] -= static_cast<Ids>(nexts[r] == next) + static_cast<Ids>(prevs[r] == prev);
+      const Ids is_successor = static_cast<Ids>(prevs[r] == next);
+      successor_of[r] = (successor_of[r] & ~is_successor) | (index & is_successor);
+      pred_count[r] -= static_cast<Ids>(nexts[r] == prev);
+    }
+  }
+  std::memcpy(repeats, repeat_count, sizeof repeat_count);
+  std::memcpy(successor, successor_of, sizeof successor_of);
+  std::memcpy(preds, pred_count, sizeof pred_count);
+}
+
 // The quadratic check of a small fan: true when no neighbour repeats as
 // `next` or as `prev` and the faces form one chain or one cycle, with *open
 // set for a chain. False sends the fan to the sorting path, which finds and
 // names the problem.
 bool small_fan_is_simple(const FanFace* fan, size_t k, bool* open) {
+  uint32_t counts[kSmallFan];
   uint32_t successor[kSmallFan];
   uint32_t preds[kSmallFan];
-  // Without branches inside: the loops over a dozen faces then run at the
-  // speed of their comparisons, not of their mispredictions.
-  uint32_t repeats = 0;
-  for (size_t i = 0; i < k; ++i) {
-    const uint32_t next = fan[i].next;
-    const uint32_t prev = fan[i].prev;
-    uint32_t s = kNone;
-    uint32_t p = 0;
-    for (size_t j = 0; j < k; ++j) {
-      repeats += (fan[j].next == next) + (fan[j].prev == prev);
-      s = fan[j].next == prev ? static_cast<uint32_t>(j) : s;
-      p += fan[j].prev == next;
-    }
-    successor[i] = s;
-    preds[i] = p;
+  if (k <= 2 * kLanes) {
+    compare_fan<2>(fan, k, counts, successor, preds);
+  } else {
+    compare_fan<kSmallFan / kLanes>(fan, k, counts, successor, preds);
   }
+  uint32_t repeats = 0;
+  for (size_t i = 0; i < k; ++i)
+    repeats += counts[i];
   // Each face matches itself twice.
   if (repeats != 2 * k) return false;
   uint32_t start = 0;

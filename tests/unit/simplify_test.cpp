@@ -297,6 +297,59 @@ TEST(Simplify, TwoThreadsNameTheFirstProblemOfTheInput) {
   EXPECT_EQ(status.message(), messages[0]);
 }
 
+// A fan of `k` triangles around vertex 0 on a circle of rim vertices 1..k:
+// a cycle when `closed`, else a chain (the last triangle left out).
+TriangleMesh fan_mesh(uint32_t k, bool closed) {
+  TriangleMesh mesh;
+  mesh.positions.push_back({0, 0, 0});
+  for (uint32_t i = 0; i < k; ++i) {
+    const double a = 2 * 3.14159265358979 * i / k;
+    mesh.positions.push_back({static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0});
+  }
+  for (uint32_t i = 0; i + (closed ? 0 : 1) < k; ++i)
+    mesh.triangles.push_back({0, 1 + i, 1 + (i + 1) % k});
+  return mesh;
+}
+
+// The input check takes a vectorised path for fans of up to 8 faces, a
+// wider one up to 16 and a sorting path above; all must agree on what a
+// fan is.
+TEST(Simplify, InputCheckTellsFansOfEverySize) {
+  for (uint32_t k = 3; k <= 20; ++k) {
+    SCOPED_TRACE("fan of " + std::to_string(k));
+    for (bool closed : {true, false}) {
+      simplify_internal::MeshTopology topology;
+      ASSERT_TRUE(simplify_internal::build_topology(fan_mesh(k, closed), &topology).is_ok());
+      EXPECT_EQ(topology.boundary[0], closed ? 0 : 1);
+      EXPECT_EQ(topology.boundary[1], 1);
+    }
+    // Two closed fans sharing vertex 0 (a bowtie of k faces in all).
+    if (k >= 6) {
+      TriangleMesh bowtie = fan_mesh(k / 2, true);
+      const TriangleMesh other = fan_mesh(k - k / 2, true);
+      const auto offset = static_cast<uint32_t>(bowtie.positions.size()) - 1;
+      for (size_t v = 1; v < other.positions.size(); ++v) {
+        const Vec3f p = other.positions[v];
+        bowtie.positions.push_back({p[0], p[1], p[2] + 1});
+      }
+      for (const Triangle& t : other.triangles)
+        bowtie.triangles.push_back({0, t[1] + offset, t[2] + offset});
+      simplify_internal::MeshTopology topology;
+      const Status status = simplify_internal::build_topology(bowtie, &topology);
+      EXPECT_EQ(
+          status.message(),
+          "vertex 0: its faces form 2 separate fans (non-manifold vertex; use --repair to fix)");
+    }
+    // One face turned over: its edges to vertex 0 are walked twice the same way.
+    TriangleMesh flipped = fan_mesh(k, true);
+    std::swap(flipped.triangles[k / 2][1], flipped.triangles[k / 2][2]);
+    simplify_internal::MeshTopology topology;
+    const Status status = simplify_internal::build_topology(flipped, &topology);
+    EXPECT_NE(status.message().find("is walked the same way by two faces"), std::string::npos)
+        << status.message();
+  }
+}
+
 TEST(TwoWaySplit, RunsBothPartsAndRethrows) {
   for (unsigned threads : {1u, 2u}) {
     simplify_internal::TwoWaySplit split(threads);
