@@ -52,7 +52,12 @@ inline bool keeps_orientation(const Vec3d& a, const Vec3d& b, const Vec3d& c, co
   const Vec3d n_old = cross(sub(b, a), sub(c, a));
   const double len_old = dot(n_old, n_old);
   if (!(len_old > 0)) return true;
-  return !(dot(n_old, n_new) < cos_limit * std::sqrt(len_old * len_new));
+  const double turn = dot(n_old, n_new);
+  // With a limit of 90 degrees or more, a normal that turns less than 90
+  // degrees passes whatever the lengths (the same answer as below, without
+  // the square root: most faces of a collapse turn a little).
+  if (cos_limit <= 0 && turn >= 0) return true;
+  return !(turn < cos_limit * std::sqrt(len_old * len_new));
 }
 
 }  // namespace lodbake
