@@ -127,6 +127,8 @@ bench: bench-deps build
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --height-guard --peers lodbake,meshopt \
 	  $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --height-guard-factor 3 \
+	  --peers lodbake,meshopt $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) --balanced $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
@@ -142,6 +144,8 @@ bench-heldout: bench-deps build
 	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,meshopt --markdown $(HELDOUT_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,meshopt --markdown --height-guard \
 	  $(HELDOUT_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,meshopt --markdown \
+	  --height-guard-factor 3 $(HELDOUT_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

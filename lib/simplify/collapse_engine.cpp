@@ -77,15 +77,6 @@ constexpr double kPassLimitFactor = 1.5;
 // less time with it, measured with 4, 8, 16 and 32 (16 kept; the others
 // within 2 %).
 constexpr size_t kListAhead = 16;
-// The height guard's allowance: a moved face may pass at most
-// sqrt(kHeightGuardFactor * scale) from the removed vertex, where scale is
-// the larger of the collapse's cost and the pass's cost limit (or max_cost
-// when that is smaller), both squared lengths. On a plane the costs and the
-// heights are both the rounding of the positions, so the guard needs no
-// floor of its own (Simplify.HeightGuardSimplifiesATiltedPlane). Chosen on
-// the three benchmark meshes in issue 3's fourth round (docs/simplify.md,
-// "The height guard"), then checked on 18 others.
-constexpr double kHeightGuardFactor = 4.0 / 3.0;
 // Below this many live triangles the listing runs on one thread: starting
 // the second costs more than it saves.
 constexpr size_t kParallelListing = 8192;
@@ -361,6 +352,10 @@ class Engine {
     }
     cos_limit_ = std::cos(options.max_normal_change_degrees * kPi / 180.0);
     height_guard_ = options.height_guard && options.placement == Placement::kHalf;
+    // On a plane the costs and the heights are both the rounding of the
+    // positions, so the guard needs no floor of its own
+    // (Simplify.HeightGuardSimplifiesATiltedPlane).
+    height_guard_factor_ = options.height_guard_factor;
     prefetch_walk_ = n >= kPrefetchWalkVertices;
   }
 
@@ -802,7 +797,7 @@ class Engine {
     if (!(exact_cost <= settings_.max_cost)) return Verdict::kTooCostly;
     const Vec3f p = placement(vt, vs);
     height_bound_ =
-        height_guard_ ? kHeightGuardFactor * std::max(exact_cost, height_scale_) : kInfinity;
+        height_guard_ ? height_guard_factor_ * std::max(exact_cost, height_scale_) : kInfinity;
     const Verdict verdict = check(vt, vs, p);
     switch (verdict) {
       case Verdict::kOk:
@@ -1169,6 +1164,7 @@ class Engine {
   bool prefetch_walk_ = true;
   // The height guard (half placement only: in optimal placement vs moves too).
   bool height_guard_ = false;
+  double height_guard_factor_ = kDefaultHeightGuardFactor;
   double height_scale_ = 0;          // the pass's limit, as the bound's floor (a squared length)
   double height_bound_ = kInfinity;  // the collapse being checked: its squared height limit
 };

@@ -24,9 +24,11 @@
 // relative to the input's bounding-box diagonal).
 //
 //   bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] [--peers LIST]
-//                  [--threads N] [--height-guard] [--samples N] [--markdown] FILE...
+//                  [--threads N] [--height-guard] [--height-guard-factor F] [--samples N]
+//                  [--markdown] FILE...
 //
-// --height-guard runs lodbake with SimplifyOptions::height_guard.
+// --height-guard runs lodbake with SimplifyOptions::height_guard;
+// --height-guard-factor F with that guard and height_guard_factor = F.
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
@@ -100,11 +102,13 @@ TriangleMesh compact(const std::vector<Vec3f>& positions, const std::vector<Tria
 #ifdef LODBAKE_BENCH_WITH_SIMPLIFY
 unsigned lodbake_threads = 1;
 bool lodbake_height_guard = false;
+double lodbake_height_guard_factor = lodbake::kDefaultHeightGuardFactor;
 
 Outcome run_lodbake(const TriangleMesh& input, uint64_t target) {
   lodbake::SimplifyOptions options;
   options.threads = lodbake_threads;
   options.height_guard = lodbake_height_guard;
+  options.height_guard_factor = lodbake_height_guard_factor;
   options.placement = lodbake::Placement::kHalf;
   options.target_triangles = target;
   options.record_pm = true;
@@ -341,11 +345,10 @@ std::vector<std::string> split_list(const std::string& text) {
 }
 
 int usage() {
-  std::fprintf(
-      stderr,
-      "usage: bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] "
-      "[--peers lodbake,meshopt,openmesh,cgal] [--threads N] [--height-guard] [--samples N] "
-      "[--markdown] FILE...\n");
+  std::fprintf(stderr,
+               "usage: bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] "
+               "[--peers lodbake,meshopt,openmesh,cgal] [--threads N] [--height-guard] "
+               "[--height-guard-factor F] [--samples N] [--markdown] FILE...\n");
   return 1;
 }
 
@@ -381,6 +384,13 @@ int main(int argc, char** argv) {
     } else if (arg == "--height-guard") {
 #ifdef LODBAKE_BENCH_WITH_SIMPLIFY
       lodbake_height_guard = true;
+#endif
+    } else if (arg == "--height-guard-factor" && has_value) {
+      const double factor = std::atof(argv[++i]);
+      if (!(factor > 0 && std::isfinite(factor))) return usage();
+#ifdef LODBAKE_BENCH_WITH_SIMPLIFY
+      lodbake_height_guard = true;
+      lodbake_height_guard_factor = factor;
 #endif
     } else if (arg == "--samples" && has_value) {
       distance.area_samples = std::strtoull(argv[++i], nullptr, 10);
