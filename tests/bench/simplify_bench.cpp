@@ -420,6 +420,11 @@ int main(int argc, char** argv) {
   if (methods.empty()) return usage();
   const bool with_lodbake = methods.front().name == "lodbake";
 
+#ifdef LODBAKE_BENCH_WITH_SIMPLIFY
+  // Which lodbake ran, so that the guarded runs of `make bench` tell apart.
+  if (lodbake_height_guard && with_lodbake)
+    std::printf("lodbake: --height-guard-factor %g\n\n", lodbake_height_guard_factor);
+#endif
   if (markdown) {
     std::printf(
         "| mesh | target | method | seconds | cpu s | core s | Mtri/s | output tris | "

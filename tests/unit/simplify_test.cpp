@@ -209,20 +209,21 @@ TEST(Simplify, HeightGuardKeepsTheMaxError) {
 }
 
 // The factor scales the allowance: a larger one refuses fewer collapses
-// (on the bunny at 10%: about 31,500 refusals at 4/3, 8,000 at 3), each
-// still reaching the target with a clean mesh; the default is 4/3.
+// (on the bunny at 10%: 31,521 refused tries at the default 4/3, 8,059 at
+// 3), each still reaching the target with a clean mesh, by another
+// sequence.
 TEST(Simplify, HeightGuardFactorSetsHowManyCollapsesItRefuses) {
   const TriangleMesh bunny = load_clean_mesh("stanford_bun_zipper.ply");
   SimplifyOptions options;
   options.target_ratio = 0.1;
   options.height_guard = true;
   const SimplifyResult by_default = run(bunny, options);
-  options.height_guard_factor = 4.0 / 3.0;
-  EXPECT_EQ(run(bunny, options).mesh, by_default.mesh);
+  EXPECT_GT(by_default.stats.refused_height, 20000u);
   uint64_t previous = by_default.stats.refused_height;
   for (double factor : {3.0, 30.0}) {
     options.height_guard_factor = factor;
     const SimplifyResult r = run(bunny, options);
+    EXPECT_FALSE(r.mesh == by_default.mesh) << factor;
     EXPECT_LT(r.stats.refused_height, previous / 2) << factor;
     EXPECT_GT(r.stats.refused_height, 0u) << factor;
     EXPECT_LE(r.stats.output_triangles, bunny.triangle_count() / 10) << factor;

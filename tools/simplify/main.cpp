@@ -137,11 +137,12 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
       {"repair", request.repair},
       {"quantize_bits", request.quantize_bits == 0 ? nlohmann::json(nullptr)
                                                    : nlohmann::json(request.quantize_bits)}};
-  // Only when on, so that files made without it keep their bytes.
-  if (request.options.height_guard) {
-    meta.options["height_guard"] = true;
+  // Only when on (the factor only when not the default), so that files made
+  // without them keep their bytes.
+  if (request.options.height_guard) meta.options["height_guard"] = true;
+  if (request.options.height_guard &&
+      request.options.height_guard_factor != kDefaultHeightGuardFactor)
     meta.options["height_guard_factor"] = request.options.height_guard_factor;
-  }
   if (request.options.target_ratio) meta.options["ratio"] = *request.options.target_ratio;
   if (request.options.target_triangles)
     meta.options["triangles"] = *request.options.target_triangles;
@@ -371,7 +372,9 @@ int main(int argc, char** argv) {
     request.options.height_guard = true;
   }
   if (request.options.height_guard && request.options.placement != Placement::kHalf)
-    return tool.usage_error("--height-guard needs --placement half");
+    return tool.usage_error(
+        std::string(tool.has("height-guard-factor") ? "--height-guard-factor" : "--height-guard") +
+        " needs --placement half");
   if (tool.has("lods")) {
     Result<std::vector<double>> parsed = parse_ratios(request.lods);
     if (!parsed.is_ok()) return tool.usage_error(parsed.status().message());
