@@ -352,10 +352,6 @@ class Engine {
     }
     cos_limit_ = std::cos(options.max_normal_change_degrees * kPi / 180.0);
     height_guard_ = options.height_guard && options.placement == Placement::kHalf;
-    // On a plane the costs and the heights are both the rounding of the
-    // positions, so the guard needs no floor of its own
-    // (Simplify.HeightGuardSimplifiesATiltedPlane).
-    height_guard_factor_ = options.height_guard_factor;
     prefetch_walk_ = n >= kPrefetchWalkVertices;
   }
 
@@ -796,8 +792,12 @@ class Engine {
   Verdict try_collapse(uint32_t vt, uint32_t vs, double exact_cost) {
     if (!(exact_cost <= settings_.max_cost)) return Verdict::kTooCostly;
     const Vec3f p = placement(vt, vs);
-    height_bound_ =
-        height_guard_ ? height_guard_factor_ * std::max(exact_cost, height_scale_) : kInfinity;
+    // On a plane the costs and the heights are both the rounding of the
+    // positions, so the guard needs no floor of its own
+    // (Simplify.HeightGuardSimplifiesATiltedPlane).
+    height_bound_ = height_guard_
+                        ? options_.height_guard_factor * std::max(exact_cost, height_scale_)
+                        : kInfinity;
     const Verdict verdict = check(vt, vs, p);
     switch (verdict) {
       case Verdict::kOk:
@@ -1164,7 +1164,6 @@ class Engine {
   bool prefetch_walk_ = true;
   // The height guard (half placement only: in optimal placement vs moves too).
   bool height_guard_ = false;
-  double height_guard_factor_ = kDefaultHeightGuardFactor;
   double height_scale_ = 0;          // the pass's limit, as the bound's floor (a squared length)
   double height_bound_ = kInfinity;  // the collapse being checked: its squared height limit
 };

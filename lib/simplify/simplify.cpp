@@ -73,7 +73,7 @@ Status check_options(const SimplifyOptions& o) {
   if (o.height_guard && o.placement != Placement::kHalf) {
     return Status(ErrorKind::kUsage, "the height guard needs half placement");
   }
-  if (o.height_guard && !(o.height_guard_factor > 0 && std::isfinite(o.height_guard_factor))) {
+  if (o.height_guard && !is_valid_height_guard_factor(o.height_guard_factor)) {
     return Status(ErrorKind::kUsage, "the height guard's factor must be a finite number above 0");
   }
   return Status::ok();

@@ -2,6 +2,7 @@
 // mesh it records (Hoppe 1996). The entry point every tool and benchmark uses.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -18,6 +19,11 @@ enum class Placement {
 };
 
 inline constexpr double kDefaultHeightGuardFactor = 4.0 / 3.0;
+
+// What SimplifyOptions::height_guard_factor accepts.
+inline bool is_valid_height_guard_factor(double factor) {
+  return factor > 0 && std::isfinite(factor);
+}
 
 struct SimplifyOptions {
   Placement placement = Placement::kHalf;

@@ -386,11 +386,12 @@ int main(int argc, char** argv) {
       lodbake_height_guard = true;
 #endif
     } else if (arg == "--height-guard-factor" && has_value) {
-      const double factor = std::atof(argv[++i]);
-      if (!(factor > 0 && std::isfinite(factor))) return usage();
 #ifdef LODBAKE_BENCH_WITH_SIMPLIFY
+      lodbake_height_guard_factor = std::atof(argv[++i]);
+      if (!lodbake::is_valid_height_guard_factor(lodbake_height_guard_factor)) return usage();
       lodbake_height_guard = true;
-      lodbake_height_guard_factor = factor;
+#else
+      ++i;
 #endif
     } else if (arg == "--samples" && has_value) {
       distance.area_samples = std::strtoull(argv[++i], nullptr, 10);

@@ -366,8 +366,7 @@ int main(int argc, char** argv) {
                             "'");
   }
   if (tool.has("height-guard-factor")) {
-    if (!(request.options.height_guard_factor > 0 &&
-          std::isfinite(request.options.height_guard_factor)))
+    if (!is_valid_height_guard_factor(request.options.height_guard_factor))
       return tool.usage_error("--height-guard-factor takes a finite value above 0");
     request.options.height_guard = true;
   }
