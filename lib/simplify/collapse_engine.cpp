@@ -365,6 +365,7 @@ class Engine {
     }
     finish_pass(/*rebuild=*/false);
     state_.stats.output_triangles = triangle_count_;
+    state_.stats.passes = pass_;
     for (size_t v = 0; v < vinfo_.size(); ++v)
       state_.positions[v] = vinfo_[v].position;
     return std::move(state_);

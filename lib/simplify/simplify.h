@@ -66,6 +66,9 @@ struct SimplifyStats {
   uint64_t input_triangles = 0;
   uint64_t output_triangles = 0;
   uint64_t collapses = 0;
+  // Passes over the cost-sorted edges (docs/simplify.md, "Algorithm"):
+  // each lists and sorts every live edge, so a run's time grows with them.
+  uint64_t passes = 0;
   uint64_t refused_link = 0;      // would make the mesh non-manifold
   uint64_t refused_flip = 0;      // would flip or nearly flip a face normal
   uint64_t refused_other = 0;     // pockets, locked border, seams

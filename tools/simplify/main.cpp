@@ -205,6 +205,7 @@ int run(const Tool& tool, Request& request) {
        {{"vertices", result.mesh.vertex_count()}, {"triangles", result.mesh.triangle_count()}}},
       {"seconds", seconds},
       {"collapses", result.stats.collapses},
+      {"passes", result.stats.passes},
       // Tries refused, by reason (an edge refused in one pass is tried again
       // in the next): what held the simplification back when it stopped
       // short of its target.
