@@ -312,6 +312,16 @@ bool values_differ(const MeshAttribute& attr, uint32_t a, uint32_t b) {
   return false;
 }
 
+// Optimal placement: the minimiser of an edge's summed quadric. The sum, and
+// so the point, is the same for both directions of the edge, so the listing
+// and the walk solve it once per edge and pass it on. Not `ok` in half
+// placement, when both endpoints are fixed, and when the system is singular
+// or ill conditioned or the point is not finite in float.
+struct Minimiser {
+  bool ok = false;
+  Vec3f p{};
+};
+
 class Engine {
  public:
   // The mesh's arrays become the state's (the walk keeps the positions in
@@ -735,12 +745,14 @@ class Engine {
       const double scale = std::min(pass_limit, settings_.max_cost);
       if (scale < kInfinity) height_scale_ = scale;
       // The listed cost is rounded to float; the stop test uses the exact one.
-      Verdict verdict = try_collapse(c.vt, c.vs, cost(c.vt, c.vs));
+      // A refused try changes nothing, so the reverse shares the minimiser.
+      const Minimiser m = minimiser(c.vt, c.vs);
+      Verdict verdict = try_collapse(c.vt, c.vs, cost(c.vt, c.vs, m), m);
       if (verdict == Verdict::kLink || verdict == Verdict::kFlip || verdict == Verdict::kOther ||
           verdict == Verdict::kHeight) {
         // The other direction, when it fits in this pass.
-        const double reverse = cost(c.vs, c.vt);
-        if (reverse <= limit()) verdict = try_collapse(c.vs, c.vt, reverse);
+        const double reverse = cost(c.vs, c.vt, m);
+        if (reverse <= limit()) verdict = try_collapse(c.vs, c.vt, reverse, m);
       }
       if (verdict == Verdict::kOk) {
         ++collapses;
@@ -802,10 +814,10 @@ class Engine {
   }
 
   // Collapses vt into vs, whose cost() is `exact_cost`, when the cost and
-  // the legality checks allow it.
-  Verdict try_collapse(uint32_t vt, uint32_t vs, double exact_cost) {
+  // the legality checks allow it; m is minimiser(vt, vs).
+  Verdict try_collapse(uint32_t vt, uint32_t vs, double exact_cost, const Minimiser& m) {
     if (!(exact_cost <= settings_.max_cost)) return Verdict::kTooCostly;
-    const Vec3f p = placement(vt, vs);
+    const Vec3f p = placement(vt, vs, m);
     // On a plane the costs and the heights are both the rounding of the
     // positions, so the guard needs no floor of its own
     // (Simplify.HeightGuardSimplifiesATiltedPlane).
@@ -849,15 +861,25 @@ class Engine {
 
   // ---- costs ----
 
-  // Where vs ends up when vt collapses into it.
-  Vec3f placement(uint32_t vt, uint32_t vs) const {
-    if (options_.placement == Placement::kHalf || is_set(vs, kFixed)) return vinfo_[vs].position;
-    const Quadric q = quadric_[vt].q + quadric_[vs].q;
-    Vec3d p;
-    if (q.minimizer(&p)) {
-      const Vec3f pf{static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
-      if (std::isfinite(pf[0]) && std::isfinite(pf[1]) && std::isfinite(pf[2])) return pf;
+  // Optimal placement: the minimiser of edge (a, b)'s summed quadric (see
+  // Minimiser).
+  Minimiser minimiser(uint32_t a, uint32_t b) const {
+    Minimiser m;
+    if (options_.placement == Placement::kHalf || (is_set(a, kFixed) && is_set(b, kFixed))) {
+      return m;
     }
+    Vec3d p;
+    if (!(quadric_[a].q + quadric_[b].q).minimizer(&p)) return m;
+    m.p = {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
+    m.ok = std::isfinite(m.p[0]) && std::isfinite(m.p[1]) && std::isfinite(m.p[2]);
+    return m;
+  }
+
+  // Where vs ends up when vt collapses into it; m is minimiser(vt, vs).
+  Vec3f placement(uint32_t vt, uint32_t vs, const Minimiser& m) const {
+    if (options_.placement == Placement::kHalf || is_set(vs, kFixed)) return vinfo_[vs].position;
+    if (m.ok) return m.p;
+    const Quadric q = quadric_[vt].q + quadric_[vs].q;
     const Vec3f& a = vinfo_[vs].position;
     const Vec3f& b = vinfo_[vt].position;
     const Vec3f mid{0.5f * (a[0] + b[0]), 0.5f * (a[1] + b[1]), 0.5f * (a[2] + b[2])};
@@ -868,8 +890,9 @@ class Engine {
     return eb <= em ? b : mid;
   }
 
-  // The cost of collapsing vt into vs, infinite when the locks forbid it.
-  double cost(uint32_t vt, uint32_t vs) const {
+  // The cost of collapsing vt into vs, infinite when the locks forbid it;
+  // m is minimiser(vt, vs).
+  double cost(uint32_t vt, uint32_t vs, const Minimiser& m) const {
     if (is_set(vt, kNoRemove) || is_set(vs, kNoKeep)) return kInfinity;
 
     // Evaluating both quadrics at p is cheaper than summing them first.
@@ -882,9 +905,15 @@ class Engine {
     // error from this collapse (meshoptimizer ranks collapses the same way).
     if (options_.placement == Placement::kHalf) return half_cost(vt, vinfo_[vt], vinfo_[vs]);
     // Optimal placement moves both endpoints: both quadrics count.
-    const Vec3d p = to_d(placement(vt, vs));
+    const Vec3d p = to_d(placement(vt, vs, m));
     const double weight = qt.weight + qs.weight;
-    return weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
+    const double e = weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
+    // A crack's vertex (kCoincident) moved away from its twin opens the
+    // crack by the distance it moves, which its quadric hardly sees: as in
+    // half placement, that distance squared is the least the move costs.
+    if (!is_set(vt, kCoincident)) return e;
+    const Vec3d d = sub(to_d(vinfo_[vt].position), p);
+    return std::max(e, dot(d, d));
   }
 
   // Half placement: the error vt's quadric sees at vs (records tv and sv),
@@ -904,8 +933,9 @@ class Engine {
       return;
     }
     // removing a, keeping b
-    const double ab = !boundary_edge && is_set(a, kBoundary) ? kInfinity : cost(a, b);
-    const double ba = !boundary_edge && is_set(b, kBoundary) ? kInfinity : cost(b, a);
+    const Minimiser m = minimiser(a, b);
+    const double ab = !boundary_edge && is_set(a, kBoundary) ? kInfinity : cost(a, b, m);
+    const double ba = !boundary_edge && is_set(b, kBoundary) ? kInfinity : cost(b, a, m);
     if (!(ab < kInfinity) && !(ba < kInfinity)) return;
     const auto fab = static_cast<float>(ab);
     const auto fba = static_cast<float>(ba);
@@ -914,7 +944,7 @@ class Engine {
     // to it (the smaller index on ties).
     bool remove_a = fab < fba || (fab == fba && precedes(b, a));
     if (fab == fba && options_.placement == Placement::kOptimal) {
-      const Vec3d pd = to_d(placement(a, b));
+      const Vec3d pd = to_d(placement(a, b, m));
       const Vec3d da = sub(pd, to_d(vinfo_[a].position));
       const Vec3d db = sub(pd, to_d(vinfo_[b].position));
       const double la = dot(da, da);

@@ -24,11 +24,13 @@
 // relative to the input's bounding-box diagonal).
 //
 //   bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] [--peers LIST]
-//                  [--threads N] [--height-guard] [--height-guard-factor F] [--samples N]
-//                  [--markdown] FILE...
+//                  [--threads N] [--height-guard] [--height-guard-factor F]
+//                  [--placement half|optimal] [--samples N] [--markdown] FILE...
 //
 // --height-guard runs lodbake with SimplifyOptions::height_guard;
 // --height-guard-factor F with that guard and height_guard_factor = F.
+// --placement optimal runs lodbake with the quadric's minimiser, as CGAL's
+// Garland-Heckbert placement does, to compare the two like for like.
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
@@ -103,13 +105,14 @@ TriangleMesh compact(const std::vector<Vec3f>& positions, const std::vector<Tria
 unsigned lodbake_threads = 1;
 bool lodbake_height_guard = false;
 double lodbake_height_guard_factor = lodbake::kDefaultHeightGuardFactor;
+lodbake::Placement lodbake_placement = lodbake::Placement::kHalf;
 
 Outcome run_lodbake(const TriangleMesh& input, uint64_t target) {
   lodbake::SimplifyOptions options;
   options.threads = lodbake_threads;
   options.height_guard = lodbake_height_guard;
   options.height_guard_factor = lodbake_height_guard_factor;
-  options.placement = lodbake::Placement::kHalf;
+  options.placement = lodbake_placement;
   options.target_triangles = target;
   options.record_pm = true;
   auto result = lodbake::simplify(input, options);
@@ -348,7 +351,8 @@ int usage() {
   std::fprintf(stderr,
                "usage: bench_simplify [--runs N] [--ratios 0.5,0.1,0.01] "
                "[--peers lodbake,meshopt,openmesh,cgal] [--threads N] [--height-guard] "
-               "[--height-guard-factor F] [--samples N] [--markdown] FILE...\n");
+               "[--height-guard-factor F] [--placement half|optimal] [--samples N] [--markdown] "
+               "FILE...\n");
   return 1;
 }
 
@@ -393,6 +397,13 @@ int main(int argc, char** argv) {
 #else
       ++i;
 #endif
+    } else if (arg == "--placement" && has_value) {
+      const std::string value = argv[++i];
+      if (value != "half" && value != "optimal") return usage();
+#ifdef LODBAKE_BENCH_WITH_SIMPLIFY
+      lodbake_placement =
+          value == "optimal" ? lodbake::Placement::kOptimal : lodbake::Placement::kHalf;
+#endif
     } else if (arg == "--samples" && has_value) {
       distance.area_samples = std::strtoull(argv[++i], nullptr, 10);
     } else if (arg == "--markdown") {
@@ -425,6 +436,8 @@ int main(int argc, char** argv) {
   // Which lodbake ran, so that the guarded runs of `make bench` tell apart.
   if (lodbake_height_guard && with_lodbake)
     std::printf("lodbake: --height-guard-factor %g\n\n", lodbake_height_guard_factor);
+  if (lodbake_placement == lodbake::Placement::kOptimal && with_lodbake)
+    std::printf("lodbake: --placement optimal\n\n");
 #endif
   if (markdown) {
     std::printf(

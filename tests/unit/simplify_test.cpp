@@ -456,6 +456,62 @@ TEST(Simplify, LockBorderKeepsBoundaryVertices) {
   EXPECT_LT(boundary_positions(run(mesh, options).mesh).size(), border.size());
 }
 
+// Two flat sheets meeting along x = 0 without being welded, as scans often
+// do: the vertices on the seam are twins, one per sheet. Every collapse
+// inside the sheets and along their straight outer borders is free.
+TriangleMesh unwelded_sheets(int cells) {
+  TriangleMesh mesh;
+  const auto row = static_cast<uint32_t>(cells + 1);
+  for (int side = 0; side < 2; ++side) {
+    const auto base = static_cast<uint32_t>(mesh.positions.size());
+    for (int j = 0; j <= cells; ++j) {
+      for (int i = 0; i <= cells; ++i) {
+        const float x = static_cast<float>(side == 0 ? i - cells : i) / static_cast<float>(cells);
+        mesh.positions.push_back({x, static_cast<float>(j) / static_cast<float>(cells), 0.0f});
+      }
+    }
+    for (uint32_t j = 0; j < row - 1; ++j) {
+      for (uint32_t i = 0; i < row - 1; ++i) {
+        const uint32_t v = base + j * row + i;
+        mesh.triangles.push_back({v, v + 1, v + row + 1});
+        mesh.triangles.push_back({v, v + row + 1, v + row});
+      }
+    }
+  }
+  return mesh;
+}
+
+// Removing one twin moves its sheet's border away from the other sheet's,
+// opening the crack by up to an edge length, which no plane of the flat
+// sheets sees: that length squared is the least such a collapse costs, in
+// both placements, so a small max_error keeps every twin.
+TEST(Simplify, UnweldedSeamStaysClosed) {
+  const int cells = 10;
+  const TriangleMesh mesh = unwelded_sheets(cells);
+  std::multiset<Vec3f> seam;
+  for (const Vec3f& p : mesh.positions) {
+    if (p[0] == 0.0f) seam.insert(p);
+  }
+  ASSERT_EQ(seam.size(), 2u * (cells + 1));
+  for (Placement placement : {Placement::kHalf, Placement::kOptimal}) {
+    SCOPED_TRACE(placement == Placement::kHalf ? "half" : "optimal");
+    SimplifyOptions options;
+    options.placement = placement;
+    options.max_error = 1e-4;
+    const SimplifyResult r = run(mesh, options);
+    // The output has no unreferenced vertex (expect_clean), so two vertices
+    // at a seam position are the two sheets' corners there.
+    std::multiset<Vec3f> kept;
+    for (const Vec3f& p : r.mesh.positions) {
+      if (p[0] == 0.0f) kept.insert(p);
+    }
+    EXPECT_EQ(kept, seam);
+    // The free collapses were made.
+    EXPECT_LT(r.mesh.triangles.size(), mesh.triangles.size() / 2);
+    expect_clean(r.mesh);
+  }
+}
+
 TEST(Simplify, BoundaryWeightKeepsTheBorderCloser) {
   // A flat square with a bumpy middle: with a strong boundary quadric the
   // border keeps more vertices at the same triangle count.
