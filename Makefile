@@ -129,6 +129,8 @@ bench: bench-deps build
 	  $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --height-guard-factor 3 \
 	  --peers lodbake,meshopt $(SIMPLIFY_BENCH_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --placement optimal \
+	  --peers lodbake,cgal $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_dag --runs $(BENCH_RUNS) --balanced $(DAG_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_hierarchy --runs $(BENCH_RUNS) $(HIERARCHY_BENCH_MESHES)
