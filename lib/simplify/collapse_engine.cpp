@@ -907,13 +907,17 @@ class Engine {
     // Optimal placement moves both endpoints: both quadrics count.
     const Vec3d p = to_d(placement(vt, vs, m));
     const double weight = qt.weight + qs.weight;
-    const double e = weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0;
-    // A crack's vertex (kCoincident) moved away from its twin opens the
-    // crack by the distance it moves, which its quadric hardly sees: as in
-    // half placement, that distance squared is the least the move costs.
-    if (!is_set(vt, kCoincident)) return e;
-    const Vec3d d = sub(to_d(vinfo_[vt].position), p);
-    return std::max(e, dot(d, d));
+    return with_crack_floor(vinfo_[vt], p,
+                            weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0);
+  }
+
+  // Error e of moving tv to p, raised for a crack's vertex (kCoincident):
+  // moved away from its twin it opens the crack by the distance it moves,
+  // which its quadric hardly sees, so that distance squared is the least
+  // the move costs. A select, not a branch (the half-placement listing).
+  static double with_crack_floor(const VertexInfo& tv, const Vec3d& p, double e) {
+    const Vec3d d = sub(to_d(tv.position), p);
+    return (tv.flags & kCoincident) != 0 ? std::max(e, dot(d, d)) : e;
   }
 
   // Half placement: the error vt's quadric sees at vs (records tv and sv),
@@ -922,9 +926,7 @@ class Engine {
   double half_cost(uint32_t vt, const VertexInfo& tv, const VertexInfo& sv) const {
     const AlignedQuadric& q = quadric_[vt];
     const Vec3d ps = to_d(sv.position);
-    const double e = q.q.evaluate(ps) * q.inverse_weight;
-    const Vec3d d = sub(to_d(tv.position), ps);
-    return (tv.flags & kCoincident) != 0 ? std::max(e, dot(d, d)) : e;
+    return with_crack_floor(tv, ps, q.q.evaluate(ps) * q.inverse_weight);
   }
 
   void add_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {

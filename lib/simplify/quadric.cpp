@@ -6,7 +6,7 @@
 //   exact from that inverse, falls below 1e-9 (flat or cylindrical
 //   neighbourhoods): the caller then falls back to an endpoint or the
 //   midpoint. Eigen's full-pivot LU with its condition estimate, used before,
-//   made optimal placement 4 to 5 times slower for errors within 1 %
+//   made optimal placement 3 to 5 times slower for errors within 1 %
 //   (docs/simplify.md, "Optimal placement").
 #include "lib/simplify/quadric.h"
 
