@@ -148,6 +148,8 @@ bench-heldout: bench-deps build
 	  $(HELDOUT_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,meshopt --markdown \
 	  --height-guard-factor 3 $(HELDOUT_MESHES)
+	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,cgal --markdown \
+	  --placement optimal $(HELDOUT_MESHES)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -35,7 +35,7 @@ struct VertexSplit {
   Vec3f vt_position{};      // position of the new vertex vt
   Vec3f vs_position{};      // position of vs after the split (differs from its
                             // position before only with optimal placement)
-  float error = 0;          // the collapse's cost when it was made: the square root of
+  float error = 0;          // the collapse's error when it was made: the square root of
                             // the quadric's weighted mean squared distance, in model
                             // units (not monotone along the sequence)
 

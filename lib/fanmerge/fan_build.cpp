@@ -240,7 +240,7 @@ class FanBuilder {
           continue;
         Quadric bq;
         if (!boundary_edge_quadric(to_d(input_.positions[a]), to_d(input_.positions[b]), normal, bw,
-                                   &bq))
+                                   BoundaryWeighting::kTimesLength, &bq))
           continue;
         quadric_[a] += bq;
         quadric_[b] += bq;

@@ -165,7 +165,7 @@ class Builder {
         if (!boundary_[a] || !boundary_[b] || has_half_edge(b, a)) continue;
         Quadric bq;
         if (!boundary_edge_quadric(to_d(mesh_.positions[a]), to_d(mesh_.positions[b]), normal,
-                                   options_.boundary_weight, &bq))
+                                   options_.boundary_weight, BoundaryWeighting::kTimesLength, &bq))
           continue;
         quadric_[a] += bq;
         quadric_[b] += bq;

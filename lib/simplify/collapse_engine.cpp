@@ -3,14 +3,19 @@
 // build a progressive mesh (Hoppe 1996; half-edge collapses as in Kim, Lee and
 // Kobbelt's view-dependent streaming). Choices where the papers are vague
 // (docs/simplify.md has the full discussion):
-// - cost: the quadric's weighted MEAN squared distance, Q(p) / sum of weights
-//   (like meshoptimizer), so that sqrt(cost) is a distance comparable with
-//   the bounding-box diagonal for max_error; in half placement only the
-//   removed vertex's quadric (the survivor does not move), in optimal
-//   placement both;
-// - weights: faces by sqrt(area), each boundary edge's plane (through it,
-//   perpendicular to its face) by boundary_weight * |edge|: both lengths,
-//   as in meshoptimizer, whose border weight 10 is the default;
+// - error: the quadric's weighted MEAN squared distance, Q(p) / sum of
+//   weights (like meshoptimizer), so that sqrt(error) is a distance
+//   comparable with the bounding-box diagonal for max_error; in half
+//   placement only the removed vertex's quadric (the survivor does not
+//   move), in optimal placement both;
+// - cost, the rank: in half placement the error; in optimal placement the
+//   sum Q(p) (Garland and Heckbert's, and CGAL's), so that vertices standing
+//   for many faces move late;
+// - weights: half placement, faces by sqrt(area), each boundary edge's plane
+//   (through it, perpendicular to its face) by boundary_weight * |edge|:
+//   both lengths, as in meshoptimizer, whose border weight 10 is the
+//   default; optimal placement, faces by 1 and boundary planes by
+//   boundary_weight, as in the paper and CGAL;
 // - order: passes, as in meshoptimizer. Each pass lists every edge once in
 //   its cheaper direction, sorts the list by cost (stable radix sort on the
 //   upper 21 bits of the float cost, so ties keep the listing order:
@@ -367,7 +372,12 @@ class Engine {
     corners_ = std::move(topology.corners);
     if (!seam_attrs_.empty()) faces_ = std::move(topology.faces);
     setup_quadrics();
-    max_cost_float_ = static_cast<float>(settings.max_cost);
+    // The walk stops at the first listed cost above max_cost; in optimal
+    // placement a cost is an error times a weight, so only try_collapse()
+    // can tell, and every candidate is tried.
+    max_cost_float_ = options.placement == Placement::kHalf
+                          ? static_cast<float>(settings.max_cost)
+                          : std::numeric_limits<float>::infinity();
     if (max_cost_float_ < settings.max_cost) {
       max_cost_float_ = std::nextafter(max_cost_float_, std::numeric_limits<float>::infinity());
     }
@@ -480,12 +490,19 @@ class Engine {
   void add_quadrics(uint32_t lo, uint32_t hi) {
     auto owned = [lo, hi](uint32_t v) { return v >= lo && v < hi; };
     const double bw = options_.boundary_weight;
+    // Half placement ranks by a mean over sqrt-area weights, as meshoptimizer
+    // does; optimal placement by Garland and Heckbert's sum over unit
+    // weights, as CGAL does (see cost()).
+    const bool unit = options_.placement == Placement::kOptimal;
+    const BoundaryWeighting weighting =
+        unit ? BoundaryWeighting::kPerEdge : BoundaryWeighting::kTimesLength;
     for (const Triangle& t : state_.triangles) {
       if (!owned(t[0]) && !owned(t[1]) && !owned(t[2])) continue;
       const Vec3d p0 = to_d(state_.positions[t[0]]);
       const Vec3d p1 = to_d(state_.positions[t[1]]);
       const Vec3d p2 = to_d(state_.positions[t[2]]);
-      const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
+      const Quadric q =
+          unit ? unit_triangle_quadric(p0, p1, p2) : sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t) {
         if (owned(v)) quadric_[v].q += q;
       }
@@ -499,7 +516,7 @@ class Engine {
         if (!(owned(a) || owned(b)) || !is_boundary_half_edge(a, b)) continue;
         Quadric bq;
         if (!boundary_edge_quadric(to_d(state_.positions[a]), to_d(state_.positions[b]), normal, bw,
-                                   &bq))
+                                   weighting, &bq))
           continue;
         if (owned(a)) quadric_[a].q += bq;
         if (owned(b)) quadric_[b].q += bq;
@@ -816,7 +833,8 @@ class Engine {
   // Collapses vt into vs, whose cost() is `exact_cost`, when the cost and
   // the legality checks allow it; m is minimiser(vt, vs).
   Verdict try_collapse(uint32_t vt, uint32_t vs, double exact_cost, const Minimiser& m) {
-    if (!(exact_cost <= settings_.max_cost)) return Verdict::kTooCostly;
+    const double error = collapse_error(vt, vs, exact_cost);
+    if (!(error <= settings_.max_cost)) return Verdict::kTooCostly;
     const Vec3f p = placement(vt, vs, m);
     // On a plane the costs and the heights are both the rounding of the
     // positions, so the guard needs no floor of its own
@@ -827,7 +845,7 @@ class Engine {
     const Verdict verdict = check(vt, vs, p);
     switch (verdict) {
       case Verdict::kOk:
-        collapse(vt, vs, p, exact_cost);
+        collapse(vt, vs, p, error);
         report_progress();
         break;
       case Verdict::kLink:
@@ -890,8 +908,10 @@ class Engine {
     return eb <= em ? b : mid;
   }
 
-  // The cost of collapsing vt into vs, infinite when the locks forbid it;
-  // m is minimiser(vt, vs).
+  // The cost of collapsing vt into vs, the key the collapses are ranked by,
+  // infinite when the locks forbid it; m is minimiser(vt, vs). In half
+  // placement it is also the collapse's error; in optimal placement it is
+  // the error times the edge's summed weight (collapse_error()).
   double cost(uint32_t vt, uint32_t vs, const Minimiser& m) const {
     if (is_set(vt, kNoRemove) || is_set(vs, kNoKeep)) return kInfinity;
 
@@ -904,11 +924,25 @@ class Engine {
     // error of a small vertex; vs does not move, so its own planes gain no
     // error from this collapse (meshoptimizer ranks collapses the same way).
     if (options_.placement == Placement::kHalf) return half_cost(vt, vinfo_[vt], vinfo_[vs]);
-    // Optimal placement moves both endpoints: both quadrics count.
+    // Optimal placement moves both endpoints: both quadrics count, summed
+    // rather than averaged (Garland and Heckbert's cost, and CGAL's), so a
+    // vertex that stands for many faces is dear to move. Averaged, cheap
+    // collapses of heavy vertices went first and set the errors at 50 %
+    // (docs/simplify.md, "Optimal placement"). The crack floor is a mean
+    // squared distance, so it is taken on the mean.
     const Vec3d p = to_d(placement(vt, vs, m));
     const double weight = qt.weight + qs.weight;
-    return with_crack_floor(vinfo_[vt], p,
-                            weight > 0 ? (qt.evaluate(p) + qs.evaluate(p)) / weight : 0);
+    if (!(weight > 0)) return with_crack_floor(vinfo_[vt], p, 0);
+    return weight * with_crack_floor(vinfo_[vt], p, (qt.evaluate(p) + qs.evaluate(p)) / weight);
+  }
+
+  // The error of collapsing vt into vs at cost c (a squared length: what
+  // max_error bounds and the records keep): the cost itself in half
+  // placement, its mean over the edge's weight in optimal placement.
+  double collapse_error(uint32_t vt, uint32_t vs, double c) const {
+    if (options_.placement == Placement::kHalf) return c;
+    const double weight = quadric_[vt].q.weight + quadric_[vs].q.weight;
+    return weight > 0 ? c / weight : c;
   }
 
   // Error e of moving tv to p, raised for a crack's vertex (kCoincident):
@@ -1098,7 +1132,7 @@ class Engine {
 
   // Merges vt into vs, as check() found it (wings vl_, vr_, shared_ faces).
   // The triangles are rewritten at the next pass (finish_pass).
-  void collapse(uint32_t vt, uint32_t vs, const Vec3f& p, double cost_value) {
+  void collapse(uint32_t vt, uint32_t vs, const Vec3f& p, double error) {
     CollapseRecord rec;
     rec.vt = vt;
     rec.vs = vs;
@@ -1106,7 +1140,7 @@ class Engine {
     rec.vr = vr_;
     rec.vt_position = vinfo_[vt].position;
     rec.vs_position = vinfo_[vs].position;
-    rec.error = static_cast<float>(std::sqrt(cost_value));
+    rec.error = static_cast<float>(std::sqrt(error));
 
     if (!seam_attrs_.empty() && !options_.permissive) record_seam_values(vt, vs);
     for (uint32_t w : {vl_, vr_}) {
@@ -1202,7 +1236,7 @@ class Engine {
   TwoWaySplit& split_;
   CandidateList candidates_;
   uint32_t pass_ = 0;
-  float max_cost_float_ = 0;  // settings_.max_cost rounded up to float
+  float max_cost_float_ = 0;  // the listed cost that ends a walk (see the constructor)
   uint64_t since_progress_ = 0;
   double cos_limit_ = -1;
   bool prefetch_walk_ = true;

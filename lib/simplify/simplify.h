@@ -33,8 +33,9 @@ struct SimplifyOptions {
   std::optional<double> target_ratio;        // of the input triangles, in (0, 1]
   std::optional<double> max_error;           // largest collapse error allowed, relative to the
                                     // bounding-box diagonal (like meshoptimizer's target_error)
-  double boundary_weight = 10.0;  // boundary constraint planes weigh this * edge length (faces:
-                                  // sqrt(area)); 10 is meshoptimizer's border weight
+  double boundary_weight = 10.0;  // half placement: boundary constraint planes weigh this * edge
+                                  // length (faces: sqrt(area)), 10 being meshoptimizer's border
+                                  // weight; optimal placement: this (faces: 1)
   bool lock_border = false;       // never move or remove boundary vertices
   double max_normal_change_degrees = 150.0;  // refuse collapses turning a face normal more
   bool permissive = false;                   // allow collapses across texture seams
@@ -73,7 +74,8 @@ struct SimplifyStats {
   uint64_t refused_flip = 0;      // would flip or nearly flip a face normal
   uint64_t refused_other = 0;     // pockets, locked border, seams
   uint64_t refused_height = 0;    // the height guard
-  double max_collapse_error = 0;  // largest collapse cost applied, relative to the diagonal
+  double max_collapse_error = 0;  // largest collapse error applied (the square root of a mean
+                                  // squared distance), relative to the diagonal
 };
 
 struct SimplifyResult {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -120,6 +121,43 @@ TEST(Simplify, StopsAtMaxError) {
   // max_error 0 on a curved mesh: nothing but exactly flat collapses.
   options.max_error = 0.0;
   EXPECT_EQ(run(bunny, options).mesh.triangles.size(), bunny.triangles.size());
+}
+
+// Optimal placement ranks collapses by a summed quadric, not by their error:
+// max_error is checked per collapse on the mean, and the records keep it.
+TEST(Simplify, StopsAtMaxErrorInOptimalPlacement) {
+  const TriangleMesh bunny = load_clean_mesh("npm_bunny.obj");
+  SimplifyOptions options;
+  options.placement = Placement::kOptimal;
+  options.record_pm = true;
+  options.max_error = 0.002;
+  const SimplifyResult r = run(bunny, options);
+  EXPECT_LE(r.stats.max_collapse_error, 0.002);
+  EXPECT_GT(r.stats.max_collapse_error, 0.001);
+  ASSERT_TRUE(r.pm.has_value());
+  ASSERT_FALSE(r.pm->splits.empty());
+  // The records keep the same errors as lengths: the largest is the
+  // reported one times the diagonal (every vertex of this bunny is used).
+  float largest = 0;
+  for (const VertexSplit& split : r.pm->splits)
+    largest = std::max(largest, split.error);
+  Vec3f lo = bunny.positions[0];
+  Vec3f hi = lo;
+  for (const Vec3f& p : bunny.positions) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  EXPECT_NEAR(largest / diagonal, r.stats.max_collapse_error, 1e-5 * r.stats.max_collapse_error);
+  options.max_error = 0.001;
+  const SimplifyResult tighter = run(bunny, options);
+  EXPECT_LE(tighter.stats.max_collapse_error, 0.001);
+  EXPECT_GT(tighter.mesh.triangles.size(), r.mesh.triangles.size());
+  options.max_error.reset();
+  EXPECT_LT(run(bunny, options).mesh.triangles.size(), r.mesh.triangles.size());
+  expect_clean(r.mesh);
 }
 
 TEST(Simplify, RunsToTheEndWithoutCriteria) {

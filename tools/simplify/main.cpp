@@ -318,11 +318,11 @@ int main(int argc, char** argv) {
       "write one mesh per ratio from a single run (-o must contain %d)")(
       "placement", po::value<std::string>(&request.placement)->value_name("half|optimal"),
       "half (default): the surviving vertex keeps an endpoint's position; optimal: the "
-      "quadric's minimiser")("boundary-weight",
-                             po::value<double>(&request.options.boundary_weight)->value_name("W"),
-                             "weight of the boundary-preserving quadrics (default 10)")(
-      "lock-border", po::bool_switch(&request.options.lock_border),
-      "never move or remove boundary vertices")(
+      "quadric's minimiser")(
+      "boundary-weight", po::value<double>(&request.options.boundary_weight)->value_name("W"),
+      "weight of the boundary-preserving quadrics (default 10; times the edge "
+      "length in half placement)")("lock-border", po::bool_switch(&request.options.lock_border),
+                                   "never move or remove boundary vertices")(
       "max-normal-change",
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
