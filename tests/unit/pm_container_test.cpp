@@ -20,6 +20,7 @@
 #include "formats/sections/base.h"
 #include "formats/sections/section_validation.h"
 #include "formats/sections/vspl.h"
+#include "formats/support/quantization.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
 #include "simplify_test_meshes.h"
@@ -260,14 +261,8 @@ TEST_P(PmContainerOnSharedMesh, BaseAndVsplReplayToTheInput) {
   const TriangleMesh quantized_full = replay_to_input(quantized);
   EXPECT_TRUE(same_oriented_triangles(quantized_full, input));
   ASSERT_EQ(quantized_full.positions.size(), input.positions.size());
-  Vec3f lo = input.positions[0];
-  Vec3f hi = lo;
-  for (const Vec3f& p : input.positions) {
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], p[a]);
-      hi[a] = std::max(hi[a], p[a]);
-    }
-  }
+  Vec3f lo, hi;
+  bounding_box(input.positions, &lo, &hi);
   // BASE and VSPL each quantize over the box of what they store, which lies
   // inside the input's box.
   const double bound = quantization_error_bound(lo, hi, 16);

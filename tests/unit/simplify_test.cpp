@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "formats/support/quantization.h"
 #include "lib/check/mesh_check.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/pm_replay.h"
@@ -141,14 +142,8 @@ TEST(Simplify, StopsAtMaxErrorInOptimalPlacement) {
   float largest = 0;
   for (const VertexSplit& split : r.pm->splits)
     largest = std::max(largest, split.error);
-  Vec3f lo = bunny.positions[0];
-  Vec3f hi = lo;
-  for (const Vec3f& p : bunny.positions) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
-  }
+  Vec3f lo, hi;
+  bounding_box(bunny.positions, &lo, &hi);
   const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   EXPECT_NEAR(largest / diagonal, r.stats.max_collapse_error, 1e-5 * r.stats.max_collapse_error);
   options.max_error = 0.001;
