@@ -516,8 +516,8 @@ TriangleMesh unwelded_sheets(int cells) {
 
 // Removing one twin moves its sheet's border away from the other sheet's,
 // opening the crack by up to an edge length, which no plane of the flat
-// sheets sees: that length squared is the least such a collapse costs, in
-// both placements, so a small max_error keeps every twin.
+// sheets sees: that length squared is the least error such a collapse has,
+// in both placements, so a small max_error keeps every twin.
 TEST(Simplify, UnweldedSeamStaysClosed) {
   const int cells = 10;
   const TriangleMesh mesh = unwelded_sheets(cells);
