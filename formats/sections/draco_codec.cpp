@@ -197,9 +197,11 @@ Result<TriangleMesh> decode_unchecked(const uint8_t* data, size_t size) {
 }  // namespace
 
 Result<Bytes> encode_base_draco(const TriangleMesh& mesh, const DracoOptions& options) {
-  if (options.quantization_bits < 1 || options.quantization_bits > 30)
-    return invalid_input(
-        string_printf("Draco quantization takes 1 to 30 bits, not %d", options.quantization_bits));
+  if (options.quantization_bits < kMinDracoQuantizationBits ||
+      options.quantization_bits > kMaxDracoQuantizationBits)
+    return invalid_input(string_printf("Draco quantization takes %d to %d bits, not %d",
+                                       kMinDracoQuantizationBits, kMaxDracoQuantizationBits,
+                                       options.quantization_bits));
   if (options.compression_level < 0 || options.compression_level > 10)
     return invalid_input(
         string_printf("Draco compression level takes 0 to 10, not %d", options.compression_level));
@@ -221,8 +223,8 @@ Result<DracoOptions> read_draco_base_options(const uint8_t* data, size_t size) {
   DracoOptions options;
   options.quantization_bits = data[1];
   options.compression_level = data[2];
-  if (options.quantization_bits < 1 || options.quantization_bits > 30 ||
-      options.compression_level > 10)
+  if (options.quantization_bits < kMinDracoQuantizationBits ||
+      options.quantization_bits > kMaxStoredDracoQuantizationBits || options.compression_level > 10)
     return bad_draco(string_printf("qp %u or cl %u out of range", data[1], data[2]));
   return options;
 }

@@ -17,8 +17,20 @@ namespace lodbake {
 /// The layout version written first in every Draco BASE payload.
 inline constexpr uint8_t kDracoBaseVersion = 1;
 
+/// The quantization bits (qp) encode_base_draco() takes. BASE positions
+/// are float32, whose 24 significant bits a finer grid over the extent
+/// cannot add to, and Draco 1.5.5's encoder sizes a histogram by the
+/// largest quantized residual: memory grows fourfold per bit past about
+/// 22 (the bunny's BASE: 75 MB at 24 bits, 4.2 GB and 7 s at 30).
+inline constexpr int kMinDracoQuantizationBits = 1;
+inline constexpr int kMaxDracoQuantizationBits = 24;
+/// The largest qp a stored payload may name: what Draco itself accepts and
+/// earlier versions of lodbake-pack wrote; decoding is bounded by the
+/// payload's size at any of them.
+inline constexpr int kMaxStoredDracoQuantizationBits = 30;
+
 struct DracoOptions {
-  int quantization_bits = 14;  ///< Draco's qp for positions, 1..30
+  int quantization_bits = 14;  ///< Draco's qp for positions, 1..24 to encode
   int compression_level = 7;   ///< Draco's cl, 0..10 (speed = 10 - cl)
 
   bool operator==(const DracoOptions& o) const {
@@ -30,8 +42,9 @@ struct DracoOptions {
 /// \return kUnsupported when the mesh has per-corner normals or texture
 ///         coordinates, no triangles, or positions Draco cannot quantize
 ///         (non-finite ones, an axis whose float extent overflows): keep such
-///         a BASE raw; kInvalidInput
-///         for options out of range; kRuntime when Draco fails.
+///         a BASE raw; kInvalidInput for options out of range
+///         (quantization_bits outside kMinDracoQuantizationBits..
+///         kMaxDracoQuantizationBits); kRuntime when Draco fails.
 Result<Bytes> encode_base_draco(const TriangleMesh& mesh, const DracoOptions& options);
 
 /// The options a Draco BASE payload was written with (its first bytes).

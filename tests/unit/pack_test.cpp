@@ -456,6 +456,32 @@ TEST(DracoBase, RefusesPerCornerAttributesAndForeignBitstreams) {
             std::string::npos);
 }
 
+// Past 24 bits Draco 1.5.5's encoder allocates fourfold per bit (4.2 GB for
+// the bunny's base mesh at 30; fuzz_draco_base re-encoding a payload that
+// named 30): encoding stops at 24, reading still takes what Draco writes.
+TEST(DracoBase, EncodesUpTo24BitsAndReadsPayloadsNamingUpTo30) {
+  if (!draco_codec_built()) GTEST_SKIP() << "built without the Draco codec";
+  const TriangleMesh mesh = attributed_grid(3);
+  DracoOptions options;
+  options.quantization_bits = kMaxDracoQuantizationBits;
+  Result<Bytes> stored = encode_base_draco(mesh, options);
+  ASSERT_TRUE(stored.is_ok()) << stored.status().message();
+  Result<DracoOptions> read = read_draco_base_options(stored.value().data(), stored.value().size());
+  ASSERT_TRUE(read.is_ok());
+  EXPECT_EQ(read.value().quantization_bits, 24);
+  options.quantization_bits = 25;
+  Result<Bytes> refused = encode_base_draco(mesh, options);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_EQ(refused.status().kind(), ErrorKind::kInvalidInput);
+  EXPECT_EQ(refused.status().message(), "Draco quantization takes 1 to 24 bits, not 25");
+  const Bytes named_30 = {kDracoBaseVersion, 30, 7};
+  Result<DracoOptions> old = read_draco_base_options(named_30.data(), named_30.size());
+  ASSERT_TRUE(old.is_ok()) << old.status().message();
+  EXPECT_EQ(old.value().quantization_bits, 30);
+  const Bytes named_31 = {kDracoBaseVersion, 31, 7};
+  EXPECT_FALSE(read_draco_base_options(named_31.data(), named_31.size()).is_ok());
+}
+
 // Draco quantizes over the float extent max - min; an axis from -2e38 to
 // 2e38 overflows it and Draco 1.5.5's encoder then crashed (fuzz_draco_base).
 TEST(DracoBase, RefusesPositionsWhoseExtentOverflowsFloat) {

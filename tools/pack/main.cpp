@@ -16,6 +16,7 @@
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/draco_codec.h"
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "formats/support/quantization.h"
@@ -270,7 +271,8 @@ int main(int argc, char** argv) {
       "draco", po::bool_switch(&options.draco),
       "containers: store BASE as a Draco bitstream (vertex ids kept); a float32 VSPL is "
       "quantized to --qp bits")("qp", po::value<int>(&options.qp)->value_name("BITS"),
-                                "Draco position quantization, 1..30 bits (default 14)")(
+                                "Draco position quantization, 1..24 bits (default 14; float32 "
+                                "positions hold no more)")(
       "cl", po::value<int>(&options.cl)->value_name("LEVEL"),
       "Draco compression level, 0..10 (default 7)")(
       "raw", po::bool_switch(&options.raw),
@@ -285,8 +287,10 @@ int main(int argc, char** argv) {
   if (inputs.empty()) return tool.usage_error("missing MESH or A.lbk");
   if (options.output.empty()) return tool.usage_error("missing -o OUT.lbk");
   if (std::optional<int> code = check_quantize_bits(tool, options.quantize_bits)) return *code;
-  if (options.qp < 1 || options.qp > 30)
-    return tool.usage_error("--qp takes 1 to 30 bits, not " + std::to_string(options.qp));
+  if (options.qp < kMinDracoQuantizationBits || options.qp > kMaxDracoQuantizationBits)
+    return tool.usage_error("--qp takes " + std::to_string(kMinDracoQuantizationBits) + " to " +
+                            std::to_string(kMaxDracoQuantizationBits) + " bits, not " +
+                            std::to_string(options.qp));
   if (options.cl < 0 || options.cl > 10)
     return tool.usage_error("--cl takes 0 to 10, not " + std::to_string(options.cl));
   if (tool.has("error-bits") &&
