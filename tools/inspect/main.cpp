@@ -300,8 +300,8 @@ void print_contents(std::ostream& out, const nlohmann::json& contents) {
     out << "progressive mesh: " << v["splits"].get<uint64_t>() << " vertex splits from "
         << v["base_vertices"].get<uint64_t>() << " to " << v["full_vertices"].get<uint64_t>()
         << " vertices, collapse errors " << v["error_range"][0].get<double>() << " .. "
-        << v["error_range"][1].get<double>() << ", positions " << v["positions"].get<std::string>()
-        << "\n";
+        << v["error_range"][1].get<double>() << " (model units), positions "
+        << v["positions"].get<std::string>() << "\n";
   }
   if (contents.contains(kDageTag)) {
     const nlohmann::json& g = contents[kDageTag];
