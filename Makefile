@@ -20,7 +20,7 @@ BENCH_PACKAGES := libopenmesh-apps
 
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
 
-.PHONY: all deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz bench \
+.PHONY: all deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
   bench-heldout \
   format format-check clean
 
@@ -85,6 +85,12 @@ fuzz: fuzz-deps
 	  -DLODBAKE_SHARED_DATA=$(SHARED_DATA) > $(FUZZ_BUILD).configure.log 2>&1 \
 	  || { cat $(FUZZ_BUILD).configure.log; exit 1; }
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
+
+# A campaign: every fuzz target for FUZZ_SECONDS, from copies of its seeds;
+# fails and lists the inputs when one crashes, leaks or runs out of memory.
+FUZZ_SECONDS ?= 60
+fuzz-run: fuzz
+	tests/fuzz/run_campaign.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # Import speed against CGAL, OpenMesh and Draco on the full dragon and
 # mid-size meshes (prints ratios; timings are never asserted in tests).
