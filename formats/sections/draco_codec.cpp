@@ -197,8 +197,7 @@ Result<TriangleMesh> decode_unchecked(const uint8_t* data, size_t size) {
 }  // namespace
 
 Result<Bytes> encode_base_draco(const TriangleMesh& mesh, const DracoOptions& options) {
-  if (options.quantization_bits < kMinDracoQuantizationBits ||
-      options.quantization_bits > kMaxDracoQuantizationBits)
+  if (!is_valid_draco_quantization_bits(options.quantization_bits))
     return invalid_input(string_printf("Draco quantization takes %d to %d bits, not %d",
                                        kMinDracoQuantizationBits, kMaxDracoQuantizationBits,
                                        options.quantization_bits));

@@ -20,10 +20,14 @@ inline constexpr uint8_t kDracoBaseVersion = 1;
 /// The quantization bits (qp) encode_base_draco() takes. BASE positions
 /// are float32, whose 24 significant bits a finer grid over the extent
 /// cannot add to, and Draco 1.5.5's encoder sizes a histogram by the
-/// largest quantized residual: memory grows fourfold per bit past about
-/// 22 (the bunny's BASE: 75 MB at 24 bits, 4.2 GB and 7 s at 30).
+/// largest quantized residual: past about 22 bits its memory doubles with
+/// each bit (the bunny's BASE: 75 MB at 24 bits, 272 MB at 26, 4.2 GB and
+/// 7 s at 30).
 inline constexpr int kMinDracoQuantizationBits = 1;
 inline constexpr int kMaxDracoQuantizationBits = 24;
+inline bool is_valid_draco_quantization_bits(int bits) {
+  return bits >= kMinDracoQuantizationBits && bits <= kMaxDracoQuantizationBits;
+}
 /// The largest qp a stored payload may name: what Draco itself accepts and
 /// earlier versions of lodbake-pack wrote; decoding is bounded by the
 /// payload's size at any of them.

@@ -456,9 +456,10 @@ TEST(DracoBase, RefusesPerCornerAttributesAndForeignBitstreams) {
             std::string::npos);
 }
 
-// Past 24 bits Draco 1.5.5's encoder allocates fourfold per bit (4.2 GB for
-// the bunny's base mesh at 30; fuzz_draco_base re-encoding a payload that
-// named 30): encoding stops at 24, reading still takes what Draco writes.
+// Past about 22 bits Draco 1.5.5's encoder doubles its memory with each bit
+// (4.2 GB for the bunny's base mesh at 30; fuzz_draco_base re-encoding a
+// payload that named 30): encoding stops at 24, reading still takes the
+// 30 bits that earlier versions of lodbake-pack could write.
 TEST(DracoBase, EncodesUpTo24BitsAndReadsPayloadsNamingUpTo30) {
   if (!draco_codec_built()) GTEST_SKIP() << "built without the Draco codec";
   const TriangleMesh mesh = attributed_grid(3);

@@ -287,7 +287,7 @@ int main(int argc, char** argv) {
   if (inputs.empty()) return tool.usage_error("missing MESH or A.lbk");
   if (options.output.empty()) return tool.usage_error("missing -o OUT.lbk");
   if (std::optional<int> code = check_quantize_bits(tool, options.quantize_bits)) return *code;
-  if (options.qp < kMinDracoQuantizationBits || options.qp > kMaxDracoQuantizationBits)
+  if (!is_valid_draco_quantization_bits(options.qp))
     return tool.usage_error("--qp takes " + std::to_string(kMinDracoQuantizationBits) + " to " +
                             std::to_string(kMaxDracoQuantizationBits) + " bits, not " +
                             std::to_string(options.qp));
