@@ -47,7 +47,7 @@ const char* container_error_summary(ContainerError error) {
     case ContainerError::kBadTag:
       return "section tag is not printable ASCII";
     case ContainerError::kDuplicateTag:
-      return "duplicate section tag";
+      return "duplicate section tag in a group";
     case ContainerError::kSectionFlags:
       return "unknown section flags or nonzero reserved field";
     case ContainerError::kSectionChecksum:
@@ -62,6 +62,8 @@ const char* container_error_summary(ContainerError error) {
       return "malformed section payload";
     case ContainerError::kMissingSection:
       return "missing section";
+    case ContainerError::kGroupOrder:
+      return "section groups out of order";
   }
   return "unknown error";
 }

@@ -28,7 +28,7 @@ enum class ContainerError : int {
   kSectionOverlap = 14,      // section starts before the previous one ends (or out of order)
   kBadPadding = 15,          // padding between sections is nonzero or longer than 7 bytes
   kBadTag = 16,              // tag bytes outside printable ASCII 0x21..0x7E
-  kDuplicateTag = 17,        // two sections with the same tag
+  kDuplicateTag = 17,        // two sections with the same tag in one group
   kSectionFlags = 18,        // unknown section flag bits or nonzero reserved field
   kSectionChecksum = 19,     // section CRC-32C mismatch
   kUnknownCodec = 20,        // codec other than raw (kUnsupported)
@@ -36,10 +36,11 @@ enum class ContainerError : int {
   kUnknownRequired = 22,     // a section flagged required has a tag this reader does not know
   kMalformedSection = 23,    // a section's payload does not decode
   kMissingSection = 24,      // a section the caller needs is absent
+  kGroupOrder = 25,          // section groups not numbered 0, 1, 2, ... in table order
 };
 
 /// The highest error number in use (the table in docs/format.md ends there).
-inline constexpr int kLastContainerError = 24;
+inline constexpr int kLastContainerError = 25;
 
 /// "LBK-E007" for kTruncated.
 std::string container_error_id(ContainerError error);

@@ -46,7 +46,7 @@ void entry_fields(Entry& entry, Visit visit) {
   visit(16, entry.stored_size);
   visit(24, entry.decoded_size);
   visit(32, entry.crc32c);
-  visit(36, entry.reserved);
+  visit(36, entry.group);
 }
 
 }  // namespace

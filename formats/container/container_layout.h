@@ -1,4 +1,4 @@
-// The fixed binary layout of a lodbake container, version 1.0: constants,
+// The fixed binary layout of a lodbake container, version 1.1: constants,
 // the header and the section-table entry as plain structs, and their
 // byte-exact encoding. No validation here; that is the reader's job
 // (container_reader.h). Specification: docs/format.md.
@@ -25,7 +25,12 @@ inline bool starts_with_container_magic(const uint8_t* data, size_t size) {
 }
 
 inline constexpr uint16_t kFormatMajor = 1;
-inline constexpr uint16_t kFormatMinor = 0;
+/// The newest minor version this build reads. Writers write the lowest
+/// version their sections need: 1.0 unless a section is in a group other
+/// than 0 (groups came with 1.1).
+inline constexpr uint16_t kFormatMinor = 1;
+/// The first minor version with section groups (the entry's last field).
+inline constexpr uint16_t kFirstMinorWithGroups = 1;
 inline constexpr size_t kHeaderSize = 48;
 inline constexpr size_t kHeaderChecksummedBytes = 44;  // the header CRC covers bytes 0..43
 inline constexpr size_t kTableEntrySize = 40;
@@ -63,7 +68,11 @@ struct SectionEntry {
   uint64_t stored_size = 0;
   uint64_t decoded_size = 0;
   uint32_t crc32c = 0;  ///< CRC-32C of the stored bytes
-  uint32_t reserved = 0;
+  /// The section's group (format 1.1; 0 in 1.0 files, where the field is
+  /// reserved): the sections of one group describe one base mesh, the
+  /// group's BASE, so one file can hold structures over several base
+  /// meshes. Groups are numbered 0, 1, 2, ... in table order.
+  uint32_t group = 0;
 
   bool required() const { return (flags & kSectionFlagRequired) != 0; }
 };

@@ -148,6 +148,7 @@ Status check_entries(const uint8_t* data, const ContainerHeader& header,
   const uint64_t area_end = header.table_offset;
   std::set<std::string> seen;
   uint64_t previous_end = kHeaderSize;
+  uint32_t previous_group = 0;
   sections->reserve(header.section_count);
   for (uint32_t i = 0; i < header.section_count; ++i) {
     SectionEntry entry = decode_entry(data + header.table_offset + uint64_t{i} * kTableEntrySize);
@@ -157,19 +158,31 @@ Status check_entries(const uint8_t* data, const ContainerHeader& header,
                                  printable_tag(entry.tag).c_str()));
     }
     const char* tag = entry.tag.c_str();
-    if (!seen.insert(entry.tag).second) {
-      return error(ContainerError::kDuplicateTag,
-                   string_printf("section %u repeats tag %s", i, tag));
-    }
     if ((entry.flags & ~kKnownSectionFlags) != 0) {
       return error(ContainerError::kSectionFlags,
-                   string_printf("section %s has unknown flags 0x%04X (format 1.0 defines 0x0001)",
+                   string_printf("section %s has unknown flags 0x%04X (format 1.x defines 0x0001)",
                                  tag, entry.flags));
     }
-    if (entry.reserved != 0) {
-      return error(
-          ContainerError::kSectionFlags,
-          string_printf("section %s reserved field is 0x%08X, must be 0", tag, entry.reserved));
+    if (entry.group != 0 && header.minor < kFirstMinorWithGroups) {
+      return error(ContainerError::kSectionFlags,
+                   string_printf("section %s reserved field is 0x%08X, must be 0 in format 1.%u",
+                                 tag, entry.group, header.minor));
+    }
+    // Groups run 0, 1, 2, ... in table order, so a group's sections are
+    // contiguous and the numbering is canonical.
+    const uint64_t highest_next = i == 0 ? 0 : uint64_t{previous_group} + 1;
+    if (entry.group < previous_group || entry.group > highest_next) {
+      return error(ContainerError::kGroupOrder,
+                   string_printf("section %u (%s) is in group %u after group %u: groups are "
+                                 "numbered 0, 1, 2, ... in table order",
+                                 i, tag, entry.group, i == 0 ? 0u : previous_group));
+    }
+    previous_group = entry.group;
+    if (!seen.insert(std::to_string(entry.group) + ':' + entry.tag).second) {
+      return error(ContainerError::kDuplicateTag,
+                   entry.group == 0 ? string_printf("section %u repeats tag %s", i, tag)
+                                    : string_printf("section %u repeats tag %s in group %u", i, tag,
+                                                    entry.group));
     }
     if (entry.offset < kHeaderSize || entry.offset > area_end ||
         entry.stored_size > area_end - entry.offset) {
@@ -248,20 +261,37 @@ Status check_contents(std::vector<Section>* sections, const std::vector<std::str
 
 }  // namespace
 
-const Section* Container::find(std::string_view tag) const {
+const Section* Container::find(std::string_view tag, uint32_t group) const {
   for (const Section& section : sections) {
-    if (section.entry.tag == tag) return &section;
+    if (section.entry.group == group && section.entry.tag == tag) return &section;
   }
   return nullptr;
 }
 
-Result<const Section*> Container::require(std::string_view tag) const {
-  const Section* section = find(tag);
+Result<const Section*> Container::require(std::string_view tag, uint32_t group) const {
+  const Section* section = find(tag, group);
   if (section == nullptr) {
-    return container_error(ContainerError::kMissingSection,
-                           "the container has no " + std::string(tag) + " section");
+    return container_error(
+        ContainerError::kMissingSection,
+        group == 0 ? "the container has no " + std::string(tag) + " section"
+                   : "group " + std::to_string(group) + " has no " + std::string(tag) + " section");
   }
   return section;
+}
+
+Container single_group(const Container& container, uint32_t group) {
+  Container out;
+  out.header = container.header;
+  for (const Section& section : container.sections) {
+    if (section.group() != group) continue;
+    out.sections.push_back(section);
+    out.sections.back().entry.group = 0;
+  }
+  return out;
+}
+
+uint32_t Container::group_count() const {
+  return sections.empty() ? 0 : sections.back().entry.group + 1;
 }
 
 Result<Container> read_container(const uint8_t* data, size_t size,

@@ -1,4 +1,4 @@
-// The strict container reader: accepts a format 1.0 container only when
+// The strict container reader: accepts a format 1.0 or 1.1 container only when
 // every byte of it checks out, and otherwise names the first problem with a
 // stable LBK-E0nn error (formats/container/container_errors.h).
 #pragma once
@@ -22,6 +22,7 @@ struct Section {
   bool known = false;             ///< the reader was told about this tag
 
   const std::string& tag() const { return entry.tag; }
+  uint32_t group() const { return entry.group; }
   bool required() const { return entry.required(); }
 };
 
@@ -32,13 +33,22 @@ struct Container {
   ContainerHeader header;
   std::vector<Section> sections;  ///< in table order, which is file order
 
-  /// The section with `tag`, or nullptr.
-  const Section* find(std::string_view tag) const;
+  /// The section with `tag` in `group`, or nullptr.
+  const Section* find(std::string_view tag, uint32_t group = 0) const;
 
-  /// The section with `tag`, or LBK-E024 "missing section" for a caller that
-  /// cannot work without it.
-  Result<const Section*> require(std::string_view tag) const;
+  /// The section with `tag` in `group`, or LBK-E024 "missing section" for a
+  /// caller that cannot work without it.
+  Result<const Section*> require(std::string_view tag, uint32_t group = 0) const;
+
+  /// How many groups the sections form (the last section's group + 1; 0
+  /// without sections).
+  uint32_t group_count() const;
 };
+
+/// The sections of `group` alone, as a container of one group (their group
+/// field set to 0), for code that handles one base mesh and its structures.
+/// The sections still point into the original buffers.
+Container single_group(const Container& container, uint32_t group);
 
 /// Parses and checks a container of `size` bytes at `data`, knowing the tags
 /// of the section registry (section_registry.h).
@@ -47,13 +57,13 @@ struct Container {
 /// file values is overflow-safe): magic, length, major version, header CRC,
 /// minor version, header flags and reserved field, file size against `size`,
 /// table position and alignment, section count against the table size,
-/// table CRC; then per entry: tag characters, tag uniqueness, flags and
-/// reserved field, bounds within [48, table_offset), 8-byte alignment, order
-/// and overlap, padding (at most 7 zero bytes before each section and before
-/// the table); then per section: CRC of the stored bytes, codec, decoded
-/// size; finally that no required section has an unknown tag. Unknown
-/// optional sections are accepted and returned with known == false.
-/// Section payloads are not decoded: that is each section's decoder's job.
+/// table CRC; then per entry: tag characters, flags, group (0 before format
+/// 1.1; numbered 0, 1, 2, ... in table order), tag uniqueness in its group, bounds within [48,
+/// table_offset), 8-byte alignment, order and overlap, padding (at most 7 zero bytes before each
+/// section and before the table); then per section: CRC of the stored bytes, codec, decoded size;
+/// finally that no required section has an unknown tag. Unknown optional sections are accepted and
+/// returned with known == false. Section payloads are not decoded: that is each section's decoder's
+/// job.
 ///
 /// \pre `data` points to `size` readable bytes (may be null when size == 0).
 /// \return the container, or the first failed check as a Status whose code()

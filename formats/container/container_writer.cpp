@@ -12,13 +12,14 @@
 
 namespace lodbake {
 
-Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool required) {
+Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool required,
+                                    uint32_t group) {
   const uint64_t size = payload.size();
-  return add_stored_section(tag, std::move(payload), SectionCodec::kRaw, size, required);
+  return add_stored_section(tag, std::move(payload), SectionCodec::kRaw, size, required, group);
 }
 
 Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
-                                           uint64_t decoded_size, bool required) {
+                                           uint64_t decoded_size, bool required, uint32_t group) {
   if (codec == SectionCodec::kRaw && decoded_size != stored.size()) {
     return invalid_input("raw section " + printable_tag(tag) + " with a decoded size of " +
                          std::to_string(decoded_size) + " bytes and " +
@@ -29,13 +30,20 @@ Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, S
                            "section tag \"" + printable_tag(tag) +
                                "\" is not 4 printable ASCII characters (0x21..0x7E)");
   }
+  const uint32_t previous = sections_.empty() ? 0 : sections_.back().group;
+  if (group < previous || group > (sections_.empty() ? 0 : uint64_t{previous} + 1)) {
+    return container_error(ContainerError::kGroupOrder,
+                           "section " + std::string(tag) + " added to group " +
+                               std::to_string(group) + " after group " + std::to_string(previous));
+  }
   for (const Pending& pending : sections_) {
-    if (pending.tag == tag) {
+    if (pending.tag == tag && pending.group == group) {
       return container_error(ContainerError::kDuplicateTag,
                              "section " + std::string(tag) + " was already added");
     }
   }
-  sections_.push_back(Pending{std::string(tag), std::move(stored), required, codec, decoded_size});
+  sections_.push_back(
+      Pending{std::string(tag), std::move(stored), required, codec, decoded_size, group});
   return Status::ok();
 }
 
@@ -56,10 +64,14 @@ Result<Bytes> ContainerWriter::finish() const {
       entry.stored_size = pending.payload.size();
       entry.decoded_size = pending.decoded_size;
       entry.crc32c = crc32c(pending.payload.data(), pending.payload.size());
+      entry.group = pending.group;
       end = entry.offset + entry.stored_size;
       entries.push_back(std::move(entry));
     }
     ContainerHeader header;
+    // The lowest version the sections need: 1.0 files stay byte-identical.
+    const bool grouped = !sections_.empty() && sections_.back().group != 0;
+    header.minor = grouped ? kFirstMinorWithGroups : 0;
     header.table_offset = align_up8(end);
     header.section_count = static_cast<uint32_t>(entries.size());
     header.file_size = header.table_offset + entries.size() * kTableEntrySize;

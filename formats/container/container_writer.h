@@ -14,7 +14,8 @@
 
 namespace lodbake {
 
-/// Collects sections and lays them out as a format 1.0 container.
+/// Collects sections and lays them out as a format 1.0 container, or 1.1
+/// when a section is in a group other than 0.
 ///
 /// Output is a pure function of the sections added and their order: sections
 /// appear in the order of add_section() calls, each at the next 8-byte
@@ -24,19 +25,22 @@ namespace lodbake {
 /// byte-identical files.
 class ContainerWriter {
  public:
-  /// Adds a section. `required` sets flag bit 0: a reader that does not know
-  /// `tag` must then refuse the whole file (use it for sections whose absence
-  /// would make the file mean something else; META is optional, BASE required).
+  /// Adds a section to `group`. `required` sets flag bit 0: a reader that
+  /// does not know `tag` must then refuse the whole file (use it for sections
+  /// whose absence would make the file mean something else; META is
+  /// optional, BASE required). Groups are added in order: `group` is the
+  /// previous section's group or the next one (0 for the first section).
   /// \return LBK-E016 when `tag` is not 4 characters in 0x21..0x7E, LBK-E017
-  ///         when a section with that tag was already added; nothing is added then.
-  Status add_section(std::string_view tag, Bytes payload, bool required);
+  ///         when a section with that tag was already added to the group,
+  ///         LBK-E025 for a group out of order; nothing is added then.
+  Status add_section(std::string_view tag, Bytes payload, bool required, uint32_t group = 0);
 
   /// Adds a section whose stored bytes encode its payload with `codec`;
   /// `decoded_size` is the payload's size (for raw it must be stored.size()).
   /// \return as add_section(), or kInvalidInput for a raw section whose
   ///         decoded size differs from its stored size.
   Status add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
-                            uint64_t decoded_size, bool required);
+                            uint64_t decoded_size, bool required, uint32_t group = 0);
 
   /// Number of sections added so far.
   size_t section_count() const { return sections_.size(); }
@@ -53,6 +57,7 @@ class ContainerWriter {
     bool required;
     SectionCodec codec;
     uint64_t decoded_size;
+    uint32_t group;
   };
   std::vector<Pending> sections_;
 };

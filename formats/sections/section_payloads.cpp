@@ -7,6 +7,7 @@
 
 #include <cinttypes>
 #include <new>
+#include <optional>
 
 #include "formats/container/container_errors.h"
 #include "formats/container/section_codecs.h"
@@ -26,6 +27,12 @@ Status undefined_codec(const Section& section) {
       ContainerError::kUnknownCodec,
       string_printf("section %s uses codec %u (%s), which is not defined for this section kind",
                     section.tag().c_str(), section.entry.codec, name == nullptr ? "?" : name));
+}
+
+// " of group N" for sections outside group 0, so messages about 1.0 files
+// read as before.
+std::string in_group(const Section& section) {
+  return section.group() == 0 ? std::string() : " of group " + std::to_string(section.group());
 }
 
 }  // namespace
@@ -87,16 +94,24 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
       section->size = storage->back().size();
       return Status::ok();
     };
-    Section* base = nullptr;
+    // Each group's BASE first: the compact codecs of its other sections
+    // predict from it.
+    std::vector<Section*> bases(container->group_count(), nullptr);
     for (Section& section : container->sections) {
-      if (section.tag() == kBaseTag) base = &section;
+      if (section.tag() == kBaseTag) bases[section.group()] = &section;
     }
-    if (base != nullptr && base->entry.codec != static_cast<uint16_t>(SectionCodec::kRaw)) {
+    for (Section* base : bases) {
+      if (base == nullptr || base->entry.codec == static_cast<uint16_t>(SectionCodec::kRaw))
+        continue;
       LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_base_stored(*base));
       LODBAKE_RETURN_IF_ERROR(replace(base, std::move(raw)));
     }
+    std::vector<std::optional<TriangleMesh>> base_meshes(bases.size());
     for (Section& section : container->sections) {
-      if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw) || &section == base)
+      // Kinds this build does not know keep their stored bytes: their own
+      // tools define their codecs.
+      if (section.entry.codec == static_cast<uint16_t>(SectionCodec::kRaw) ||
+          section.tag() == kBaseTag || !section.known)
         continue;
       if (has_standalone_compact_codec(section.tag())) {
         LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_stored_payload(section));
@@ -107,14 +122,19 @@ Status decode_section_codecs(Container* container, std::vector<Bytes>* storage) 
       if ((!vspl && !has_base_compact_codec(section.tag())) ||
           section.entry.codec != static_cast<uint16_t>(SectionCodec::kCompact))
         return undefined_codec(section);
+      const Section* base = bases[section.group()];
       if (base == nullptr) {
-        return container_error(
-            ContainerError::kMissingSection,
-            "section " + section.tag() + " is compact, which needs the BASE section");
+        return container_error(ContainerError::kMissingSection,
+                               "section " + section.tag() + in_group(section) +
+                                   " is compact, which needs the BASE section" + in_group(section));
       }
-      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
-      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, vspl ? decode_vspl_stored(section, base_mesh)
-                                               : decode_with_base_stored(section, base_mesh));
+      std::optional<TriangleMesh>& base_mesh = base_meshes[section.group()];
+      if (!base_mesh) {
+        LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(base->data, base->size));
+        base_mesh = std::move(mesh);
+      }
+      LODBAKE_ASSIGN_OR_RETURN(Bytes raw, vspl ? decode_vspl_stored(section, *base_mesh)
+                                               : decode_with_base_stored(section, *base_mesh));
       LODBAKE_RETURN_IF_ERROR(replace(&section, std::move(raw)));
     }
     return Status::ok();

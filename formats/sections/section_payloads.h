@@ -34,7 +34,9 @@ Result<Bytes> decode_stored_payload(const Section& section);
 /// Decodes the coded sections of `container` in place: afterwards each
 /// Section's data and size are its raw payload (owned by `*storage`, which
 /// must outlive the container's use); entries keep the stored codec and
-/// sizes. BASE is decoded before VSPL, FANH and STRP, whose compact codecs need it.
+/// sizes. Each group's BASE is decoded before its VSPL, FANH and STRP, whose
+/// compact codecs need it. Sections of kinds the reader does not know
+/// (Section::known false) keep their stored bytes.
 /// \return LBK-E020 (kUnsupported) for a codec this build cannot decode or
 ///         that is not defined for the section's kind; the codec decoder's
 ///         LBK-E023; LBK-E024 when a compact VSPL, FANH or STRP has no BASE; LBK-E021 when

@@ -222,9 +222,8 @@ void check_fanh(const Decoded& d, std::vector<SectionFinding>* findings) {
     findings->push_back({kFanhTag, std::move(finding)});
 }
 
-}  // namespace
-
-std::vector<SectionFinding> validate_sections(const Container& container) {
+// The findings of one group's sections (tags unique).
+std::vector<SectionFinding> validate_group(const Container& container) {
   std::vector<SectionFinding> findings;
   Decoded d;
   for (const Section& section : container.sections) {
@@ -287,6 +286,20 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       findings.push_back({kSetsTag, std::move(finding)});
   }
   if (d.meta) check_meta_counts(d, &findings);
+  return findings;
+}
+
+}  // namespace
+
+std::vector<SectionFinding> validate_sections(const Container& container) {
+  if (container.group_count() <= 1) return validate_group(container);
+  std::vector<SectionFinding> findings;
+  for (uint32_t group = 0; group < container.group_count(); ++group) {
+    for (SectionFinding& f : validate_group(single_group(container, group))) {
+      if (group != 0) f.message = "group " + std::to_string(group) + ": " + f.message;
+      findings.push_back(std::move(f));
+    }
+  }
   return findings;
 }
 

@@ -39,13 +39,13 @@
 #include <new>
 #include <optional>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_codecs.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/compact_sections.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vspl_compact.h"
@@ -61,18 +61,26 @@ std::string codec_text(uint16_t codec) {
   return name != nullptr ? name : std::to_string(codec);
 }
 
-// One input's section chosen for the output, with its raw payload when it
-// is a kind pack recodes.
+// One input's section chosen for the output: its stored bytes and its raw
+// payload (the stored bytes again for kinds this build does not know).
 struct Chosen {
   size_t input = 0;
-  const Section* section = nullptr;
-  Bytes raw;  // BASE and VSPL only
+  const Section* stored = nullptr;
+  const Section* decoded = nullptr;
+
+  Bytes raw() const { return Bytes(decoded->data, decoded->data + decoded->size); }
+};
+
+// The sections of one output group: one base mesh and what refines it.
+struct OutGroup {
+  std::map<std::string, Chosen> chosen;
+  std::vector<std::string> order;  // first-seen order
 };
 
 struct InputFile {
-  Container container;
+  OpenedContainer file;
   std::optional<MetaSection> meta;
-  std::optional<TriangleMesh> base;  // its BASE decoded, when it has one
+  std::vector<uint32_t> out_group;  // per input group
 };
 
 bool listed(const std::vector<std::string>& tags, const std::string& tag) {
@@ -82,14 +90,21 @@ bool listed(const std::vector<std::string>& tags, const std::string& tag) {
   return false;
 }
 
+bool wanted_tag(const RepackOptions& options, const std::string& tag) {
+  if (listed(options.drop, tag)) return false;
+  return options.keep.empty() || listed(options.keep, tag) || tag == kMetaTag;
+}
+
+// An output group none of whose sections is written.
+constexpr uint32_t kDroppedGroup = UINT32_MAX;
+
 Status read_inputs(const std::vector<PackInput>& inputs, std::vector<InputFile>* files,
                    size_t* failed) {
   for (size_t i = 0; i < inputs.size(); ++i) {
     *failed = i;
-    InputFile file;
-    LODBAKE_ASSIGN_OR_RETURN(file.container,
-                             read_container(inputs[i].bytes.data(), inputs[i].bytes.size()));
-    if (const Section* meta = file.container.find(kMetaTag)) {
+    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(inputs[i].bytes));
+    InputFile file{std::move(opened), std::nullopt, {}};
+    if (const Section* meta = file.file.find(kMetaTag)) {
       LODBAKE_ASSIGN_OR_RETURN(MetaSection decoded, decode_meta(meta->data, meta->size));
       file.meta = std::move(decoded);
     }
@@ -99,24 +114,62 @@ Status read_inputs(const std::vector<PackInput>& inputs, std::vector<InputFile>*
   return Status::ok();
 }
 
-// The decoded BASE of input `i` (decoded once).
-Result<const TriangleMesh*> input_base(std::vector<InputFile>* files, size_t i) {
-  InputFile& file = (*files)[i];
-  if (!file.base) {
-    LODBAKE_ASSIGN_OR_RETURN(const Section* base, file.container.require(kBaseTag));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes raw, decode_base_stored(*base));
-    LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(raw.data(), raw.size()));
-    file.base = std::move(mesh);
+// Two sections hold the same thing: known kinds by their raw payloads (a
+// compact and a raw VSPL of the same records are the same), others by codec
+// and stored bytes.
+bool same_section(const Chosen& a, const Chosen& b) {
+  if (!a.decoded->known) {
+    return a.stored->entry.codec == b.stored->entry.codec &&
+           a.stored->entry.decoded_size == b.stored->entry.decoded_size &&
+           std::equal(a.stored->data, a.stored->data + a.stored->size, b.stored->data,
+                      b.stored->data + b.stored->size);
   }
-  return &*file.base;
+  return std::equal(a.decoded->data, a.decoded->data + a.decoded->size, b.decoded->data,
+                    b.decoded->data + b.decoded->size);
 }
 
-Result<Bytes> raw_payload(std::vector<InputFile>* files, size_t i, const Section& section) {
-  if (section.tag() == kBaseTag) return decode_base_stored(section);
-  if (has_standalone_compact_codec(section.tag())) return decode_stored_payload(section);
-  LODBAKE_ASSIGN_OR_RETURN(const TriangleMesh* base, input_base(files, i));
-  if (has_base_compact_codec(section.tag())) return decode_with_base_stored(section, *base);
-  return decode_vspl_stored(section, *base);
+// Places every input group into the first output group with the same BASE
+// (or none) whose sections of the same tags are the same; else into a new
+// group. META is left out: the output gets a new one.
+std::vector<OutGroup> assign_groups(std::vector<InputFile>* files) {
+  std::vector<OutGroup> groups;
+  for (size_t i = 0; i < files->size(); ++i) {
+    InputFile& in = (*files)[i];
+    const Container& stored = in.file.stored();
+    const Container& decoded = in.file.decoded();
+    for (uint32_t g = 0; g < in.file.group_count(); ++g) {
+      std::vector<Chosen> sections;
+      for (size_t k = 0; k < decoded.sections.size(); ++k) {
+        if (decoded.sections[k].group() != g || decoded.sections[k].tag() == kMetaTag) continue;
+        sections.push_back(Chosen{i, &stored.sections[k], &decoded.sections[k]});
+      }
+      auto fits = [&](const OutGroup& out) {
+        const bool has_base = out.chosen.count(kBaseTag) != 0;
+        bool base_seen = false;
+        for (const Chosen& c : sections) {
+          base_seen = base_seen || c.stored->tag() == kBaseTag;
+          auto it = out.chosen.find(c.stored->tag());
+          if (c.stored->tag() == kBaseTag && it == out.chosen.end()) return false;
+          if (it != out.chosen.end() && !same_section(it->second, c)) return false;
+        }
+        return base_seen == has_base;
+      };
+      size_t target = groups.size();
+      for (size_t o = 0; o < groups.size() && target == groups.size(); ++o) {
+        if (fits(groups[o])) target = o;
+      }
+      if (target == groups.size()) groups.emplace_back();
+      OutGroup& out = groups[target];
+      for (const Chosen& c : sections) {
+        if (out.chosen.emplace(c.stored->tag(), c).second) out.order.push_back(c.stored->tag());
+      }
+      in.out_group.push_back(static_cast<uint32_t>(target));
+    }
+    // A container with META only still has group 0.
+    if (in.out_group.empty()) in.out_group.push_back(0);
+  }
+  if (groups.empty()) groups.emplace_back();
+  return groups;
 }
 
 Status merge_meta(const std::vector<PackInput>& inputs, const std::vector<InputFile>& files,
@@ -124,6 +177,10 @@ Status merge_meta(const std::vector<PackInput>& inputs, const std::vector<InputF
   *out = make_meta(kPackTool);
   out->options = meta_options.is_null() ? nlohmann::json::object() : meta_options;
   nlohmann::json sources = nlohmann::json::array();
+  auto add_source = [&](nlohmann::json source) {
+    if (std::find(sources.begin(), sources.end(), source) == sources.end())
+      sources.push_back(std::move(source));
+  };
   for (size_t i = 0; i < files.size(); ++i) {
     *failed = i;
     if (!files[i].meta) {
@@ -143,24 +200,42 @@ Status merge_meta(const std::vector<PackInput>& inputs, const std::vector<InputF
                              " has " + out->input->sha256_hex.substr(0, 16) + "...)");
       }
     }
-    for (const auto& [key, value] : meta.counts) {
-      auto [it, inserted] = out->counts.emplace(key, value);
-      if (!inserted && it->second != value) {
-        return invalid_input("META counts." + key + " is " + std::to_string(value) +
-                             ", an earlier input says " + std::to_string(it->second));
+    // META's counts describe its own group 0; they go to the output's
+    // counts when that is the output's group 0 too, else to the source.
+    const uint32_t group = files[i].out_group.front();
+    if (group == 0) {  // (a dropped group 0 is renumbered 0 too: it keeps META)
+      for (const auto& [key, value] : meta.counts) {
+        auto [it, inserted] = out->counts.emplace(key, value);
+        if (!inserted && it->second != value) {
+          return invalid_input("META counts." + key + " is " + std::to_string(value) +
+                               ", an earlier input says " + std::to_string(it->second));
+        }
       }
     }
     auto earlier = meta.extra.find("sources");
     if (meta.tool == kPackTool && earlier != meta.extra.end() && earlier->is_array()) {
-      for (const nlohmann::json& source : *earlier) {
-        if (std::find(sources.begin(), sources.end(), source) == sources.end())
-          sources.push_back(source);
+      for (nlohmann::json source : *earlier) {
+        // Its group numbers are the packed file's: renumber them.
+        const uint64_t from = source.value("group", uint64_t{0});
+        const uint32_t to =
+            from < files[i].out_group.size() ? files[i].out_group[from] : files[i].out_group[0];
+        if (to == kDroppedGroup) continue;
+        if (to == 0) {
+          source.erase("group");
+        } else {
+          source["group"] = to;
+        }
+        add_source(std::move(source));
       }
     } else {
+      if (group == kDroppedGroup) continue;
       nlohmann::json source = {
           {"tool", meta.tool}, {"version", meta.version}, {"options", meta.options}};
-      if (std::find(sources.begin(), sources.end(), source) == sources.end())
-        sources.push_back(std::move(source));
+      if (group != 0) {
+        source["group"] = group;
+        if (!meta.counts.empty()) source["counts"] = meta.counts;
+      }
+      add_source(std::move(source));
     }
   }
   *failed = inputs.size();
@@ -180,84 +255,33 @@ bool base_as_requested(const Section& section, const BaseSummary& summary,
                                         summary.quantization_bits == options.quantize_bits);
 }
 
-Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
-                                    const RepackOptions& options,
-                                    const nlohmann::json& meta_options, size_t* failed) {
-  *failed = inputs.size();
-  if (inputs.empty()) return invalid_input("no input containers");
-  std::vector<InputFile> files;
-  LODBAKE_RETURN_IF_ERROR(read_inputs(inputs, &files, failed));
-  // The input hashes first: files of different inputs differ everywhere.
-  MetaSection merged_meta;
-  LODBAKE_RETURN_IF_ERROR(merge_meta(inputs, files, meta_options, &merged_meta, failed));
-  PackResult result;
-  for (const PackInput& input : inputs)
-    result.input_bytes += input.bytes.size();
-
-  // The first occurrence of each tag, in first-seen order; later ones must match.
-  std::map<std::string, Chosen> chosen;
-  std::vector<std::string> order;
-  for (size_t i = 0; i < files.size(); ++i) {
-    *failed = i;
-    for (const Section& section : files[i].container.sections) {
-      const std::string& tag = section.tag();
-      const bool recoded = tag == kBaseTag || tag == kVsplTag || has_base_compact_codec(tag) ||
-                           has_standalone_compact_codec(tag);
-      auto it = chosen.find(tag);
-      if (it == chosen.end()) {
-        Chosen c{i, &section, {}};
-        if (recoded) {
-          LODBAKE_ASSIGN_OR_RETURN(c.raw, raw_payload(&files, i, section));
-        }
-        chosen.emplace(tag, std::move(c));
-        order.push_back(tag);
-        continue;
-      }
-      if (tag == kMetaTag) continue;
-      bool same = false;
-      if (recoded) {
-        LODBAKE_ASSIGN_OR_RETURN(Bytes raw, raw_payload(&files, i, section));
-        same = raw == it->second.raw;
-      } else {
-        const Section& first = *it->second.section;
-        same = first.entry.codec == section.entry.codec &&
-               first.entry.decoded_size == section.entry.decoded_size &&
-               Bytes(first.data, first.data + first.size) ==
-                   Bytes(section.data, section.data + section.size);
-      }
-      if (!same) {
-        return invalid_input("section " + tag + " differs from the one in " +
-                             inputs[it->second.input].name);
-      }
-    }
-  }
-  *failed = inputs.size();
-
-  auto wanted = [&](const std::string& tag) {
-    if (listed(options.drop, tag)) return false;
-    return options.keep.empty() || listed(options.keep, tag) || tag == kMetaTag;
-  };
-  // Output order: META, BASE, VSPL, then the others as first seen.
+// Writes one output group's sections: META first (group 0 only), BASE,
+// VSPL, then the others as first seen, recoded as `options` asks.
+Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, uint32_t index,
+                   const RepackOptions& options, const MetaSection& merged_meta,
+                   ContainerWriter* writer, PackResult* result,
+                   std::vector<PackedSection>* dropped) {
+  const std::map<std::string, Chosen>& chosen = group.chosen;
+  auto wanted = [&](const std::string& tag) { return wanted_tag(options, tag); };
   std::vector<std::string> out_order;
-  for (const char* tag : {kMetaTag, kBaseTag, kVsplTag}) {
-    if (chosen.count(tag) != 0 || std::string(tag) == kMetaTag) out_order.push_back(tag);
+  if (index == 0) out_order.push_back(kMetaTag);
+  for (const char* tag : {kBaseTag, kVsplTag}) {
+    if (chosen.count(tag) != 0) out_order.push_back(tag);
   }
-  for (const std::string& tag : order) {
-    if (tag != kMetaTag && tag != kBaseTag && tag != kVsplTag) out_order.push_back(tag);
+  for (const std::string& tag : group.order) {
+    if (tag != kBaseTag && tag != kVsplTag) out_order.push_back(tag);
   }
   if (wanted(kVsplTag) && chosen.count(kVsplTag) != 0 && !wanted(kBaseTag))
     return invalid_input("VSPL is kept but BASE is dropped: VSPL needs its BASE");
 
-  ContainerWriter writer;
-  std::vector<PackedSection> dropped;
   std::optional<TriangleMesh> written_base;  // the BASE as a reader will decode it
-  std::optional<BaseSummary> base_summary;
   for (const std::string& tag : out_order) {
     PackedSection report;
     report.tag = tag;
+    report.group = index == kDroppedGroup ? 0 : index;
     auto it = chosen.find(tag);
     if (it != chosen.end()) {
-      const Section& s = *it->second.section;
+      const Section& s = *it->second.stored;
       report.source = inputs[it->second.input].name;
       report.codec_before = codec_text(s.entry.codec);
       report.stored_before = s.entry.stored_size;
@@ -265,7 +289,7 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     if (!wanted(tag)) {
       if (it == chosen.end()) continue;
       report.action = "dropped";
-      dropped.push_back(std::move(report));
+      dropped->push_back(std::move(report));
       continue;
     }
     Bytes stored;
@@ -273,8 +297,8 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     uint64_t decoded_size = 0;
     bool required = false;
     if (tag == kMetaTag) {
-      // Counts describe sections (docs/format.md "META"): those of sections
-      // left out go too, or the output would not validate.
+      // Counts describe group 0's sections (docs/format.md "META"): those of
+      // sections left out go too, or the output would not validate.
       MetaSection meta = merged_meta;
       const bool writes_base = chosen.count(kBaseTag) != 0 && wanted(kBaseTag);
       const bool writes_vspl = chosen.count(kVsplTag) != 0 && wanted(kVsplTag);
@@ -291,18 +315,18 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       report.action = "rewritten";
     } else if (tag == kBaseTag) {
       const Chosen& c = it->second;
-      required = c.section->required();
-      LODBAKE_ASSIGN_OR_RETURN(BaseSummary summary, read_base_summary(c.raw.data(), c.raw.size()));
-      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(c.raw.data(), c.raw.size()));
-      base_summary = summary;
-      bool draco_target = options.draco;
-      if (base_as_requested(*c.section, summary, options, draco_target)) {
-        stored = Bytes(c.section->data, c.section->data + c.section->size);
-        codec = static_cast<SectionCodec>(c.section->entry.codec);
-        decoded_size = c.raw.size();
+      const Bytes c_raw = c.raw();
+      required = c.stored->required();
+      LODBAKE_ASSIGN_OR_RETURN(BaseSummary summary, read_base_summary(c_raw.data(), c_raw.size()));
+      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(c_raw.data(), c_raw.size()));
+      const bool draco_target = options.draco;
+      if (base_as_requested(*c.stored, summary, options, draco_target)) {
+        stored = Bytes(c.stored->data, c.stored->data + c.stored->size);
+        codec = static_cast<SectionCodec>(c.stored->entry.codec);
+        decoded_size = c_raw.size();
         report.action = "copied";
       } else {
-        Bytes raw = c.raw;
+        Bytes raw = c_raw;
         if (options.quantize_bits != 0 && !draco_target &&
             !(summary.position_encoding == PositionEncoding::kQuantized &&
               summary.quantization_bits == options.quantize_bits)) {
@@ -318,7 +342,7 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
           if (draco.is_ok()) {
             stored = std::move(draco).value();
             codec = SectionCodec::kDraco;
-            Section probe = *c.section;
+            Section probe = *c.stored;
             probe.entry.codec = static_cast<uint16_t>(codec);
             probe.data = stored.data();
             probe.size = stored.size();
@@ -330,7 +354,7 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
         }
         report.action = "recoded";
       }
-      Section probe = *c.section;
+      Section probe = *c.stored;
       probe.entry.codec = static_cast<uint16_t>(codec);
       probe.data = stored.data();
       probe.size = stored.size();
@@ -338,24 +362,27 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh decoded,
                                decode_base(written_raw.data(), written_raw.size()));
       written_base = std::move(decoded);
-      result.vertices = written_base->vertex_count();
-      result.triangles = written_base->triangle_count();
+      if (index == 0) {
+        result->vertices = written_base->vertex_count();
+        result->triangles = written_base->triangle_count();
+      }
     } else if (tag == kVsplTag) {
       const Chosen& c = it->second;
-      required = c.section->required();
-      LODBAKE_ASSIGN_OR_RETURN(VsplSummary summary, read_vspl_summary(c.raw.data(), c.raw.size()));
+      const Bytes c_raw = c.raw();
+      required = c.stored->required();
+      LODBAKE_ASSIGN_OR_RETURN(VsplSummary summary, read_vspl_summary(c_raw.data(), c_raw.size()));
       int bits = options.quantize_bits;
       if (bits == 0 && options.draco && summary.position_encoding == PositionEncoding::kFloat32)
         bits = options.draco_options.quantization_bits;
-      Bytes raw = c.raw;
+      Bytes raw = c_raw;
       if (bits != 0 && !(summary.position_encoding == PositionEncoding::kQuantized &&
                          summary.quantization_bits == bits)) {
         // Re-encode against the input's own BASE: the records' implied vs
         // positions are those of the BASE they were decoded with.
-        const Chosen& base = chosen.at(kBaseTag);
+        const Bytes base_raw = chosen.at(kBaseTag).raw();
         LODBAKE_ASSIGN_OR_RETURN(
             ProgressiveMesh pm,
-            decode_progressive_mesh(base.raw.data(), base.raw.size(), c.raw.data(), c.raw.size()));
+            decode_progressive_mesh(base_raw.data(), base_raw.size(), c_raw.data(), c_raw.size()));
         VsplEncodeOptions quantize;
         quantize.quantize = true;
         quantize.bits = bits;
@@ -367,9 +394,11 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       }
       LODBAKE_ASSIGN_OR_RETURN(VsplSection section,
                                decode_vspl(raw.data(), raw.size(), written_base->positions));
-      result.splits = section.splits.size();
-      result.vertices = section.summary.full_vertex_count();
-      result.triangles = full_triangle_count(written_base->triangle_count(), section.splits);
+      if (index == 0) {
+        result->splits = section.splits.size();
+        result->vertices = section.summary.full_vertex_count();
+        result->triangles = full_triangle_count(written_base->triangle_count(), section.splits);
+      }
       decoded_size = raw.size();
       if (options.compact) {
         LODBAKE_ASSIGN_OR_RETURN(stored,
@@ -378,15 +407,17 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       } else {
         stored = std::move(raw);
       }
-      report.action = c.section->entry.codec == static_cast<uint16_t>(codec) &&
-                              stored == Bytes(c.section->data, c.section->data + c.section->size)
+      report.action = c.stored->entry.codec == static_cast<uint16_t>(codec) &&
+                              stored == Bytes(c.stored->data, c.stored->data + c.stored->size)
                           ? "copied"
                           : "recoded";
-    } else if (has_standalone_compact_codec(tag) || has_base_compact_codec(tag)) {
+    } else if (it->second.decoded->known &&
+               (has_standalone_compact_codec(tag) || has_base_compact_codec(tag))) {
       const Chosen& c = it->second;
-      required = c.section->required();
-      decoded_size = c.raw.size();
-      stored = c.raw;
+      const Bytes c_raw = c.raw();
+      required = c.stored->required();
+      decoded_size = c_raw.size();
+      stored = c_raw;
       // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
       // never changes; without BASE in the output they stay raw.
       const bool with_base = has_base_compact_codec(tag);
@@ -394,21 +425,21 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       if (options.compact && can_compact) {
         // Tiny payloads can grow by the codec's header: they stay raw.
         Result<Bytes> compact =
-            with_base ? encode_section_compact(tag, c.raw.data(), c.raw.size(), *written_base)
-                      : encode_section_compact(tag, c.raw.data(), c.raw.size());
-        if (compact.is_ok() && compact.value().size() < c.raw.size()) {
+            with_base ? encode_section_compact(tag, c_raw.data(), c_raw.size(), *written_base)
+                      : encode_section_compact(tag, c_raw.data(), c_raw.size());
+        if (compact.is_ok() && compact.value().size() < c_raw.size()) {
           stored = std::move(compact).value();
           codec = SectionCodec::kCompact;
         } else if (!compact.is_ok() && compact.status().kind() != ErrorKind::kUnsupported) {
           return compact.status();
         }
       }
-      report.action = c.section->entry.codec == static_cast<uint16_t>(codec) &&
-                              stored == Bytes(c.section->data, c.section->data + c.section->size)
+      report.action = c.stored->entry.codec == static_cast<uint16_t>(codec) &&
+                              stored == Bytes(c.stored->data, c.stored->data + c.stored->size)
                           ? "copied"
                           : "recoded";
     } else {
-      const Section& s = *it->second.section;
+      const Section& s = *it->second.stored;
       stored = Bytes(s.data, s.data + s.size);
       codec = static_cast<SectionCodec>(s.entry.codec);
       decoded_size = s.entry.decoded_size;
@@ -419,8 +450,46 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     report.stored_after = stored.size();
     report.decoded_after = decoded_size;
     LODBAKE_RETURN_IF_ERROR(
-        writer.add_stored_section(tag, std::move(stored), codec, decoded_size, required));
-    result.sections.push_back(std::move(report));
+        writer->add_stored_section(tag, std::move(stored), codec, decoded_size, required, index));
+    result->sections.push_back(std::move(report));
+  }
+  return Status::ok();
+}
+
+Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
+                                    const RepackOptions& options,
+                                    const nlohmann::json& meta_options, size_t* failed) {
+  *failed = inputs.size();
+  if (inputs.empty()) return invalid_input("no input containers");
+  std::vector<InputFile> files;
+  LODBAKE_RETURN_IF_ERROR(read_inputs(inputs, &files, failed));
+  std::vector<OutGroup> groups = assign_groups(&files);
+  // Groups whose every section is dropped are left out, and the others
+  // renumbered, so the output's groups run 0, 1, 2, ... again.
+  std::vector<uint32_t> renumber(groups.size(), kDroppedGroup);
+  uint32_t kept = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    bool any = g == 0;  // group 0 keeps META
+    for (const std::string& tag : groups[g].order)
+      any = any || wanted_tag(options, tag);
+    if (any) renumber[g] = kept++;
+  }
+  for (InputFile& file : files) {
+    for (uint32_t& g : file.out_group)
+      g = renumber[g];
+  }
+  // The input hashes first: files of different inputs differ everywhere.
+  MetaSection merged_meta;
+  LODBAKE_RETURN_IF_ERROR(merge_meta(inputs, files, meta_options, &merged_meta, failed));
+  PackResult result;
+  for (const PackInput& input : inputs)
+    result.input_bytes += input.bytes.size();
+
+  ContainerWriter writer;
+  std::vector<PackedSection> dropped;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    LODBAKE_RETURN_IF_ERROR(write_group(inputs, groups[g], renumber[g], options, merged_meta,
+                                        &writer, &result, &dropped));
   }
   for (PackedSection& d : dropped)
     result.sections.push_back(std::move(d));

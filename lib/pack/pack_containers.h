@@ -45,6 +45,7 @@ struct RepackOptions {
 /// What happened to one section of the output (or a dropped one).
 struct PackedSection {
   std::string tag;
+  uint32_t group = 0;          ///< its group in the output (docs/format.md "Groups")
   std::string source;          ///< the input it came from
   std::string codec_before;    ///< "raw", "compact", "draco" or the number
   std::string codec_after;     ///< empty when dropped

@@ -176,6 +176,35 @@ TEST(Container, WriterRefusesBadAndDuplicateTags) {
   EXPECT_EQ(writer.section_count(), 1u);
 }
 
+// Groups (format 1.1): one tag per group, groups in order, and the lowest
+// version that holds them.
+TEST(Container, GroupsRoundTripAndNeedFormat11) {
+  ContainerWriter writer;
+  ASSERT_TRUE(writer.add_section("ABCD", text_bytes("a"), true).is_ok());
+  EXPECT_EQ(writer.add_section("WXYZ", {}, false, 2).code(), 25);
+  ASSERT_TRUE(writer.add_section("ABCD", text_bytes("b"), true, 1).is_ok());
+  EXPECT_EQ(writer.add_section("ABCD", {}, false, 1).code(), 17);
+  EXPECT_EQ(writer.add_section("WXYZ", {}, false, 0).code(), 25);
+  ASSERT_TRUE(writer.add_section("WXYZ", text_bytes("c"), false, 1).is_ok());
+  const Bytes file = writer.finish().value();
+  EXPECT_EQ(decode_header(file.data()).minor, 1);
+  Result<Container> read = read_container(file.data(), file.size(), {"ABCD", "WXYZ"});
+  ASSERT_TRUE(read.is_ok()) << read.status().message();
+  const Container& c = read.value();
+  EXPECT_EQ(c.group_count(), 2u);
+  ASSERT_NE(c.find("ABCD", 1), nullptr);
+  EXPECT_EQ(std::string(c.find("ABCD", 1)->data, c.find("ABCD", 1)->data + 1), "b");
+  EXPECT_EQ(std::string(c.find("ABCD")->data, c.find("ABCD")->data + 1), "a");
+  EXPECT_EQ(c.find("WXYZ"), nullptr);
+  EXPECT_EQ(c.require("WXYZ", 0).status().message(), "LBK-E024: the container has no WXYZ section");
+  EXPECT_EQ(c.require("QQQQ", 1).status().message(), "LBK-E024: group 1 has no QQQQ section");
+
+  // Without groups the writer still writes 1.0.
+  ContainerWriter plain;
+  ASSERT_TRUE(plain.add_section("ABCD", text_bytes("a"), true).is_ok());
+  EXPECT_EQ(decode_header(plain.finish().value().data()).minor, 0);
+}
+
 TEST(Container, TruncationAtEveryLength) {
   const Bytes file = sample_container();
   for (size_t length = 0; length < file.size(); ++length) {
@@ -288,14 +317,14 @@ TEST(Container, VersionsAreUnsupported) {
   {
     Bytes newer = file;
     ContainerHeader header = decode_header(newer.data());
-    header.minor = 1;
+    header.minor = 2;
     put_header(&newer, header);
     Result<Container> read = read_container(newer.data(), newer.size());
     ASSERT_FALSE(read.is_ok());
     EXPECT_EQ(read.status().kind(), ErrorKind::kUnsupported);
     EXPECT_EQ(read.status().code(), 5);
     EXPECT_EQ(read.status().message(),
-              "LBK-E005: format version 1.1 is newer than this reader (1.0)");
+              "LBK-E005: format version 1.2 is newer than this reader (1.1)");
   }
   for (uint16_t major : {0, 2, 65535}) {
     Bytes other = file;
@@ -440,8 +469,22 @@ void ErrorCodes::section_cases() {
          "section 2 repeats tag META");
   expect(with_entry(file, 1, [](SectionEntry* e) { e->flags = 0x8001; }), 18,
          "section BASE has unknown flags 0x8001");
-  expect(with_entry(file, 1, [](SectionEntry* e) { e->reserved = 9; }), 18,
-         "section BASE reserved field is 0x00000009");
+  expect(with_entry(file, 1, [](SectionEntry* e) { e->group = 9; }), 18,
+         "section BASE reserved field is 0x00000009, must be 0 in format 1.0");
+  {
+    // In 1.1 the field is the group: 0, 1, 2, ... in table order.
+    const Bytes grouped = with_header(file, [](ContainerHeader* h) { h->minor = 1; });
+    expect(with_entry(grouped, 1, [](SectionEntry* e) { e->group = 2; }), 25,
+           "section 1 (BASE) is in group 2 after group 0");
+    expect(with_entry(grouped, 0, [](SectionEntry* e) { e->group = 1; }), 25,
+           "section 0 (META) is in group 1 after group 0");
+    Bytes two = with_entry(grouped, 1, [](SectionEntry* e) { e->group = 1; });
+    expect(with_entry(two, 2, [](SectionEntry* e) { e->group = 0; }), 25,
+           "section 2 (XTRA) is in group 0 after group 1");
+    expect(with_entry(with_entry(two, 2, [](SectionEntry* e) { e->group = 1; }), 2,
+                      [](SectionEntry* e) { e->tag = "BASE"; }),
+           17, "section 2 repeats tag BASE in group 1");
+  }
   {
     Bytes corrupt = file;
     corrupt[70] ^= 0x40;
@@ -465,6 +508,7 @@ TEST_F(ErrorCodes, EachCodeFromACraftedFile) {
     seen[code] = true;
   for (int code = 1; code <= 22; ++code)
     EXPECT_TRUE(seen[code]) << "LBK-E0" << code;
+  EXPECT_TRUE(seen[25]) << "LBK-E025";
 }
 
 TEST(ContainerErrors, IdsSummariesAndKinds) {

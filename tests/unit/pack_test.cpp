@@ -21,6 +21,7 @@
 #include "formats/sections/base.h"
 #include "formats/sections/draco_codec.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/section_validation.h"
 #include "formats/sections/vspl.h"
@@ -638,11 +639,24 @@ TEST(Repack, RefusesOtherInputsConflictsAndVsplWithoutBase) {
   EXPECT_EQ(failed, 1u);
   EXPECT_NE(other.status().message().find("was baked from another input"), std::string::npos);
 
-  inputs[1] = {"c.lbk", pm_container(pm, 12)};  // same input, different BASE
-  Result<PackResult> conflict = repack_containers(inputs, RepackOptions{}, {}, &failed);
-  ASSERT_FALSE(conflict.is_ok());
-  EXPECT_EQ(failed, 1u);
-  EXPECT_EQ(conflict.status().message(), "section BASE differs from the one in a.lbk");
+  // Same input, another BASE: a group of its own (format 1.1), which a
+  // consumer finds by its sections and which validates.
+  inputs[1] = {"c.lbk", pm_container(pm, 12)};
+  Result<PackResult> grouped = repack_containers(inputs, RepackOptions{}, {}, &failed);
+  ASSERT_TRUE(grouped.is_ok()) << grouped.status().message();
+  const Bytes& file = grouped.value().file;
+  Result<OpenedContainer> opened = open_container(file);
+  ASSERT_TRUE(opened.is_ok()) << opened.status().message();
+  EXPECT_EQ(opened.value().header().minor, 1);
+  ASSERT_EQ(opened.value().group_count(), 2u);
+  for (uint32_t g = 0; g < 2; ++g) {
+    EXPECT_NE(opened.value().find(kBaseTag, g), nullptr);
+    EXPECT_NE(opened.value().find(kVsplTag, g), nullptr);
+  }
+  EXPECT_EQ(opened.value().find(kMetaTag, 1), nullptr);
+  EXPECT_TRUE(validate_sections(opened.value().decoded()).empty());
+  // Packing the result again changes nothing.
+  EXPECT_EQ(repack({file}, RepackOptions{}).file, file);
 
   RepackOptions drop_base;
   drop_base.drop = {"BASE"};

@@ -11,12 +11,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
@@ -27,6 +27,7 @@
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
+#include "lib/ingest/container_mesh.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
@@ -71,38 +72,28 @@ struct Input {
   std::string source = "mesh";  // or "progressive mesh"
 };
 
-// A container with BASE + VSPL: the hierarchy is rebuilt from the PM's fully
-// refined mesh, since the PM's greedy collapse order is not balanced.
-int load_pm_input(const Tool& tool, const std::string& path, const Bytes& bytes, Input* in) {
-  Result<Container> container = read_container(bytes.data(), bytes.size());
-  if (!container.is_ok()) return tool.fail(path, container.status());
-  Result<const Section*> base = container.value().require(kBaseTag);
-  if (!base.is_ok()) return tool.fail(path, base.status());
-  const Section* vspl = container.value().find(kVsplTag);
-  if (vspl == nullptr) {
-    return tool.fail(path,
-                     invalid_input("container has no progressive mesh (VSPL section); give "
-                                   "the mesh file or a container from lodbake-simplify --pm"));
-  }
-  Result<ProgressiveMesh> pm =
-      decode_progressive_mesh(base.value()->data, base.value()->size, vspl->data, vspl->size);
-  if (!pm.is_ok()) return tool.fail(path, pm.status());
-  Result<TriangleMesh> full = mesh_at_lod(pm.value(), pm.value().full_vertex_count());
-  if (!full.is_ok()) return tool.fail(path, full.status());
-  Result<TriangleMesh> mapped = map_to_input(pm.value(), full.value());
-  if (!mapped.is_ok()) return tool.fail(path, mapped.status());
-  in->mesh = std::move(mapped).value();
-  in->mesh.normals = MeshAttribute();
-  in->mesh.texcoords = MeshAttribute();
-  in->source = "progressive mesh";
+// A container: the hierarchy is rebuilt from the mesh it stands for (a
+// progressive mesh's greedy collapse order is not balanced).
+int load_container(const Tool& tool, const std::string& path, Bytes bytes, Input* in) {
   LoadedMesh loaded;
   loaded.file_bytes = bytes.size();
   loaded.sha256 = sha256_hex(bytes.data(), bytes.size());
-  in->meta = meta_input(path, loaded);
-  tool.info(path,
-            "a progressive mesh's greedy collapse order is not balanced: rebuilding the hierarchy "
-            "from its fully refined mesh (" +
-                std::to_string(in->mesh.vertex_count()) + " vertices)");
+  Result<OpenedContainer> file = open_container(std::move(bytes));
+  if (!file.is_ok()) return tool.fail(path, file.status());
+  Result<ContainerMesh> mesh = container_input_mesh(file.value());
+  if (!mesh.is_ok()) return tool.fail(path, mesh.status());
+  in->mesh = std::move(mesh.value().mesh);
+  in->mesh.normals = MeshAttribute();
+  in->mesh.texcoords = MeshAttribute();
+  in->source = mesh.value().source;
+  // Containers of one input stay mergeable: META names the original input.
+  in->meta = mesh.value().input ? *mesh.value().input : meta_input(path, loaded);
+  if (mesh.value().source == "progressive mesh") {
+    tool.info(path,
+              "a progressive mesh's greedy collapse order is not balanced: rebuilding the "
+              "hierarchy from its fully refined mesh (" +
+                  std::to_string(in->mesh.vertex_count()) + " vertices)");
+  }
   return 0;
 }
 
@@ -114,7 +105,8 @@ int run(const Tool& tool, const Request& request) {
   if (is_container_input(request.input, &bytes.value())) {
     // As lodbake-pack: a container's progressive mesh is not repaired.
     if (request.repair) return tool.usage_error("--repair applies to a mesh input");
-    if (int code = load_pm_input(tool, request.input, bytes.value(), &in); code != 0) return code;
+    if (int code = load_container(tool, request.input, std::move(bytes).value(), &in); code != 0)
+      return code;
   } else {
     LoadOptions load;
     load.repair = request.repair;

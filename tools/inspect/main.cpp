@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "formats/container/container_errors.h"
 #include "formats/container/container_layout.h"
 #include "formats/container/container_listing.h"
 #include "formats/container/container_reader.h"
@@ -14,6 +15,7 @@
 #include "formats/sections/dage.h"
 #include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/section_validation.h"
@@ -42,6 +44,7 @@ struct InspectOptions {
   bool strict = false;
   std::string extract;
   std::optional<LodRequest> lod;  // --lod: extract the PM at this level
+  std::optional<uint32_t> group;  // --group: extract from this group
 };
 
 std::string hex32(uint32_t value) {
@@ -80,6 +83,7 @@ nlohmann::json listing_json(const ContainerListing& listing) {
   for (const SectionListing& s : listing.sections) {
     nlohmann::json js = {
         {"tag", s.display_tag},
+        {"group", s.entry.group},
         {"codec", codec_name(s.entry.codec) != nullptr ? codec_name(s.entry.codec)
                                                        : std::to_string(s.entry.codec)},
         {"required", s.entry.required()},
@@ -107,14 +111,16 @@ void print_listing(std::ostream& out, const std::string& path, const ContainerLi
   out << "  tag   codec   offset      stored     decoded     crc32c    checksum\n";
   for (const SectionListing& s : listing.sections) {
     char row[160];
-    std::snprintf(row, sizeof(row), "  %-5s %-7s %-11llu %-10llu %-11llu %s  %s%s\n",
-                  s.display_tag.c_str(),
-                  codec_name(s.entry.codec) != nullptr ? codec_name(s.entry.codec) : "?",
-                  static_cast<unsigned long long>(s.entry.offset),
-                  static_cast<unsigned long long>(s.entry.stored_size),
-                  static_cast<unsigned long long>(s.entry.decoded_size),
-                  hex32(s.entry.crc32c).c_str(), !s.crc_checked ? "-" : (s.crc_ok ? "ok" : "BAD"),
-                  s.known ? "" : (s.entry.required() ? " (unknown, required)" : " (unknown)"));
+    const std::string group =
+        s.entry.group == 0 ? std::string() : " (group " + std::to_string(s.entry.group) + ")";
+    std::snprintf(
+        row, sizeof(row), "  %-5s %-7s %-11llu %-10llu %-11llu %s  %s%s%s\n", s.display_tag.c_str(),
+        codec_name(s.entry.codec) != nullptr ? codec_name(s.entry.codec) : "?",
+        static_cast<unsigned long long>(s.entry.offset),
+        static_cast<unsigned long long>(s.entry.stored_size),
+        static_cast<unsigned long long>(s.entry.decoded_size), hex32(s.entry.crc32c).c_str(),
+        !s.crc_checked ? "-" : (s.crc_ok ? "ok" : "BAD"),
+        s.known ? "" : (s.entry.required() ? " (unknown, required)" : " (unknown)"), group.c_str());
     out << row;
   }
 }
@@ -401,19 +407,33 @@ struct FileStatus {
 };
 
 // The base mesh, or with a LoD request the PM's mesh at that level.
-Result<TriangleMesh> mesh_to_extract(const Container& container,
-                                     const std::optional<LodRequest>& lod, nlohmann::json* report) {
-  LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
-  if (!lod && container.find(kStrpTag) != nullptr) {
+Result<TriangleMesh> mesh_to_extract(const OpenedContainer& file,
+                                     const std::optional<LodRequest>& lod,
+                                     std::optional<uint32_t> chosen, nlohmann::json* report) {
+  // Without --group: group 0, or for a level the first progressive mesh.
+  uint32_t group = chosen.value_or(0);
+  if (!chosen && lod) {
+    LODBAKE_ASSIGN_OR_RETURN(
+        group, file.group_with({kBaseTag, kVsplTag}, "--lod", "lodbake-simplify --pm"));
+  }
+  if (group >= std::max<uint32_t>(file.group_count(), 1)) {
+    return container_error(ContainerError::kMissingSection,
+                           "the container has no group " + std::to_string(group) + " (it has " +
+                               std::to_string(file.group_count()) + ")");
+  }
+  (*report)["group"] = group;
+  const Container& container = file.decoded();
+  LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag, group));
+  if (!lod && container.find(kStrpTag, group) != nullptr) {
     // Strips alone: their triangles, indexed over BASE's vertices.
-    const Section* strp = container.find(kStrpTag);
+    const Section* strp = container.find(kStrpTag, group);
     LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(base->data, base->size));
     LODBAKE_ASSIGN_OR_RETURN(TriangleStrips strips, decode_strp(strp->data, strp->size));
     (*report)["from_strips"] = strips.strip_count();
     return mesh_from_strips(strips, mesh);
   }
   if (!lod) return decode_base(base->data, base->size);
-  LODBAKE_ASSIGN_OR_RETURN(const Section* vspl, container.require(kVsplTag));
+  LODBAKE_ASSIGN_OR_RETURN(const Section* vspl, container.require(kVsplTag, group));
   LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh pm,
                            decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size));
   size_t vertices = lod_vertex_count(pm, *lod);
@@ -424,11 +444,11 @@ Result<TriangleMesh> mesh_to_extract(const Container& container,
   return mesh;
 }
 
-FileStatus extract_base(const Tool& tool, const std::string& path, const Container& container,
-                        const std::string& out_path, const std::optional<LodRequest>& lod,
-                        nlohmann::json* report) {
+FileStatus extract_base(const Tool& tool, const std::string& path, const OpenedContainer& file,
+                        const InspectOptions& options, nlohmann::json* report) {
+  const std::string& out_path = options.extract;
   nlohmann::json extracted;
-  Result<TriangleMesh> mesh = mesh_to_extract(container, lod, &extracted);
+  Result<TriangleMesh> mesh = mesh_to_extract(file, options.lod, options.group, &extracted);
   if (!mesh.is_ok()) return {path, mesh.status()};
   if (drops_attributes(out_path, mesh.value()))
     tool.warn(out_path,
@@ -460,12 +480,10 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
     }
     return tool.fail(path, listing.status);
   }
-  Result<Container> container = read_container(bytes.data(), bytes.size());
-  if (!container.is_ok()) return tool.fail(path, container.status());
   // Sections stored compact or with Draco are read as their raw payloads.
-  std::vector<Bytes> decoded_payloads;
-  Status codecs = decode_section_codecs(&container.value(), &decoded_payloads);
-  if (!codecs.is_ok()) {
+  Result<OpenedContainer> opened = open_container(bytes);
+  if (!opened.is_ok()) {
+    const Status& codecs = opened.status();
     // As for a broken file: the listing, then the error.
     report["error"] = codecs.message();
     if (tool.json()) {
@@ -475,8 +493,17 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
     }
     return tool.fail(path, codecs);
   }
+  const OpenedContainer& file = opened.value();
   Status undecodable;
-  report["contents"] = section_contents(container.value(), &undecodable);
+  // Group 0's contents, and with several groups each group's.
+  report["contents"] = section_contents(single_group(file.decoded(), 0), &undecodable);
+  if (file.group_count() > 1) {
+    nlohmann::json groups = nlohmann::json::array();
+    groups.push_back(report["contents"]);
+    for (uint32_t g = 1; g < file.group_count(); ++g)
+      groups.push_back(section_contents(single_group(file.decoded(), g), &undecodable));
+    report["groups"] = std::move(groups);
+  }
   // Without --validate a section that does not even decode is still an
   // invalid file (LBK-E023, exit 3), not a listing that exits 0.
   const bool validating = options.validate || options.strict;
@@ -484,7 +511,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
 
   std::vector<SectionFinding> findings;
   if (options.validate || options.strict) {
-    findings = validate_sections(container.value());
+    findings = validate_sections(file.decoded());
     nlohmann::json jf = nlohmann::json::array();
     for (const SectionFinding& f : findings)
       jf.push_back({{"section", f.tag}, {"message", f.message}});
@@ -492,7 +519,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   }
   FileStatus extracted;
   if (!options.extract.empty() && findings.empty() && undecodable.is_ok()) {
-    extracted = extract_base(tool, path, container.value(), options.extract, options.lod, &report);
+    extracted = extract_base(tool, path, file, options, &report);
     if (!extracted.status.is_ok()) report["error"] = extracted.status.message();
   }
 
@@ -501,6 +528,12 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
   } else {
     print_listing(std::cout, path, listing);
     print_contents(std::cout, report["contents"]);
+    if (report.contains("groups")) {
+      for (size_t g = 1; g < report["groups"].size(); ++g) {
+        std::cout << "group " << g << "\n";
+        print_contents(std::cout, report["groups"][g]);
+      }
+    }
     if (report.contains("validation")) {
       std::cout << "validation    " << (findings.empty() ? "ok" : "FAILED") << "\n";
       for (const SectionFinding& f : findings)
@@ -582,7 +615,10 @@ int main(int argc, char** argv) {
       "triangles as an indexed mesh over BASE's vertices")(
       "lod", po::value<std::string>()->value_name("N|Nt|R"),
       "with --extract on a progressive mesh: the level to write, as a vertex count (5000), "
-      "a triangle count (5000t) or a ratio of the full mesh's triangles (0.25)");
+      "a triangle count (5000t) or a ratio of the full mesh's triangles (0.25)")(
+      "group", po::value<uint32_t>()->value_name("G"),
+      "with --extract: the group to extract from (a container merged by lodbake-pack holds a "
+      "group per base mesh); default 0, or with --lod the first group with a progressive mesh");
   tool.positional("file", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   std::string path;
@@ -594,6 +630,10 @@ int main(int argc, char** argv) {
     Result<LodRequest> lod = parse_lod_request(tool.get<std::string>("lod"));
     if (!lod.is_ok()) return tool.usage_error(lod.status().message());
     options.lod = lod.value();
+  }
+  if (tool.has("group")) {
+    if (options.extract.empty()) return tool.usage_error("--group needs --extract OUT");
+    options.group = tool.get<uint32_t>("group");
   }
   if (!options.extract.empty() && same_file(path, options.extract))
     return tool.usage_error("--extract '" + options.extract + "' would overwrite the container");

@@ -105,6 +105,7 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
   nlohmann::json sections = nlohmann::json::array();
   for (const PackedSection& s : r.sections) {
     nlohmann::json js = {{"tag", s.tag},
+                         {"group", s.group},
                          {"source", s.source},
                          {"action", s.action},
                          {"codec_before", s.codec_before},
@@ -114,7 +115,7 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
       js["stored_after"] = s.stored_after;
       js["decoded_after"] = s.decoded_after;
       js["bits_per_vertex"] = per(s.stored_after, r.vertices);
-      if (s.tag == "VSPL") {
+      if (s.tag == "VSPL" && s.group == 0) {
         js["bits_per_split"] = per(s.stored_after, r.splits);
         js["error_bits"] =
             options.error_bits == 0 ? nlohmann::json(nullptr) : nlohmann::json(options.error_bits);
@@ -139,15 +140,16 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
   }
   std::cout << "  tag   action     codec            stored before -> after\n";
   for (const PackedSection& s : r.sections) {
-    char row[200];
+    char row[240];
     std::snprintf(
-        row, sizeof(row), "  %-5s %-10s %-16s %llu -> %llu\n", s.tag.c_str(), s.action.c_str(),
+        row, sizeof(row), "  %-5s %-10s %-16s %llu -> %llu%s\n", s.tag.c_str(), s.action.c_str(),
         (s.codec_before.empty()
              ? std::string("new")
              : s.codec_before + " -> " + (s.codec_after.empty() ? std::string("-") : s.codec_after))
             .c_str(),
         static_cast<unsigned long long>(s.stored_before),
-        static_cast<unsigned long long>(s.stored_after));
+        static_cast<unsigned long long>(s.stored_after),
+        s.group == 0 ? "" : (" (group " + std::to_string(s.group) + ")").c_str());
     std::cout << row;
   }
   std::cout << "wrote " << options.output << ": " << r.file.size() << " bytes (inputs "
@@ -155,7 +157,7 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
             << " triangles, " << per(r.file.size(), r.vertices) << " bits per vertex, "
             << per(r.file.size(), r.triangles) << " bits per triangle\n";
   for (const PackedSection& s : r.sections) {
-    if (s.tag == "VSPL" && s.action != "dropped" && r.splits > 0)
+    if (s.tag == "VSPL" && s.group == 0 && s.action != "dropped" && r.splits > 0)
       std::cout << "VSPL: " << per(s.stored_after, r.splits) << " bits per vertex split ("
                 << r.splits << " splits"
                 << (options.error_bits != 0

@@ -16,11 +16,11 @@
 #include <optional>
 #include <sstream>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/fanh.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
@@ -76,7 +76,7 @@ struct CrossCheckState {
 // Makes the check for the structures the mode decoded (`h`, or `pm` and
 // `dag`), decoding the other one from the container; never fails: a
 // container without it gets `unavailable` set.
-std::shared_ptr<CrossCheckState> prepare_cross_check(const Container& container,
+std::shared_ptr<CrossCheckState> prepare_cross_check(const OpenedContainer& file, uint32_t group,
                                                      const Section& base, const VertexHierarchy* h,
                                                      const ProgressiveMesh* pm,
                                                      const VsplitDag* dag) {
@@ -86,7 +86,7 @@ std::shared_ptr<CrossCheckState> prepare_cross_check(const Container& container,
     return cross;
   };
   if (h == nullptr) {
-    const Section* vhie = container.find(kVhieTag);
+    const Section* vhie = file.find(kVhieTag, group);
     if (vhie == nullptr) return fail("the container has no VHIE section");
     Result<TriangleMesh> base_mesh = decode_base(base.data, base.size);
     if (!base_mesh.is_ok()) return fail(base_mesh.status().message());
@@ -96,8 +96,8 @@ std::shared_ptr<CrossCheckState> prepare_cross_check(const Container& container,
     cross->h = std::move(decoded).value();
     h = &cross->h;
   } else {
-    const Section* vspl = container.find(kVsplTag);
-    const Section* dage = container.find(kDageTag);
+    const Section* vspl = file.find(kVsplTag, group);
+    const Section* dage = file.find(kDageTag, group);
     if (vspl == nullptr || dage == nullptr)
       return fail("the container has no VSPL + DAGE sections");
     Result<ProgressiveMesh> decoded_pm =
@@ -146,15 +146,13 @@ struct FanState {
   std::optional<FanReplay> replay;
 };
 
-Result<Session> load_vhier(const Container& container, const Section& base,
-                           const Request& request) {
-  const Section* vhie = container.find(kVhieTag);
-  const Section* rfin = container.find(kRfinTag);
-  if (vhie == nullptr || rfin == nullptr) {
-    return invalid_input(std::string("container has no ") + (vhie == nullptr ? "VHIE" : "RFIN") +
-                         " section; mode vhier needs BASE + VHIE + RFIN (lodbake-hierarchy "
-                         "--sections vhie)");
-  }
+Result<Session> load_vhier(const OpenedContainer& file, const Request& request) {
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
+                           file.group_with({kBaseTag, kVhieTag, kRfinTag}, "mode vhier",
+                                           "lodbake-hierarchy --sections vhie"));
+  const Section& base = *file.find(kBaseTag, group);
+  const Section* vhie = file.find(kVhieTag, group);
+  const Section* rfin = file.find(kRfinTag, group);
   auto state = std::make_shared<VhierState>();
   LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base.data, base.size));
   LODBAKE_ASSIGN_OR_RETURN(state->h, decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));
@@ -187,7 +185,7 @@ Result<Session> load_vhier(const Container& container, const Section& base,
     return std::vector<Row>{row};
   };
   if (request.validate)
-    session.cross = prepare_cross_check(container, base, &state->h, nullptr, nullptr);
+    session.cross = prepare_cross_check(file, group, base, &state->h, nullptr, nullptr);
   std::shared_ptr<CrossCheckState> cross = session.cross;
   session.check = [state, cross] {
     std::vector<std::string> problems = check_vhier_mesh(*state->refiner);
@@ -204,14 +202,13 @@ Result<Session> load_vhier(const Container& container, const Section& base,
   return session;
 }
 
-Result<Session> load_dag(const Container& container, const Section& base, const Request& request) {
-  const Section* vspl = container.find(kVsplTag);
-  const Section* dage = container.find(kDageTag);
-  if (vspl == nullptr || dage == nullptr) {
-    return invalid_input(std::string("container has no ") + (vspl == nullptr ? "VSPL" : "DAGE") +
-                         " section; mode dag needs BASE + VSPL + DAGE (lodbake-hierarchy "
-                         "--sections dage)");
-  }
+Result<Session> load_dag(const OpenedContainer& file, const Request& request) {
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
+                           file.group_with({kBaseTag, kVsplTag, kDageTag}, "mode dag",
+                                           "lodbake-hierarchy --sections dage"));
+  const Section& base = *file.find(kBaseTag, group);
+  const Section* vspl = file.find(kVsplTag, group);
+  const Section* dage = file.find(kDageTag, group);
   auto state = std::make_shared<DagState>();
   LODBAKE_ASSIGN_OR_RETURN(state->pm,
                            decode_progressive_mesh(base.data, base.size, vspl->data, vspl->size));
@@ -278,7 +275,7 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
     return rows;
   };
   if (request.validate)
-    session.cross = prepare_cross_check(container, base, nullptr, &state->pm, &state->dag);
+    session.cross = prepare_cross_check(file, group, base, nullptr, &state->pm, &state->dag);
   std::shared_ptr<CrossCheckState> cross = session.cross;
   session.check = [state, traversals, cross] {
     std::vector<std::string> problems;
@@ -302,11 +299,11 @@ Result<Session> load_dag(const Container& container, const Section& base, const 
   return session;
 }
 
-Result<Session> load_fan(const Container& container, const Section& base, const Request& request) {
-  const Section* fanh = container.find(kFanhTag);
-  if (fanh == nullptr) {
-    return invalid_input("container has no FANH section; mode fan needs BASE + FANH (lodbake-fan)");
-  }
+Result<Session> load_fan(const OpenedContainer& file, const Request& request) {
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
+                           file.group_with({kBaseTag, kFanhTag}, "mode fan", "lodbake-fan"));
+  const Section& base = *file.find(kBaseTag, group);
+  const Section* fanh = file.find(kFanhTag, group);
   auto state = std::make_shared<FanState>();
   LODBAKE_ASSIGN_OR_RETURN(TriangleMesh input, decode_base(base.data, base.size));
   LODBAKE_ASSIGN_OR_RETURN(FanHierarchy h, decode_fanh(fanh->data, fanh->size));
@@ -348,12 +345,11 @@ Result<Session> load_fan(const Container& container, const Section& base, const 
 }
 
 Result<Session> load(const Bytes& bytes, const Request& request) {
-  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
-  LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
+  LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
   try {
-    if (request.mode == "dag") return load_dag(container, *base, request);
-    if (request.mode == "fan") return load_fan(container, *base, request);
-    return load_vhier(container, *base, request);
+    if (request.mode == "dag") return load_dag(file, request);
+    if (request.mode == "fan") return load_fan(file, request);
+    return load_vhier(file, request);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory loading the container");
   }

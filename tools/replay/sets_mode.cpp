@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/vspl.h"
 #include "lib/replay/sets_replay.h"
@@ -28,14 +28,12 @@ struct SetsData {
 };
 
 Result<SetsData> load_sets(const Bytes& bytes) {
-  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
-  LODBAKE_ASSIGN_OR_RETURN(const Section* base, container.require(kBaseTag));
-  const Section* vspl = container.find(kVsplTag);
-  const Section* sets = container.find(kSetsTag);
-  if (vspl == nullptr || sets == nullptr) {
-    return invalid_input(std::string("container has no ") + (vspl == nullptr ? "VSPL" : "SETS") +
-                         " section; mode sets needs BASE + VSPL + SETS (lodbake-strips)");
-  }
+  LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, file.group_with({kBaseTag, kVsplTag, kSetsTag},
+                                                           "mode sets", "lodbake-strips"));
+  const Section* base = file.find(kBaseTag, group);
+  const Section* vspl = file.find(kVsplTag, group);
+  const Section* sets = file.find(kSetsTag, group);
   try {
     SetsData data;
     LODBAKE_ASSIGN_OR_RETURN(

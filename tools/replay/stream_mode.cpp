@@ -13,9 +13,9 @@
 #include <optional>
 #include <sstream>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "lib/replay/camera_path.h"
@@ -37,18 +37,13 @@ struct StreamDb {
 };
 
 Result<StreamDb> load_stream_db(const Bytes& bytes) {
-  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
-  const Section* base = container.find(kBaseTag);
-  const Section* vhie = container.find(kVhieTag);
-  const Section* rfin = container.find(kRfinTag);
-  if (base == nullptr || vhie == nullptr || rfin == nullptr) {
-    return invalid_input(std::string("container has no ") +
-                         (base == nullptr   ? "BASE"
-                          : vhie == nullptr ? "VHIE"
-                                            : "RFIN") +
-                         " section; mode stream needs BASE + VHIE + RFIN "
-                         "(lodbake-hierarchy --sections vhie)");
-  }
+  LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
+                           file.group_with({kBaseTag, kVhieTag, kRfinTag}, "mode stream",
+                                           "lodbake-hierarchy --sections vhie"));
+  const Section* base = file.find(kBaseTag, group);
+  const Section* vhie = file.find(kVhieTag, group);
+  const Section* rfin = file.find(kRfinTag, group);
   LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
   LODBAKE_ASSIGN_OR_RETURN(VertexHierarchy h,
                            decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));

@@ -12,9 +12,9 @@
 #include <optional>
 #include <sstream>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vtre.h"
@@ -40,18 +40,14 @@ struct VtreesDb {
 };
 
 Result<VtreesDb> load_vtrees_db(const Bytes& bytes) {
-  LODBAKE_ASSIGN_OR_RETURN(Container container, read_container(bytes.data(), bytes.size()));
-  for (const char* tag : {kBaseTag, kVhieTag, kRfinTag, kVtreTag}) {
-    if (container.find(tag) == nullptr) {
-      return invalid_input(std::string("container has no ") + tag +
-                           " section; mode vtrees needs BASE + VHIE + RFIN + VTRE "
-                           "(lodbake-hierarchy --sections vhie,vtre)");
-    }
-  }
-  const Section* base = container.find(kBaseTag);
-  const Section* vhie = container.find(kVhieTag);
-  const Section* rfin = container.find(kRfinTag);
-  const Section* vtre = container.find(kVtreTag);
+  LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
+                           file.group_with({kBaseTag, kVhieTag, kRfinTag, kVtreTag}, "mode vtrees",
+                                           "lodbake-hierarchy --sections vhie,vtre"));
+  const Section* base = file.find(kBaseTag, group);
+  const Section* vhie = file.find(kVhieTag, group);
+  const Section* rfin = file.find(kRfinTag, group);
+  const Section* vtre = file.find(kVtreTag, group);
   LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
   LODBAKE_ASSIGN_OR_RETURN(VertexHierarchy h,
                            decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));

@@ -6,16 +6,17 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "formats/container/container_reader.h"
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
+#include "formats/sections/open_container.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/strp.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/core/sha256.h"
+#include "lib/ingest/container_mesh.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
@@ -64,23 +65,26 @@ int load_container_input(const Tool& tool, const Request& request, Input* in) {
   in->meta = MetaInput{
       to_valid_utf8(slash == std::string::npos ? request.input : request.input.substr(slash + 1)),
       sha256_hex(bytes.value().data(), bytes.value().size()), bytes.value().size()};
-  Result<Container> container = read_container(bytes.value().data(), bytes.value().size());
-  if (!container.is_ok()) return tool.fail(request.input, container.status());
-  Result<const Section*> base = container.value().require(kBaseTag);
-  if (!base.is_ok()) return tool.fail(request.input, base.status());
-  Result<const Section*> vspl = container.value().require(kVsplTag);
-  if (!vspl.is_ok()) return tool.fail(request.input, vspl.status());
-  Result<ProgressiveMesh> pm = decode_progressive_mesh(base.value()->data, base.value()->size,
-                                                       vspl.value()->data, vspl.value()->size);
+  Result<OpenedContainer> file = open_container(std::move(bytes).value());
+  if (!file.is_ok()) return tool.fail(request.input, file.status());
+  if (std::optional<MetaInput> original = container_meta_input(file.value())) in->meta = *original;
+  if (request.strips_only) {
+    Result<ContainerMesh> mesh = container_input_mesh(file.value());
+    if (!mesh.is_ok()) return tool.fail(request.input, mesh.status());
+    in->report = {{"kind", mesh.value().source}};
+    in->mesh = std::move(mesh.value().mesh);
+    return 0;
+  }
+  Result<uint32_t> group =
+      file.value().group_with({kBaseTag, kVsplTag}, "lodbake-strips", "lodbake-simplify --pm");
+  if (!group.is_ok()) return tool.fail(request.input, group.status());
+  const Section* base = file.value().find(kBaseTag, group.value());
+  const Section* vspl = file.value().find(kVsplTag, group.value());
+  Result<ProgressiveMesh> pm =
+      decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size);
   if (!pm.is_ok()) return tool.fail(request.input, pm.status());
   in->report = {{"kind", "progressive mesh"}, {"splits", pm.value().splits.size()}};
-  if (request.strips_only) {
-    Result<TriangleMesh> full = mesh_at_lod(pm.value(), pm.value().full_vertex_count());
-    if (!full.is_ok()) return tool.fail(request.input, full.status());
-    in->mesh = std::move(full).value();
-  } else {
-    in->pm = std::move(pm).value();
-  }
+  in->pm = std::move(pm).value();
   return 0;
 }
 
