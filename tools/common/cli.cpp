@@ -8,6 +8,7 @@
 #include <iostream>
 #include <new>
 
+#include "formats/support/file_io.h"
 #include "formats/support/version.h"
 
 namespace lodbake::cli {
@@ -62,6 +63,8 @@ Tool::Tool(std::string name, std::string synopsis, std::string description)
       description_(std::move(description)),
       options_("Options"),
       hidden_("Hidden") {
+  // An interrupted or killed run leaves no temporary output behind.
+  remove_temporaries_on_signals();
   options_.add_options()("help,h", "print this help and exit")(
       "version", "print the lodbake version and exit")("json",
                                                        "print the report as JSON on stdout")(
