@@ -151,6 +151,15 @@ int Tool::fail(const std::string& file, const Status& status) const {
   return code;
 }
 
+std::optional<int> Tool::check_outputs(const std::vector<std::string>& outputs) const {
+  for (const std::string& output : outputs) {
+    if (output.empty()) continue;
+    if (Status writable = check_output_path(output); !writable.is_ok())
+      return fail(output, writable);
+  }
+  return std::nullopt;
+}
+
 int Tool::usage_error(const std::string& message) const {
   std::string text = message;
   while (!text.empty() && (text.back() == '.' || text.back() == ' '))

@@ -600,8 +600,10 @@ int main(int argc, char** argv) {
   return tool.run([&] {
     Result<Bytes> bytes = read_file(path);
     if (!bytes.is_ok()) return tool.fail(path, bytes.status());
-    if (is_container_input(path, &bytes.value()))
+    if (is_container_input(path, &bytes.value())) {
+      if (std::optional<int> code = tool.check_outputs({options.extract})) return *code;
       return inspect_container(tool, path, bytes.value(), options);
+    }
     return inspect_mesh(tool, path, std::move(bytes).value(), options);
   });
 }

@@ -402,5 +402,10 @@ int main(int argc, char** argv) {
   if (!request.output.empty() && !request.pm_output.empty() &&
       same_output_path(request.output, request.pm_output))
     return tool.usage_error("-o and --pm name the same file '" + request.pm_output + "'");
+  std::vector<std::string> outputs = {request.ratios.empty() ? request.output : ""};
+  for (size_t i = 0; i < request.ratios.size(); ++i)
+    outputs.push_back(lod_path(request.output, i));
+  outputs.push_back(request.pm_output);
+  if (std::optional<int> code = tool.check_outputs(outputs)) return *code;
   return tool.run([&] { return run(tool, request); });
 }
