@@ -21,11 +21,27 @@ Result<Bytes> read_file(const std::string& path, uint64_t max_bytes = uint64_t{1
 // e.g. an output that would overwrite its own input.
 bool same_file(const std::string& a, const std::string& b);
 
+// Checks, before a run does its work, that `path` can be written as an output:
+// fails with kIo when it exists and is not a regular file (a folder, a device
+// such as /dev/full or /dev/null, a FIFO), or when its folder is missing or
+// not writable. Writing checks the same again (the file system may change).
+Status check_output_path(const std::string& path);
+
+// Installs handlers for SIGINT, SIGTERM and SIGHUP that remove the temporary
+// files of the writes in progress (write_file_atomic(), StagedOutputs) and
+// then end the process by the same signal with its default action, so that
+// its exit status still says it was killed by that signal. A signal ignored
+// when this is called (nohup) stays ignored. Call once at start-up, before
+// starting threads; calling it again does nothing.
+void remove_temporaries_on_signals();
+
 // Writes `data` to `path` through a temporary file in the same directory that
 // is renamed over `path` only after everything was written and flushed, so a
-// failed run never leaves a partial output behind. Fails with kIo, before
-// writing anything, when `path` exists and is not a regular file (a folder, a
-// device such as /dev/null, a FIFO): the rename would replace it.
+// failed run never leaves a partial output behind: a failed write, flush or
+// rename (a full disk, an I/O error) removes the temporary file and fails
+// with kIo. Fails with kIo, before writing anything, when `path` exists and
+// is not a regular file (a folder, a device such as /dev/full, a FIFO): the
+// rename would replace it.
 Status write_file_atomic(const std::string& path, const uint8_t* data, size_t size);
 inline Status write_file_atomic(const std::string& path, const Bytes& data) {
   return write_file_atomic(path, data.data(), data.size());

@@ -93,7 +93,8 @@ Result<DagReplay> DagReplay::create(const ProgressiveMesh& pm, const VsplitDag& 
     for (size_t i = 0; i < l.split_count(); ++i) {
       const uint32_t created = l.created_offsets[i + 1] - l.created_offsets[i];
       if (created < changed[i]) {
-        return runtime_error("split " + std::to_string(i) + " changes " +
+        // The splits are the file's (VSPL): damaged data.
+        return invalid_input("split " + std::to_string(i) + " changes " +
                              std::to_string(changed[i]) + " triangles but creates only " +
                              std::to_string(created));
       }

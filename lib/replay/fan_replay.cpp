@@ -76,8 +76,10 @@ Result<FanReplay> FanReplay::create(const TriangleMesh& input, const FanHierarch
                            FanRuntime::create(input, hierarchy, runtime_options));
   try {
     FanReplay r(std::move(runtime));
+    // The merges are the file's (FANH): when they cannot all be made on
+    // the mesh, the data is damaged.
     if (start == Start::kCoarsest && !r.runtime_.merge_all())
-      return runtime_error("the fan hierarchy's coarsest mesh cannot be reached");
+      return invalid_input("the fan hierarchy's coarsest mesh cannot be reached");
     r.positions_ = input.positions;
     const FanRuntime& rt = r.runtime_;
     const size_t n = rt.node_count();

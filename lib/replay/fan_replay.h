@@ -59,8 +59,9 @@ class FanReplay {
   /// tests use) and the per-node view data: a bounding sphere around each
   /// node's vertex holding every vertex of its subtree, and the error
   /// saturated up the forest.
-  /// \return kInvalidInput from FanRuntime::create; kRuntime on out of memory
-  ///         or when the coarsest mesh cannot be reached.
+  /// \return kInvalidInput from FanRuntime::create or when the coarsest
+  ///         mesh cannot be reached (the merges do not fit the mesh);
+  ///         kRuntime on out of memory.
   static Result<FanReplay> create(const TriangleMesh& input, const FanHierarchy& hierarchy,
                                   Start start = Start::kCoarsest, bool dependencies = true);
 

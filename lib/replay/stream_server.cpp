@@ -230,13 +230,16 @@ Status StreamServerSession::sel_stream_vsplit(uint32_t node, std::vector<VsplitP
   const VertexHierarchy& h = *db_->h;
   std::vector<uint32_t> stack{node};
   size_t steps = 0;
+  // The hierarchy's cut vertices (VHIE) decide the order; when they send the
+  // order round in circles or to a node that cannot split, the data is
+  // damaged: invalid input, not a failure of the algorithm.
   while (!stack.empty()) {
     if (++steps > 4 * h.node_count() + 4) {
-      return runtime_error("the split order of node " + std::to_string(node) + " does not end");
+      return invalid_input("the split order of node " + std::to_string(node) + " does not end");
     }
     const uint32_t s = stack.back();
     if (h.is_leaf(s) || !tags_.test(s)) {
-      return runtime_error("the partial order of node " + std::to_string(node) + " asks for node " +
+      return invalid_input("the partial order of node " + std::to_string(node) + " asks for node " +
                            std::to_string(s) + ", which is not splittable");
     }
     const uint32_t l = h.cut_left[s];

@@ -130,7 +130,9 @@ class StreamServerSession {
   /// when nothing is needed). A split that the partial order forces behind
   /// the sweep's position makes the sweep run again from its children, so
   /// one answer holds everything the view needs. Refuses a malformed request
-  /// with the decoder's status, state unchanged.
+  /// with the decoder's status, state unchanged; kInvalidInput when the
+  /// hierarchy's cut vertices are damaged (the partial order asks for a node
+  /// that cannot split, or goes round in circles).
   Result<std::vector<Bytes>> answer(const uint8_t* request, size_t size);
 
   const ActiveTagWindow& tags() const { return tags_; }

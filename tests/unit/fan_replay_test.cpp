@@ -271,6 +271,25 @@ TEST(FanReplay, Deterministic) {
   EXPECT_EQ(x.runtime().active().nodes(), y.runtime().active().nodes());
 }
 
+// A FANH whose lists were damaged (the first and the last removed triangles
+// swapped) still passes the structural checks; the merges then cannot all
+// be made:
+// invalid input, not a runtime failure, with or without the construction's
+// replay at start-up.
+TEST(FanReplay, DamagedListsAreInvalidInput) {
+  const Built& b = meshes()[0];
+  FanHierarchy damaged = b.fan.hierarchy;
+  ASSERT_FALSE(damaged.removed.empty());
+  std::swap(damaged.removed.front(), damaged.removed.back());
+  Result<FanReplay> r = FanReplay::create(b.input, damaged, FanReplay::Start::kCoarsest, false);
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput) << r.status().message();
+  EXPECT_EQ(r.status().message(), "the fan hierarchy's coarsest mesh cannot be reached");
+  r = FanReplay::create(b.input, damaged, FanReplay::Start::kCoarsest, true);
+  ASSERT_FALSE(r.is_ok());
+  EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput) << r.status().message();
+}
+
 TEST(FanReplay, RejectsAHierarchyOfAnotherMesh) {
   Result<FanReplay> r = FanReplay::create(meshes()[0].input, meshes()[1].fan.hierarchy);
   ASSERT_FALSE(r.is_ok());

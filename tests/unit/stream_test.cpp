@@ -13,10 +13,15 @@
 #include <map>
 #include <random>
 
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
 #include "lib/replay/stream_session.h"
 #include "tests/unit/stream_test_support.h"
+#include "tests/unit/test_support.h"
 #include "tests/unit/wire_corruption_support.h"
 
 namespace lodbake {
@@ -227,6 +232,75 @@ bool decodes(const Messages& m, const Bytes& like, const Bytes& bytes) {
     return decode_vsplit_message(bytes.data(), bytes.size(), m.db->widths, roots).is_ok();
   }
   return decode_end_of_answer(bytes.data(), bytes.size()).is_ok();
+}
+
+// A torus whose hierarchy has damaged cut vertices that still pass the
+// structural checks: both cuts of a root's split on one leaf of another tree.
+Built torus_with_damaged_cuts(int rings, int sides) {
+  Built b = build(test_meshes::torus(rings, sides));
+  const VertexHierarchy& h = b.h;
+  uint32_t s = kNoNode, leaf = kNoNode;
+  for (uint32_t r = 0; r < h.root_count() && s == kNoNode; ++r) {
+    if (!h.is_leaf(r)) s = r;
+  }
+  EXPECT_NE(s, kNoNode);
+  for (uint32_t v = 0; v < h.node_count() && leaf == kNoNode && s != kNoNode; ++v) {
+    uint32_t top = v;
+    while (h.parent[top] != kNoNode)
+      top = h.parent[top];
+    if (h.is_leaf(v) && top != s && !h.is_leaf(top)) leaf = v;
+  }
+  EXPECT_NE(leaf, kNoNode);
+  if (leaf == kNoNode) return b;
+  b.h.cut_left[s] = b.h.cut_right[s] = leaf;
+  EXPECT_EQ(validate_hierarchy(b.h), std::vector<std::string>{});
+  return b;
+}
+
+// The damaged cuts make the partial order ask for a node that cannot split:
+// the server refuses the data as invalid input (exit 3), not as a runtime
+// failure.
+TEST(StreamServer, DamagedCutVerticesAreInvalidInput) {
+  for (int rings : {8, 24}) {
+    SCOPED_TRACE(rings);
+    const Built b = torus_with_damaged_cuts(rings, rings * 2 / 3);
+    Result<StreamHierarchy> db = StreamHierarchy::create(b.h, b.data);
+    ASSERT_TRUE(db.is_ok()) << db.status().message();
+    Result<StreamSession> session = StreamSession::create(db.value(), StreamReplayOptions());
+    ASSERT_TRUE(session.is_ok()) << session.status().message();
+    Result<StreamFrameStats> stats = session.value().step(refine_everything(b));
+    ASSERT_FALSE(stats.is_ok());
+    EXPECT_EQ(stats.status().kind(), ErrorKind::kInvalidInput) << stats.status().message();
+    EXPECT_NE(stats.status().message().find("which is not splittable"), std::string::npos)
+        << stats.status().message();
+  }
+}
+
+// tests/data/containers/torus_vhie_damaged_cuts.lbk (the CLI cases' damaged
+// input for mode stream) is BASE + VHIE + RFIN of the 8 x 5 torus above;
+// LODBAKE_WRITE_CONTAINERS=<dir> writes it there instead of comparing.
+TEST(StreamServer, DamagedCliContainerIsTheCurrentEncoding) {
+  const Built b = torus_with_damaged_cuts(8, 5);
+  Result<Bytes> base = encode_base(b.h.base, BaseEncodeOptions());
+  Result<Bytes> vhie = encode_vhie(b.h);
+  Result<Bytes> rfin = encode_rfin(b.h, b.data);
+  ASSERT_TRUE(base.is_ok() && vhie.is_ok() && rfin.is_ok());
+  ContainerWriter writer;
+  ASSERT_TRUE(writer.add_section(kBaseTag, std::move(base).value(), true).is_ok());
+  ASSERT_TRUE(writer.add_section(kVhieTag, std::move(vhie).value(), true).is_ok());
+  ASSERT_TRUE(writer.add_section(kRfinTag, std::move(rfin).value(), true).is_ok());
+  Result<Bytes> file = writer.finish();
+  ASSERT_TRUE(file.is_ok());
+  EXPECT_LT(file.value().size(), 4096u);
+  const std::string name = "torus_vhie_damaged_cuts.lbk";
+  const std::string write_dir = testing_util::env_or("LODBAKE_WRITE_CONTAINERS", "");
+  if (!write_dir.empty()) {
+    ASSERT_TRUE(write_file_atomic(write_dir + "/" + name, file.value()).is_ok());
+  } else {
+    const std::string dir =
+        testing_util::env_or_fail("LODBAKE_SOURCE_DIR") + "/tests/data/containers/";
+    EXPECT_EQ(testing_util::read_bytes(dir + name), file.value()) << name;
+  }
 }
 
 TEST(StreamPackets, RoundTripAndBitWidths) {

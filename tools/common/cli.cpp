@@ -8,6 +8,7 @@
 #include <iostream>
 #include <new>
 
+#include "formats/support/file_io.h"
 #include "formats/support/version.h"
 
 namespace lodbake::cli {
@@ -43,6 +44,18 @@ void refuse_negative_unsigned(const po::parsed_options& parsed,
   }
 }
 
+// True while a Progress line is drawn on stderr without its newline: an
+// error, warning or note printed meanwhile clears it first, so that it is a
+// line of its own instead of the progress line's tail.
+bool progress_drawn = false;
+
+void clear_progress_line() {
+  if (!progress_drawn) return;
+  std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+  progress_drawn = false;
+}
+
 }  // namespace
 
 const char* exit_code_help() {
@@ -62,6 +75,8 @@ Tool::Tool(std::string name, std::string synopsis, std::string description)
       description_(std::move(description)),
       options_("Options"),
       hidden_("Hidden") {
+  // An interrupted or killed run leaves no temporary output behind.
+  remove_temporaries_on_signals();
   options_.add_options()("help,h", "print this help and exit")(
       "version", "print the lodbake version and exit")("json",
                                                        "print the report as JSON on stdout")(
@@ -134,6 +149,7 @@ void Tool::print_json(const nlohmann::json& report) const {
 }
 
 int Tool::fail(const std::string& file, const Status& status) const {
+  clear_progress_line();
   std::cerr << name_ << ": error: " << (file.empty() ? "" : file + ": ") << status.message()
             << "\n";
   int code = static_cast<int>(status.kind());
@@ -148,10 +164,20 @@ int Tool::fail(const std::string& file, const Status& status) const {
   return code;
 }
 
+std::optional<int> Tool::check_outputs(const std::vector<std::string>& outputs) const {
+  for (const std::string& output : outputs) {
+    if (output.empty()) continue;
+    if (Status writable = check_output_path(output); !writable.is_ok())
+      return fail(output, writable);
+  }
+  return std::nullopt;
+}
+
 int Tool::usage_error(const std::string& message) const {
   std::string text = message;
   while (!text.empty() && (text.back() == '.' || text.back() == ' '))
     text.pop_back();
+  clear_progress_line();
   std::cerr << name_ << ": error: " << text << ". See '" << name_ << " --help'.\n";
   const int code = static_cast<int>(ErrorKind::kUsage);
   if (json_ && !json_printed_) {
@@ -166,11 +192,13 @@ int Tool::usage_error(const std::string& message) const {
 
 void Tool::warn(const std::string& file, const std::string& message) const {
   if (quiet_) return;
+  clear_progress_line();
   std::cerr << name_ << ": warning: " << (file.empty() ? "" : file + ": ") << message << "\n";
 }
 
 void Tool::info(const std::string& file, const std::string& message) const {
   if (quiet_) return;
+  clear_progress_line();
   std::cerr << name_ << ": " << (file.empty() ? "" : file + ": ") << message << "\n";
 }
 
@@ -188,7 +216,7 @@ Progress::Progress(const Tool& tool, std::string label)
     : enabled_(!tool.quiet() && ::isatty(STDERR_FILENO) == 1), label_(std::move(label)) {}
 
 Progress::~Progress() {
-  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r\033[K");
+  if (enabled_) clear_progress_line();
 }
 
 void Progress::update(double fraction) {
@@ -198,6 +226,7 @@ void Progress::update(double fraction) {
   last_percent_ = percent;
   std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
   std::fflush(stderr);
+  progress_drawn = true;
 }
 
 }  // namespace lodbake::cli

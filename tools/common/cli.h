@@ -64,6 +64,11 @@ class Tool {
   // Linux are bytes) get U+FFFD for each bad byte instead of making the dump
   // throw.
   void print_json(const nlohmann::json& report) const;
+  // Checks, before the run does its work, that every non-empty path in
+  // `outputs` can be written (check_output_path(): not a device such as
+  // /dev/full, a folder or a FIFO, in a folder that exists and is writable);
+  // prints the first failure and returns its exit code (2).
+  std::optional<int> check_outputs(const std::vector<std::string>& outputs) const;
   // Prints a usage error ending in "See 'name --help'." and returns 1; with
   // --json also the JSON error report (lodbake.error/1, `file` empty).
   int usage_error(const std::string& message) const;

@@ -323,5 +323,6 @@ int main(int argc, char** argv) {
     return tool.usage_error("--degree-weight must be finite and --boundary-weight finite and >= 0");
   if (same_file(request.input, request.output))
     return tool.usage_error("the output '" + request.output + "' is the input mesh itself");
+  if (std::optional<int> code = tool.check_outputs({request.output})) return *code;
   return tool.run([&] { return run(tool, request); });
 }

@@ -450,14 +450,15 @@ FileStatus extract_base(const Tool& tool, const std::string& path, const OpenedC
   nlohmann::json extracted;
   Result<TriangleMesh> mesh = mesh_to_extract(file, options.lod, options.group, &extracted);
   if (!mesh.is_ok()) return {path, mesh.status()};
-  if (drops_attributes(out_path, mesh.value()))
-    tool.warn(out_path,
-              "this format cannot store the mesh's normals or texture coordinates; "
-              "they are not written");
   Result<Bytes> bytes = write_mesh_for_path(out_path, mesh.value());
   if (!bytes.is_ok()) return {out_path, bytes.status()};
   Status written = write_file_atomic(out_path, bytes.value());
   if (!written.is_ok()) return {out_path, written};
+  // After the write: a failed run prints its error alone.
+  if (drops_attributes(out_path, mesh.value()))
+    tool.warn(out_path,
+              "this format cannot store the mesh's normals or texture coordinates; "
+              "they are not written");
   extracted["file"] = out_path;
   extracted["bytes"] = bytes.value().size();
   extracted["vertices"] = mesh.value().vertex_count();
@@ -640,8 +641,10 @@ int main(int argc, char** argv) {
   return tool.run([&] {
     Result<Bytes> bytes = read_file(path);
     if (!bytes.is_ok()) return tool.fail(path, bytes.status());
-    if (is_container_input(path, &bytes.value()))
+    if (is_container_input(path, &bytes.value())) {
+      if (std::optional<int> code = tool.check_outputs({options.extract})) return *code;
       return inspect_container(tool, path, bytes.value(), options);
+    }
     return inspect_mesh(tool, path, std::move(bytes).value(), options);
   });
 }

@@ -323,6 +323,7 @@ int main(int argc, char** argv) {
         options.error_bits != 0 || tool.has("qp") || tool.has("cl"))
       return tool.usage_error(
           "--draco, --qp, --cl, --raw, --error-bits, --drop and --keep apply to .lbk inputs");
+    if (std::optional<int> code = tool.check_outputs({options.output})) return *code;
     return tool.run([&] { return pack(tool, inputs.front(), options); });
   }
   for (const std::string& input : inputs) {
@@ -344,5 +345,6 @@ int main(int argc, char** argv) {
   repack_options.draco = options.draco;
   repack_options.draco_options.quantization_bits = options.qp;
   repack_options.draco_options.compression_level = options.cl;
+  if (std::optional<int> code = tool.check_outputs({options.output})) return *code;
   return tool.run([&] { return repack(tool, inputs, options, repack_options); });
 }

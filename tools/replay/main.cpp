@@ -20,6 +20,7 @@
 #include "lib/replay/dag_replay.h"
 #include "lib/replay/stream_transport.h"
 #include "tools/common/cli.h"
+#include "tools/replay/plots.h"
 #include "tools/replay/replay_request.h"
 
 namespace lodbake::cli::replay {
@@ -362,5 +363,10 @@ int main(int argc, char** argv) {
   if (tool.has("plot") && request.plot.empty()) return tool.usage_error("--plot takes a folder");
   if (!request.csv.empty() && same_file(request.input, request.csv))
     return tool.usage_error("the --csv output '" + request.csv + "' is the input itself");
+  if (std::optional<int> code = tool.check_outputs({request.csv})) return *code;
+  if (!request.plot.empty()) {
+    if (Status folder = check_plot_folder(request.plot); !folder.is_ok())
+      return tool.fail(request.plot, folder);
+  }
   return tool.run([&] { return run(tool, request); });
 }

@@ -3,6 +3,7 @@
 // failure is one line naming what gnuplot said.
 #include "tools/replay/plots.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -88,9 +89,23 @@ std::vector<std::string> plot_files(const std::string& mode, const std::string& 
   return {"adapt_time.svg", "fronts.svg", "operations.svg"};
 }
 
+Status check_plot_folder(const std::string& dir) {
+  struct stat st;
+  if (::stat(dir.c_str(), &st) == 0)
+    return S_ISDIR(st.st_mode) ? Status::ok() : io_error("not a folder");
+  const size_t slash = dir.find_last_of('/');
+  const std::string parent = slash == std::string::npos ? "."
+                             : slash == 0               ? "/"
+                                                        : dir.substr(0, slash);
+  if (::faccessat(AT_FDCWD, parent.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
+    return io_error(std::string("cannot create the plot folder: ") + std::strerror(errno));
+  return Status::ok();
+}
+
 Status write_plots(const PlotRequest& request, std::vector<std::string>* written) {
   const std::string& dir = request.dir;
   bool made_dir = false;
+  LODBAKE_RETURN_IF_ERROR(check_plot_folder(dir));
   if (!is_directory(dir)) {
     if (::mkdir(dir.c_str(), 0777) != 0) {
       return Status(ErrorKind::kIo,

@@ -22,6 +22,12 @@ struct PlotRequest {
 /// The charts a mode draws, as file names in the folder.
 std::vector<std::string> plot_files(const std::string& mode, const std::string& lanes);
 
+/// Checks, before the run, that DIR is a folder or can be made: kIo "not a
+/// folder" when something else is there (a file, a device such as
+/// /dev/full), "cannot create the plot folder: ..." when its parent is
+/// missing or not writable.
+Status check_plot_folder(const std::string& dir);
+
 /// Writes DIR/frames.csv and DIR/replay.gp and runs gnuplot in DIR; on
 /// success `*written` lists every file written (the data, the script and
 /// the SVG charts). On failure nothing it wrote is left behind.

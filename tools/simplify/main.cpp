@@ -117,10 +117,11 @@ std::string metrics_text(const nlohmann::json& metrics) {
 
 // Written to a temporary file; `outputs` renames every output into place at
 // the end, so that a run failing at its second output leaves not even the first.
-Status stage_mesh(const Tool& tool, StagedOutputs* outputs, const std::string& path,
-                  const TriangleMesh& mesh) {
-  if (drops_attributes(path, mesh))
-    tool.warn(path, "this format cannot store the mesh's normals or texture coordinates");
+// A path whose format loses attributes is added to `*lossy`, warned about
+// once everything is written (a failed run prints its error alone).
+Status stage_mesh(StagedOutputs* outputs, const std::string& path, const TriangleMesh& mesh,
+                  std::vector<std::string>* lossy) {
+  if (drops_attributes(path, mesh)) lossy->push_back(path);
   LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, write_mesh_for_path(path, mesh));
   return outputs->stage(path, bytes);
 }
@@ -218,6 +219,7 @@ int run(const Tool& tool, Request& request) {
   if (loaded.repair) report["repair"] = to_json(*loaded.repair);
 
   StagedOutputs staged;
+  std::vector<std::string> lossy;
   nlohmann::json outputs = nlohmann::json::array();
   if (!ratios.empty()) {
     std::vector<uint64_t> targets;
@@ -230,7 +232,7 @@ int run(const Tool& tool, Request& request) {
       std::string path = lod_path(request.output, i);
       Result<nlohmann::json> metrics = measure(request, loaded.mesh, lods.value()[i]);
       if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
-      Status written = stage_mesh(tool, &staged, path, lods.value()[i]);
+      Status written = stage_mesh(&staged, path, lods.value()[i], &lossy);
       if (!written.is_ok()) return tool.fail(path, written);
       outputs.push_back({{"file", path},
                          {"ratio", ratios[i]},
@@ -243,7 +245,7 @@ int run(const Tool& tool, Request& request) {
     if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
     report["metrics"] = metrics.value();
     if (!request.output.empty()) {
-      Status written = stage_mesh(tool, &staged, request.output, result.mesh);
+      Status written = stage_mesh(&staged, request.output, result.mesh, &lossy);
       if (!written.is_ok()) return tool.fail(request.output, written);
       outputs.push_back({{"file", request.output},
                          {"vertices", result.mesh.vertex_count()},
@@ -262,6 +264,8 @@ int run(const Tool& tool, Request& request) {
   std::string failed_path;
   if (Status committed = staged.commit(&failed_path); !committed.is_ok())
     return tool.fail(failed_path, committed);
+  for (const std::string& path : lossy)
+    tool.warn(path, "this format cannot store the mesh's normals or texture coordinates");
 
   if (tool.json()) {
     tool.print_json(report);
@@ -402,5 +406,10 @@ int main(int argc, char** argv) {
   if (!request.output.empty() && !request.pm_output.empty() &&
       same_output_path(request.output, request.pm_output))
     return tool.usage_error("-o and --pm name the same file '" + request.pm_output + "'");
+  std::vector<std::string> outputs = {request.ratios.empty() ? request.output : ""};
+  for (size_t i = 0; i < request.ratios.size(); ++i)
+    outputs.push_back(lod_path(request.output, i));
+  outputs.push_back(request.pm_output);
+  if (std::optional<int> code = tool.check_outputs(outputs)) return *code;
   return tool.run([&] { return run(tool, request); });
 }

@@ -270,5 +270,6 @@ int main(int argc, char** argv) {
   if (request.output.empty()) return tool.usage_error("nothing to write: give -o OUT.lbk");
   if (same_file(request.input, request.output))
     return tool.usage_error("the output '" + request.output + "' is the input itself");
+  if (std::optional<int> code = tool.check_outputs({request.output})) return *code;
   return tool.run([&] { return run(tool, request); });
 }
