@@ -8,6 +8,7 @@
 #include <new>
 
 #include "formats/container/container_errors.h"
+#include "formats/container/section_registry.h"
 #include "formats/support/crc32c.h"
 
 namespace lodbake {
@@ -15,6 +16,20 @@ namespace lodbake {
 Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool required) {
   const uint64_t size = payload.size();
   return add_stored_section(tag, std::move(payload), SectionCodec::kRaw, size, required);
+}
+
+Status ContainerWriter::add_section(std::string_view tag, Bytes payload) {
+  const uint64_t size = payload.size();
+  return add_stored_section(tag, std::move(payload), SectionCodec::kRaw, size);
+}
+
+Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
+                                           uint64_t decoded_size) {
+  if (!is_known_section(tag)) {
+    return invalid_input("section " + printable_tag(tag) +
+                         " is not a known tag: its required flag must be given");
+  }
+  return add_stored_section(tag, std::move(stored), codec, decoded_size, section_required(tag));
 }
 
 Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,

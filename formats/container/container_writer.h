@@ -26,10 +26,17 @@ class ContainerWriter {
  public:
   /// Adds a section. `required` sets flag bit 0: a reader that does not know
   /// `tag` must then refuse the whole file (use it for sections whose absence
-  /// would make the file mean something else; META is optional, BASE required).
+  /// would make the file mean something else). Known tags must use the
+  /// two-argument form; this one is for sections of other tools.
   /// \return LBK-E016 when `tag` is not 4 characters in 0x21..0x7E, LBK-E017
   ///         when a section with that tag was already added; nothing is added then.
   Status add_section(std::string_view tag, Bytes payload, bool required);
+
+  /// Adds a section of a known tag with the required flag the registry gives
+  /// it (section_required(), formats/container/section_registry.h), so every
+  /// lodbake writer flags a tag alike.
+  /// \return as above, or kInvalidInput when `tag` is not a known tag.
+  Status add_section(std::string_view tag, Bytes payload);
 
   /// Adds a section whose stored bytes encode its payload with `codec`;
   /// `decoded_size` is the payload's size (for raw it must be stored.size()).
@@ -37,6 +44,10 @@ class ContainerWriter {
   ///         decoded size differs from its stored size.
   Status add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
                             uint64_t decoded_size, bool required);
+
+  /// add_stored_section() of a known tag, with the registry's required flag.
+  Status add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
+                            uint64_t decoded_size);
 
   /// Number of sections added so far.
   size_t section_count() const { return sections_.size(); }

@@ -18,6 +18,8 @@
 // - Kinds this file does not recode (anything else) are copied with their
 //   codec, flags and sizes, byte for byte: their own tools define their
 //   codecs, and a copy can never damage what pack does not understand.
+// - Every known kind gets the required flag of the section registry, as
+//   from every other lodbake writer, whatever flag its input carried.
 // - Idempotence: a BASE already stored as requested (same codec and Draco
 //   options, or raw with the requested quantization) is copied, never
 //   re-quantized, because quantizing dequantized values again need not give
@@ -271,7 +273,10 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
     Bytes stored;
     SectionCodec codec = SectionCodec::kRaw;
     uint64_t decoded_size = 0;
-    bool required = false;
+    // Known tags get the registry's required flag whatever the input said
+    // (inputs written before the flags were settled, or by other writers);
+    // an unknown section keeps its own.
+    bool required = section_required(tag);
     if (tag == kMetaTag) {
       // Counts describe sections (docs/format.md "META"): those of sections
       // left out go too, or the output would not validate.
@@ -291,7 +296,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       report.action = "rewritten";
     } else if (tag == kBaseTag) {
       const Chosen& c = it->second;
-      required = c.section->required();
       LODBAKE_ASSIGN_OR_RETURN(BaseSummary summary, read_base_summary(c.raw.data(), c.raw.size()));
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(c.raw.data(), c.raw.size()));
       base_summary = summary;
@@ -342,7 +346,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       result.triangles = written_base->triangle_count();
     } else if (tag == kVsplTag) {
       const Chosen& c = it->second;
-      required = c.section->required();
       LODBAKE_ASSIGN_OR_RETURN(VsplSummary summary, read_vspl_summary(c.raw.data(), c.raw.size()));
       int bits = options.quantize_bits;
       if (bits == 0 && options.draco && summary.position_encoding == PositionEncoding::kFloat32)
@@ -384,7 +387,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
                           : "recoded";
     } else if (has_standalone_compact_codec(tag) || has_base_compact_codec(tag)) {
       const Chosen& c = it->second;
-      required = c.section->required();
       decoded_size = c.raw.size();
       stored = c.raw;
       // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
@@ -412,7 +414,7 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
       stored = Bytes(s.data, s.data + s.size);
       codec = static_cast<SectionCodec>(s.entry.codec);
       decoded_size = s.entry.decoded_size;
-      required = s.required();
+      if (!is_known_section(tag)) required = s.required();
       report.action = "copied";
     }
     report.codec_after = codec_text(static_cast<uint16_t>(codec));
