@@ -8,6 +8,7 @@
 #include <new>
 
 #include "formats/container/container_errors.h"
+#include "formats/container/section_registry.h"
 #include "formats/support/crc32c.h"
 
 namespace lodbake {
@@ -16,6 +17,22 @@ Status ContainerWriter::add_section(std::string_view tag, Bytes payload, bool re
                                     uint32_t group) {
   const uint64_t size = payload.size();
   return add_stored_section(tag, std::move(payload), SectionCodec::kRaw, size, required, group);
+}
+
+Status ContainerWriter::add_known_section(std::string_view tag, Bytes payload, uint32_t group) {
+  const uint64_t size = payload.size();
+  return add_known_stored_section(tag, std::move(payload), SectionCodec::kRaw, size, group);
+}
+
+Status ContainerWriter::add_known_stored_section(std::string_view tag, Bytes stored,
+                                                 SectionCodec codec, uint64_t decoded_size,
+                                                 uint32_t group) {
+  if (!is_known_section(tag)) {
+    return invalid_input("section " + printable_tag(tag) +
+                         " is not a known tag: its required flag must be given");
+  }
+  return add_stored_section(tag, std::move(stored), codec, decoded_size, section_required(tag),
+                            group);
 }
 
 Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,

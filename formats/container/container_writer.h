@@ -27,13 +27,20 @@ class ContainerWriter {
  public:
   /// Adds a section to `group`. `required` sets flag bit 0: a reader that
   /// does not know `tag` must then refuse the whole file (use it for sections
-  /// whose absence would make the file mean something else; META is
-  /// optional, BASE required). Groups are added in order: `group` is the
-  /// previous section's group or the next one (0 for the first section).
+  /// whose absence would make the file mean something else). Known tags must
+  /// use the form without `required`; this one is for sections of other
+  /// tools. Groups are added in order: `group` is the previous section's
+  /// group or the next one (0 for the first section).
   /// \return LBK-E016 when `tag` is not 4 characters in 0x21..0x7E, LBK-E017
   ///         when a section with that tag was already added to the group,
   ///         LBK-E025 for a group out of order; nothing is added then.
   Status add_section(std::string_view tag, Bytes payload, bool required, uint32_t group = 0);
+
+  /// Adds a section of a known tag with the required flag the registry gives
+  /// it (section_required(), formats/container/section_registry.h), so every
+  /// lodbake writer flags a tag alike.
+  /// \return as above, or kInvalidInput when `tag` is not a known tag.
+  Status add_known_section(std::string_view tag, Bytes payload, uint32_t group = 0);
 
   /// Adds a section whose stored bytes encode its payload with `codec`;
   /// `decoded_size` is the payload's size (for raw it must be stored.size()).
@@ -41,6 +48,10 @@ class ContainerWriter {
   ///         decoded size differs from its stored size.
   Status add_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
                             uint64_t decoded_size, bool required, uint32_t group = 0);
+
+  /// add_stored_section() of a known tag, with the registry's required flag.
+  Status add_known_stored_section(std::string_view tag, Bytes stored, SectionCodec codec,
+                                  uint64_t decoded_size, uint32_t group = 0);
 
   /// Number of sections added so far.
   size_t section_count() const { return sections_.size(); }

@@ -1,7 +1,8 @@
 // The section tags this build of lodbake knows how to read. The reader uses
 // the list to decide "unknown required section" (LBK-E022); inspect uses the
-// descriptions. A tag is added here in the same change that adds its decoder
-// under formats/sections/.
+// descriptions; every writer takes a known section's required flag from here
+// (docs/format.md section 4 has the same table). A tag is added here in the
+// same change that adds its decoder under formats/sections/.
 #pragma once
 
 #include <string_view>
@@ -23,6 +24,9 @@ inline constexpr char kSetsTag[] = "SETS";  ///< SETS strip graph (formats/secti
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters
   const char* description;  ///< one line, for listings
+  /// The required flag lodbake writes: set when a reader that skipped the
+  /// section would take the file for something it is not.
+  bool required;
 };
 
 /// Every known section kind, in a fixed order (the order inspect lists them).
@@ -33,5 +37,9 @@ bool is_known_section(std::string_view tag);
 
 /// The description of a known tag, or nullptr.
 const char* section_description(std::string_view tag);
+
+/// The required flag of a known tag (SectionKind::required); false for a
+/// tag this build does not know (writers copy such sections' flags as found).
+bool section_required(std::string_view tag);
 
 }  // namespace lodbake

@@ -20,8 +20,10 @@ namespace lodbake {
 // glTF 2.0 (.gltf with embedded buffers or data: URIs) and GLB: all triangle
 // primitives of the default scene, node transforms applied, merged into one
 // mesh; normals and TEXCOORD_0 carried when present. Vertices with exactly
-// equal positions are welded (report->welded_vertices); attributes that then
-// disagree become per-corner. Texture v is flipped to a bottom-left origin.
+// equal positions are welded (report->welded_vertices), except that a file
+// lodbake wrote is welded as its asset.extras.lodbake_weld says, so that it
+// reads back as written; attributes that then disagree become per-corner.
+// Texture v is flipped to a bottom-left origin.
 // Points and lines primitives, other attributes, materials and the like are
 // skipped with one note each. External (non data:) buffer URIs are refused
 // (kUnsupported). report->format is "gltf" or "glb".
@@ -34,12 +36,15 @@ Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* 
 Result<TriangleMesh> parse_draco(const uint8_t* data, size_t size, ImportReport* report);
 
 // GLB (binary glTF 2.0), uncompressed, with normals and texture coordinates
-// when the mesh carries them. Deterministic: equal meshes give equal bytes.
-// Per-corner attributes become one glTF vertex per distinct (vertex, normal,
-// texcoord) corner, ordered by vertex, so parse_gltf (which welds equal
-// positions) returns the same positions and triangles in the same order when
-// no two vertices share a position. Refuses meshes without triangles, with
-// out-of-range indices, inconsistent attributes or non-finite positions.
+// when the mesh carries them; asset.generator names lodbake and its version.
+// Deterministic: equal meshes give equal bytes. Per-corner attributes become
+// one glTF vertex per distinct (vertex, normal, texcoord) corner, ordered by
+// vertex. asset.extras.lodbake_weld tells parse_gltf how to weld: not at all
+// without per-corner attributes (the mesh comes back exactly, vertices that
+// share a position included), across manifold edges only with them (the
+// same positions and triangles come back unless the mesh has both seams and
+// split or non-manifold vertices there). Refuses meshes without triangles,
+// with out-of-range indices, inconsistent attributes or non-finite positions.
 Result<Bytes> write_glb(const TriangleMesh& mesh);
 
 }  // namespace lodbake

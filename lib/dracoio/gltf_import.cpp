@@ -29,6 +29,11 @@
 //   has them; otherwise they are dropped with a note.
 // - Instancing can multiply geometry: the total of decoded and instanced
 //   vertices and triangles is capped at max(2^22, 64 x input bytes).
+// - Welding: every exactly equal position is one vertex, except in a file
+//   lodbake wrote, whose asset.extras.lodbake_weld says how its index buffer
+//   relates to the topology ("none": it is the topology; "manifold_edges":
+//   only seams were split), so that a repaired mesh reads back as written
+//   (mesh_weld.h, docs/import.md). Other values weld every position.
 // - Draco itself is not bounded in time: a crafted 200-byte Draco stream can
 //   keep its texture-coordinate prediction decoder busy for seconds (it
 //   loops over an orientation count read from the stream). Each compressed
@@ -106,6 +111,19 @@ class GltfImporter {
   Status charge(uint64_t amount, const std::string& what);
   Status append_instance(const RawMesh& prim, const Mat4& m);
   void note(const std::string& text);
+
+  // The welding the file asks for (lodbake's GLB writer marks its files).
+  dracoio::WeldMode weld_mode() const {
+    const auto asset = doc_.root.find("asset");
+    if (asset == doc_.root.end() || !asset->is_object()) return dracoio::WeldMode::kExactPositions;
+    const auto extras = asset->find("extras");
+    if (extras == asset->end() || !extras->is_object()) return dracoio::WeldMode::kExactPositions;
+    const auto weld = extras->find("lodbake_weld");
+    if (weld == extras->end() || !weld->is_string()) return dracoio::WeldMode::kExactPositions;
+    if (*weld == "none") return dracoio::WeldMode::kNone;
+    if (*weld == "manifold_edges") return dracoio::WeldMode::kManifoldEdges;
+    return dracoio::WeldMode::kExactPositions;
+  }
 
   const GltfDocument& doc_;
   uint64_t budget_;
@@ -495,7 +513,7 @@ Result<TriangleMesh> GltfImporter::run(ImportReport* report) {
   }
   const uint64_t triangles = out_.triangles.size();
   uint64_t welded = 0;
-  TriangleMesh mesh = dracoio::weld_exact_positions(std::move(out_), &welded);
+  TriangleMesh mesh = dracoio::weld_vertices(std::move(out_), weld_mode(), &welded);
   if (report != nullptr) {
     report->format = doc_.binary ? "glb" : "gltf";
     report->file_faces = triangles + dropped_degenerate_;

@@ -25,11 +25,14 @@ namespace lodbake {
 // Details and choices: obj_reader.cpp.
 Result<TriangleMesh> parse_obj(const uint8_t* data, size_t size, ImportReport* report);
 
-// ASCII OFF and its [ST][C][N][4][n]OFF variants (comments anywhere, also
-// before the keyword); N and ST give per-vertex normals and texture
-// coordinates, colours are noted and skipped. Counts are checked against
-// the file size before allocating. Binary OFF is kUnsupported; malformed
-// input kInvalidInput. `report` may be null. Details: off_reader.cpp.
+// OFF and its [ST][C][N][4][n]OFF variants (comments anywhere, also before
+// the keyword), as text or binary ("OFF BINARY": Geomview's big-endian
+// layout with face colour counts and pmp-library's little-endian one without,
+// told apart by which of them describes the file exactly; report->format
+// "off-binary"); N and ST give per-vertex normals and texture coordinates,
+// colours are noted and skipped. Counts are checked against the file size
+// before allocating; malformed input is kInvalidInput. `report` may be null.
+// Details: off_reader.cpp.
 Result<TriangleMesh> parse_off(const uint8_t* data, size_t size, ImportReport* report);
 
 // PLY ascii, binary_little_endian, binary_big_endian; `vertex` x y z

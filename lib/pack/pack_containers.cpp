@@ -18,6 +18,8 @@
 // - Kinds this file does not recode (anything else) are copied with their
 //   codec, flags and sizes, byte for byte: their own tools define their
 //   codecs, and a copy can never damage what pack does not understand.
+// - Every known kind gets the required flag of the section registry, as
+//   from every other lodbake writer, whatever flag its input carried.
 // - Idempotence: a BASE already stored as requested (same codec and Draco
 //   options, or raw with the requested quantization) is copied, never
 //   re-quantized, because quantizing dequantized values again need not give
@@ -295,7 +297,10 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     Bytes stored;
     SectionCodec codec = SectionCodec::kRaw;
     uint64_t decoded_size = 0;
-    bool required = false;
+    // Known tags get the registry's required flag whatever the input said
+    // (inputs written before the flags were settled, or by other writers);
+    // an unknown section keeps its own.
+    bool required = section_required(tag);
     if (tag == kMetaTag) {
       // Counts describe group 0's sections (docs/format.md "META"): those of
       // sections left out go too, or the output would not validate.
@@ -316,7 +321,6 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     } else if (tag == kBaseTag) {
       const Chosen& c = it->second;
       const Bytes c_raw = c.raw();
-      required = c.stored->required();
       LODBAKE_ASSIGN_OR_RETURN(BaseSummary summary, read_base_summary(c_raw.data(), c_raw.size()));
       LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(c_raw.data(), c_raw.size()));
       const bool draco_target = options.draco;
@@ -369,7 +373,6 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     } else if (tag == kVsplTag) {
       const Chosen& c = it->second;
       const Bytes c_raw = c.raw();
-      required = c.stored->required();
       LODBAKE_ASSIGN_OR_RETURN(VsplSummary summary, read_vspl_summary(c_raw.data(), c_raw.size()));
       int bits = options.quantize_bits;
       if (bits == 0 && options.draco && summary.position_encoding == PositionEncoding::kFloat32)
@@ -415,7 +418,6 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
                (has_standalone_compact_codec(tag) || has_base_compact_codec(tag))) {
       const Chosen& c = it->second;
       const Bytes c_raw = c.raw();
-      required = c.stored->required();
       decoded_size = c_raw.size();
       stored = c_raw;
       // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
@@ -443,7 +445,7 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
       stored = Bytes(s.data, s.data + s.size);
       codec = static_cast<SectionCodec>(s.entry.codec);
       decoded_size = s.entry.decoded_size;
-      required = s.required();
+      if (!is_known_section(tag)) required = s.required();
       report.action = "copied";
     }
     report.codec_after = codec_text(static_cast<uint16_t>(codec));

@@ -205,6 +205,27 @@ TEST(Container, GroupsRoundTripAndNeedFormat11) {
   EXPECT_EQ(decode_header(plain.finish().value().data()).minor, 0);
 }
 
+TEST(Container, WriterTakesKnownTagsFlagsFromTheRegistry) {
+  // docs/format.md section 4: only BASE is required.
+  for (const SectionKind& kind : known_section_kinds())
+    EXPECT_EQ(section_required(kind.tag), std::string(kind.tag) == kBaseTag) << kind.tag;
+  EXPECT_FALSE(section_required("xTRA"));
+
+  ContainerWriter writer;
+  for (const SectionKind& kind : known_section_kinds())
+    ASSERT_TRUE(writer.add_known_section(kind.tag, text_bytes(kind.tag)).is_ok()) << kind.tag;
+  Status unknown = writer.add_known_section("xTRA", text_bytes("x"));
+  EXPECT_EQ(unknown.kind(), ErrorKind::kInvalidInput);
+  EXPECT_EQ(unknown.message(), "section xTRA is not a known tag: its required flag must be given");
+  Result<Bytes> file = writer.finish();
+  ASSERT_TRUE(file.is_ok());
+  Result<Container> c = read_container(file.value().data(), file.value().size());
+  ASSERT_TRUE(c.is_ok()) << c.status().message();
+  ASSERT_EQ(c.value().sections.size(), known_section_kinds().size());
+  for (const Section& section : c.value().sections)
+    EXPECT_EQ(section.required(), section_required(section.tag())) << section.tag();
+}
+
 TEST(Container, TruncationAtEveryLength) {
   const Bytes file = sample_container();
   for (size_t length = 0; length < file.size(); ++length) {

@@ -4,6 +4,7 @@
 // LODBAKE_REGENERATE_GOLDEN=1.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -16,6 +17,7 @@
 #include "draco/io/gltf_encoder.h"
 #include "draco/point_cloud/point_cloud_builder.h"
 #include "formats/support/file_io.h"
+#include "formats/support/version.h"
 #include "lib/dracoio/draco_convert.h"
 #include "lib/dracoio/draco_io.h"
 #include "tests/unit/test_support.h"
@@ -715,6 +717,93 @@ TEST(GlbExport, PerVertexMeshRoundTripsExactly) {
   auto r = gltf(glb.value());
   ASSERT_TRUE(r.is_ok()) << r.status().message();
   EXPECT_EQ(r.value(), m);
+}
+
+// The JSON chunk of a GLB written by write_glb.
+nlohmann::json glb_json(const Bytes& glb) {
+  uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, 4);
+  return nlohmann::json::parse(glb.begin() + 20, glb.begin() + 20 + length);
+}
+
+TEST(GlbExport, NamesLodbakeAndHowToWeld) {
+  auto plain = write_glb(tetrahedron());
+  ASSERT_TRUE(plain.is_ok()) << plain.status().message();
+  const nlohmann::json json = glb_json(plain.value());
+  EXPECT_EQ(json["asset"]["generator"], std::string("lodbake ") + kLodbakeVersion);
+  EXPECT_EQ(json["asset"]["version"], "2.0");
+  EXPECT_EQ(json["asset"]["extras"]["lodbake_weld"], "none");
+  auto seams = write_glb(cube());  // per-corner normals
+  ASSERT_TRUE(seams.is_ok()) << seams.status().message();
+  EXPECT_EQ(glb_json(seams.value())["asset"]["extras"]["lodbake_weld"], "manifold_edges");
+  // The rewritten GLB is well formed: the length fields agree with the bytes.
+  uint32_t total = 0, json_length = 0;
+  std::memcpy(&total, seams.value().data() + 8, 4);
+  std::memcpy(&json_length, seams.value().data() + 12, 4);
+  EXPECT_EQ(total, seams.value().size());
+  EXPECT_EQ(json_length % 4, 0u);
+}
+
+// Two tetrahedra sharing the apex position through two vertices (what
+// repair makes of two cones touching at a point), optionally with
+// per-corner texture coordinates.
+TriangleMesh split_apex(bool per_corner) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0},  {0, 1, 0},  {0, 0, 1},
+                 {0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3},
+                 {4, 6, 5}, {4, 5, 7}, {4, 7, 6}, {5, 6, 7}};
+  if (per_corner) {
+    m.texcoords.binding = AttributeBinding::kPerCorner;
+    m.texcoords.components = 2;
+    for (size_t c = 0; c < m.triangles.size() * 3; ++c) {
+      m.texcoords.values.push_back(float(c % 3));  // every triangle its own corner values
+      m.texcoords.values.push_back(0.5f);
+    }
+    m.texcoords.corners.resize(m.triangles.size());
+    for (uint32_t t = 0; t < m.triangles.size(); ++t)
+      m.texcoords.corners[t] = {3 * t, 3 * t + 1, 3 * t + 2};
+  }
+  return m;
+}
+
+TEST(GlbExport, SplitVerticesComeBackSplit) {
+  for (bool per_corner : {false, true}) {
+    SCOPED_TRACE(per_corner ? "per-corner texture coordinates" : "per-vertex");
+    const TriangleMesh m = split_apex(per_corner);
+    auto glb = write_glb(m);
+    ASSERT_TRUE(glb.is_ok()) << glb.status().message();
+    auto r = gltf(glb.value());
+    ASSERT_TRUE(r.is_ok()) << r.status().message();
+    EXPECT_EQ(r.value().positions, m.positions);
+    EXPECT_EQ(r.value().triangles, m.triangles);
+  }
+}
+
+TEST(GltfImport, FilesWithoutLodbakesMarkWeldEveryEqualPosition) {
+  // The same GLB with the marker's name changed (same length): a foreign
+  // file, whose seams and split vertices are all welded.
+  auto glb = write_glb(split_apex(true));
+  ASSERT_TRUE(glb.is_ok()) << glb.status().message();
+  Bytes foreign = glb.value();
+  const std::string mark = "lodbake_weld";
+  auto at = std::search(foreign.begin(), foreign.end(), mark.begin(), mark.end());
+  ASSERT_NE(at, foreign.end());
+  at[8] = 'x';
+  ImportReport report;
+  auto r = gltf(foreign, &report);
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  EXPECT_EQ(r.value().vertex_count(), 7u);  // the two apexes are one vertex
+  EXPECT_EQ(r.value().triangles[4][0], 0u);
+  // An unknown marker value welds every position too.
+  at[8] = 'w';
+  std::string value = "\"manifold_edges\"";
+  auto v = std::search(foreign.begin(), foreign.end(), value.begin(), value.end());
+  ASSERT_NE(v, foreign.end());
+  v[1] = 'M';
+  auto unknown = gltf(foreign);
+  ASSERT_TRUE(unknown.is_ok()) << unknown.status().message();
+  EXPECT_EQ(unknown.value().vertex_count(), 7u);
 }
 
 TEST(GlbExport, IsDeterministicAndMatchesTheGoldenFile) {

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <new>
 
+#include "formats/container/container_layout.h"
 #include "formats/support/file_io.h"
 #include "formats/support/version.h"
 
@@ -124,7 +125,15 @@ std::optional<int> Tool::parse(int argc, char** argv) {
       return 0;
     }
     if (vm_.count("version")) {
-      std::cout << name_ << " " << kLodbakeVersion << "\n";
+      if (json_) {
+        print_json({{"schema", "lodbake.version/1"},
+                    {"tool", name_},
+                    {"version", kLodbakeVersion},
+                    {"container_format",
+                     std::to_string(kFormatMajor) + "." + std::to_string(kFormatMinor)}});
+      } else {
+        std::cout << name_ << " " << kLodbakeVersion << "\n";
+      }
       return 0;
     }
     po::notify(vm_);

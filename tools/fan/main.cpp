@@ -153,9 +153,9 @@ Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
   *sections = {
       {"META", meta_bytes.size()}, {"BASE", base_bytes.size()}, {"FANH", fanh_bytes.size()}};
   ContainerWriter writer;
-  LODBAKE_RETURN_IF_ERROR(writer.add_section(kMetaTag, std::move(meta_bytes), false));
-  LODBAKE_RETURN_IF_ERROR(writer.add_section(kBaseTag, std::move(base_bytes), true));
-  LODBAKE_RETURN_IF_ERROR(writer.add_section(kFanhTag, std::move(fanh_bytes), true));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, std::move(base_bytes)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kFanhTag, std::move(fanh_bytes)));
   return writer.finish();
 }
 

@@ -54,13 +54,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// One section to write: its tag, payload, the container's required flag
-// (VHIE and VSPL change what BASE means; RFIN, DAGE and VTRE only add to
-// them) and what its bytes-per-item figure divides by.
+// One section to write: its tag, payload and what its bytes-per-item figure
+// divides by (the required flag is the registry's, as for every writer).
 struct Written {
   const char* tag;
   Bytes bytes;
-  bool required;
   const char* per_what;  // "node", "split" or nullptr
   uint64_t per_count;
 };
@@ -139,8 +137,8 @@ int run(const Tool& tool, const Request& request) {
     if (!vhie.is_ok()) return tool.fail(request.output, vhie.status());
     Result<Bytes> rfin = encode_rfin(h, refinement.value());
     if (!rfin.is_ok()) return tool.fail(request.output, rfin.status());
-    sections.push_back({kVhieTag, std::move(vhie).value(), true, "node", shape.nodes});
-    sections.push_back({kRfinTag, std::move(rfin).value(), false, "split", shape.splits});
+    sections.push_back({kVhieTag, std::move(vhie).value(), "node", shape.nodes});
+    sections.push_back({kRfinTag, std::move(rfin).value(), "split", shape.splits});
   }
   // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
   // share BASE with VHIE (a greedy PM given as input has another base mesh).
@@ -154,7 +152,7 @@ int run(const Tool& tool, const Request& request) {
     build_seconds.emplace_back("progressive_mesh", seconds_since(start));
     Result<Bytes> vspl = encode_vspl(pm, VsplEncodeOptions());
     if (!vspl.is_ok()) return tool.fail(request.output, vspl.status());
-    sections.push_back({kVsplTag, std::move(vspl).value(), true, "split", pm.splits.size()});
+    sections.push_back({kVsplTag, std::move(vspl).value(), "split", pm.splits.size()});
   }
   if (request.dage) {
     start = Clock::now();
@@ -169,8 +167,7 @@ int run(const Tool& tool, const Request& request) {
                   {"edges", summary.value().edge_count},
                   {"roots", summary.value().root_count},
                   {"leaves", summary.value().leaf_count}};
-    sections.push_back(
-        {kDageTag, std::move(dage).value(), false, "node", dag.value().node_count()});
+    sections.push_back({kDageTag, std::move(dage).value(), "node", dag.value().node_count()});
   }
   if (request.vtre) {
     start = Clock::now();
@@ -188,8 +185,7 @@ int run(const Tool& tool, const Request& request) {
                    {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
                    {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
                    {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
-    sections.push_back(
-        {kVtreTag, std::move(vtre).value(), false, "node", trees.value().node_count()});
+    sections.push_back({kVtreTag, std::move(vtre).value(), "node", trees.value().node_count()});
   }
 
   MetaSection meta = make_meta("lodbake-hierarchy");
@@ -211,8 +207,8 @@ int run(const Tool& tool, const Request& request) {
   if (!meta_bytes.is_ok()) return tool.fail(request.output, meta_bytes.status());
   Result<Bytes> base_bytes = encode_base(h.base, BaseEncodeOptions());
   if (!base_bytes.is_ok()) return tool.fail(request.output, base_bytes.status());
-  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes).value(), true, nullptr, 0});
-  sections.insert(sections.begin(), {kMetaTag, std::move(meta_bytes).value(), false, nullptr, 0});
+  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes).value(), nullptr, 0});
+  sections.insert(sections.begin(), {kMetaTag, std::move(meta_bytes).value(), nullptr, 0});
 
   nlohmann::json section_report = nlohmann::json::object();
   std::ostringstream per;
@@ -235,7 +231,7 @@ int run(const Tool& tool, const Request& request) {
   }
   ContainerWriter writer;
   for (Written& w : sections) {
-    Status added = writer.add_section(w.tag, std::move(w.bytes), w.required);
+    Status added = writer.add_known_section(w.tag, std::move(w.bytes));
     if (!added.is_ok()) return tool.fail(request.output, added);
   }
   Result<Bytes> container = writer.finish();

@@ -210,8 +210,8 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   ContainerWriter writer;
   size_t meta_size = meta_bytes.value().size();
   size_t base_size = base_bytes.value().size();
-  Status added = writer.add_section(kMetaTag, std::move(meta_bytes).value(), false);
-  if (added.is_ok()) added = writer.add_section(kBaseTag, std::move(base_bytes).value(), true);
+  Status added = writer.add_known_section(kMetaTag, std::move(meta_bytes).value());
+  if (added.is_ok()) added = writer.add_known_section(kBaseTag, std::move(base_bytes).value());
   if (!added.is_ok()) return tool.fail(options.output, added);
   Result<Bytes> file = writer.finish();
   if (!file.is_ok()) return tool.fail(options.output, file.status());

@@ -132,11 +132,11 @@ Result<Bytes> finish_container(const Request& request, const Input& in, const By
   meta.counts = counts;
   LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
   ContainerWriter writer;
-  LODBAKE_RETURN_IF_ERROR(writer.add_section(kMetaTag, std::move(meta_bytes), false));
-  LODBAKE_RETURN_IF_ERROR(writer.add_section(kBaseTag, *base, true));
-  if (vspl != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_section(kVsplTag, *vspl, true));
-  if (strp != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_section(kStrpTag, *strp, true));
-  if (sets != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_section(kSetsTag, *sets, true));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, *base));
+  if (vspl != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kVsplTag, *vspl));
+  if (strp != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kStrpTag, *strp));
+  if (sets != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kSetsTag, *sets));
   return writer.finish();
 }
 
