@@ -1,7 +1,7 @@
 // check_usable(): turns a mesh check into the accept/refuse decision of a
-// tool run without --repair. Out-of-range indices and empty meshes are not
-// repairable (the readers reject the former before anything else runs); the
-// other blocking problems are, so their message points at --repair.
+// tool. Out-of-range indices and empty meshes are not repairable (the
+// readers reject the former before anything else runs); the other blocking
+// problems are, so their message points at --repair.
 #include "lib/check/mesh_policy.h"
 
 namespace lodbake {
@@ -30,16 +30,50 @@ bool refused(MeshProblem problem, const UsePolicy& policy) {
 
 }  // namespace
 
+UsePolicy UsePolicy::two_manifold() {
+  UsePolicy policy;
+  policy.refuse_non_manifold_vertices = true;
+  policy.refuse_inconsistent_orientation = true;
+  policy.refuse_degenerate_triangles = true;
+  policy.refuse_duplicate_triangles = true;
+  return policy;
+}
+
+std::optional<MeshProblem> first_refused_problem(const MeshCheckReport& report,
+                                                 const UsePolicy& policy) {
+  // Out-of-range indices come first whatever kAllMeshProblems' order: the
+  // other counts leave those triangles out.
+  if (report.out_of_range_triangles != 0) return MeshProblem::kOutOfRangeIndices;
+  for (MeshProblem problem : kAllMeshProblems) {
+    if (report.count(problem) != 0 && refused(problem, policy)) return problem;
+  }
+  return std::nullopt;
+}
+
+bool fixed_by_default_repair(MeshProblem problem) {
+  switch (problem) {
+    case MeshProblem::kNonManifoldEdges:
+    case MeshProblem::kNonManifoldVertices:
+    case MeshProblem::kRepeatedIndexTriangles:
+    case MeshProblem::kZeroAreaTriangles:
+    case MeshProblem::kDuplicateTriangles:
+    case MeshProblem::kInconsistentOrientation:
+      return true;
+    case MeshProblem::kOutOfRangeIndices:
+    case MeshProblem::kNonFiniteCoordinates:
+    case MeshProblem::kUnreferencedVertices:
+      return false;
+  }
+  return false;
+}
+
 Status check_usable(const MeshCheckReport& report, const UsePolicy& policy) {
   if (report.out_of_range_triangles != 0) {
     return invalid_input(report.describe(MeshProblem::kOutOfRangeIndices));
   }
   if (report.triangles == 0) return invalid_input("the mesh has no triangles");
-  for (MeshProblem problem : kAllMeshProblems) {
-    if (report.count(problem) != 0 && refused(problem, policy)) {
-      return invalid_input(report.describe(problem) + " (use --repair to fix)");
-    }
-  }
+  std::optional<MeshProblem> problem = first_refused_problem(report, policy);
+  if (problem) return invalid_input(report.describe(*problem) + " (use --repair to fix)");
   return Status::ok();
 }
 

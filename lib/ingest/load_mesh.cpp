@@ -2,7 +2,9 @@
 
 #include "lib/core/sha256.h"
 #include "lib/core/unreferenced_vertices.h"
+#include "lib/meshio/corner_split.h"
 #include "lib/meshio/mesh_import.h"
+#include "lib/meshio/writer_support.h"
 
 namespace lodbake {
 
@@ -18,11 +20,33 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
   LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
   bytes = Bytes();  // the parsed mesh replaces the file's bytes; free them early
 
+  if (options.per_vertex_attributes &&
+      (loaded->mesh.normals.binding == AttributeBinding::kPerCorner ||
+       loaded->mesh.texcoords.binding == AttributeBinding::kPerCorner)) {
+    LODBAKE_RETURN_IF_ERROR(check_writable(loaded->mesh));
+    const size_t before = loaded->mesh.positions.size();
+    loaded->mesh = split_corner_attributes(loaded->mesh);
+    loaded->seam_vertices = loaded->mesh.positions.size() - before;
+  }
+
   loaded->check = check_mesh(loaded->mesh);
   const MeshCheckReport* final_check = &loaded->check;
-  if (options.repair) {
-    loaded->repair.emplace();
-    LODBAKE_RETURN_IF_ERROR(repair_mesh(loaded->mesh, &*loaded->repair));
+  bool repair = options.repair;
+  if (!repair && options.policy && loaded->check.triangles != 0) {
+    // Problems come in kAllMeshProblems order with out-of-range indices and
+    // non-finite coordinates first, so when the first refused problem is one
+    // the default repair fixes, it fixes all of them.
+    std::optional<MeshProblem> problem = first_refused_problem(loaded->check, *options.policy);
+    if (problem && fixed_by_default_repair(*problem)) {
+      if (options.strict) return invalid_input("--strict: " + loaded->check.describe(*problem));
+      repair = true;
+    }
+  }
+  if (repair) {
+    RepairReport report;
+    LODBAKE_RETURN_IF_ERROR(repair_mesh(loaded->mesh, &report));
+    loaded->repair = report;
+    loaded->repaired_by_default = !options.repair;
     loaded->check_after_repair = check_mesh(loaded->mesh);
     final_check = &*loaded->check_after_repair;
   }

@@ -1,6 +1,7 @@
 // The import path every tool runs on an input mesh: read the file, parse it,
-// check it, repair it when asked, and decide whether the tool can take it.
-// Tools call this once and print what it reports.
+// check it, repair it when asked or when the tool needs it, and decide
+// whether the tool can take it. Tools call this once and print what it
+// reports.
 #pragma once
 
 #include <cstdint>
@@ -18,20 +19,37 @@
 namespace lodbake {
 
 struct LoadOptions {
-  bool repair = false;  // run repair_mesh() before the policy is applied
+  // --repair: run repair_mesh() whatever the mesh has (it also drops the
+  // triangles around non-finite coordinates) before the policy is applied.
+  bool repair = false;
+  // Without --repair, a mesh that breaks `policy` only through problems
+  // repair_mesh() fixes by default (fixed_by_default_repair(): non-manifold
+  // edges and vertices, degenerate and duplicate triangles, inconsistent
+  // orientation) is repaired anyway and LoadedMesh says so. --strict refuses
+  // it instead, naming the first problem.
+  bool strict = false;
+  // Make per-corner normals and texture coordinates per-vertex first, by
+  // splitting vertices on attribute seams (split_corner_attributes()), for
+  // tools that record a progressive mesh, which holds per-vertex attributes
+  // only. Runs before the check, so that a split that leaves a vertex with
+  // separate fans is repaired like any other.
+  bool per_vertex_attributes = false;
   // Drop vertices no triangle uses (after repair, before the policy), for
   // tools that store the mesh: they would only widen its bounding box.
   bool drop_unreferenced = false;
   // What the calling tool cannot take; nothing means "accept any mesh the
-  // reader could parse" (the linter's choice).
-  std::optional<UsePolicy> policy = UsePolicy();
+  // reader could parse" (the linter's choice). The default is what the
+  // edge-collapse engine and every structure built on it need.
+  std::optional<UsePolicy> policy = UsePolicy::two_manifold();
 };
 
 struct LoadedMesh {
   TriangleMesh mesh;                   // as imported, or repaired
   ImportReport import;                 // format, triangulation, ignored attributes
-  MeshCheckReport check;               // of the mesh as imported
-  std::optional<RepairReport> repair;  // when LoadOptions::repair
+  uint64_t seam_vertices = 0;          // added by LoadOptions::per_vertex_attributes
+  MeshCheckReport check;               // of the mesh as imported (and split on seams)
+  std::optional<RepairReport> repair;  // when LoadOptions::repair, or repaired by default
+  bool repaired_by_default = false;    // `repair` is the default repair's, not --repair's
   std::optional<MeshCheckReport> check_after_repair;
   uint64_t dropped_unreferenced = 0;  // by LoadOptions::drop_unreferenced
   uint64_t file_bytes = 0;
@@ -39,9 +57,11 @@ struct LoadedMesh {
 };
 
 // Loads `path`. Fails with the reader's status (kIo, kInvalidInput,
-// kUnsupported), the repair's, or, when the mesh breaks `options.policy`,
-// with kInvalidInput naming the first problem. `loaded` is filled as far as
-// it got either way.
+// kUnsupported), the repair's, or, when the mesh breaks `options.policy`
+// (and the default repair cannot fix it, or `options.strict` forbids it),
+// with kInvalidInput naming the first problem ("--strict: ..." when only
+// --strict refused it). `loaded` is filled as far as it got either way; its
+// `repair` only on success.
 Status load_mesh(const std::string& path, const LoadOptions& options, LoadedMesh* loaded);
 
 // The same for a file the caller has already read; `path` names it in

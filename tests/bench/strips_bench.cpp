@@ -181,8 +181,8 @@ RecoveryRow run_test(const SetsGraph& graph, const std::vector<uint32_t>& lods, 
 }
 
 int bench_file(const std::string& path, int runs) {
-  // The tools' import: what lodbake-strips accepts (the dragon keeps its
-  // zero-area triangles, as the tool does).
+  // The tools' import: what lodbake-strips takes, repaired by default as
+  // the tool does (the Draco dragon loses its zero-area triangles).
   LoadOptions options;
   options.drop_unreferenced = true;
   LoadedMesh loaded;

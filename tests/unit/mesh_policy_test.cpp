@@ -99,5 +99,45 @@ TEST(MeshPolicy, NamesTheFirstBlockingProblem) {
       << s.message();
 }
 
+TEST(MeshPolicy, TwoManifoldRefusesWhatTheEngineCannotTake) {
+  const UsePolicy policy = UsePolicy::two_manifold();
+  EXPECT_TRUE(policy.refuse_non_manifold_vertices);
+  EXPECT_TRUE(policy.refuse_inconsistent_orientation);
+  EXPECT_TRUE(policy.refuse_degenerate_triangles);
+  EXPECT_TRUE(policy.refuse_duplicate_triangles);
+  EXPECT_FALSE(policy.refuse_unreferenced_vertices);  // the tools drop them
+  EXPECT_TRUE(usable(torus(8, 6), policy).is_ok());
+  EXPECT_TRUE(usable(tetrahedron_with_unreferenced(), policy).is_ok());
+  EXPECT_FALSE(usable(bowtie(), policy).is_ok());
+}
+
+TEST(MeshPolicy, FirstRefusedProblemFollowsTheCheckOrder) {
+  const UsePolicy policy = UsePolicy::two_manifold();
+  EXPECT_EQ(first_refused_problem(check_mesh(tetrahedron()), policy), std::nullopt);
+  EXPECT_EQ(first_refused_problem(check_mesh(bowtie()), policy), MeshProblem::kNonManifoldVertices);
+  EXPECT_EQ(first_refused_problem(check_mesh(bowtie()), UsePolicy()), std::nullopt);
+  EXPECT_EQ(first_refused_problem(check_mesh(tetrahedron_with_duplicates()), policy),
+            MeshProblem::kNonManifoldEdges);
+  EXPECT_EQ(first_refused_problem(check_mesh(tetrahedron_one_flipped()), policy),
+            MeshProblem::kInconsistentOrientation);
+  TriangleMesh mesh = bowtie();
+  mesh.positions[3][0] = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(first_refused_problem(check_mesh(mesh), policy), MeshProblem::kNonFiniteCoordinates);
+  mesh.triangles[0][1] = 9;
+  EXPECT_EQ(first_refused_problem(check_mesh(mesh), policy), MeshProblem::kOutOfRangeIndices);
+}
+
+TEST(MeshPolicy, TheDefaultRepairFixesTopologyButNotCoordinates) {
+  for (MeshProblem problem :
+       {MeshProblem::kNonManifoldEdges, MeshProblem::kNonManifoldVertices,
+        MeshProblem::kRepeatedIndexTriangles, MeshProblem::kZeroAreaTriangles,
+        MeshProblem::kDuplicateTriangles, MeshProblem::kInconsistentOrientation}) {
+    EXPECT_TRUE(fixed_by_default_repair(problem)) << static_cast<int>(problem);
+  }
+  EXPECT_FALSE(fixed_by_default_repair(MeshProblem::kNonFiniteCoordinates));
+  EXPECT_FALSE(fixed_by_default_repair(MeshProblem::kOutOfRangeIndices));
+  EXPECT_FALSE(fixed_by_default_repair(MeshProblem::kUnreferencedVertices));
+}
+
 }  // namespace
 }  // namespace lodbake

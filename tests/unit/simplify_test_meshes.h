@@ -24,12 +24,8 @@ inline std::string shared_mesh_path(const std::string& file) {
 inline LoadOptions clean_mesh_options() {
   LoadOptions options;
   options.drop_unreferenced = true;
-  UsePolicy policy;
-  policy.refuse_non_manifold_vertices = true;
-  policy.refuse_inconsistent_orientation = true;
-  policy.refuse_degenerate_triangles = true;
-  policy.refuse_duplicate_triangles = true;
-  options.policy = policy;
+  options.policy = UsePolicy::two_manifold();
+  options.strict = true;  // a mesh the tools would repair fails the test instead
   return options;
 }
 

@@ -75,6 +75,13 @@ nlohmann::json to_json(const RepairReport& r) {
           {"actions", r.actions()}};
 }
 
+nlohmann::json repairs_json(const LoadOptions& options, const LoadedMesh& loaded) {
+  nlohmann::json j = to_json(loaded.repair ? *loaded.repair : RepairReport());
+  j["mode"] = options.repair ? "repair" : options.strict ? "strict" : "default";
+  j["changed"] = loaded.repair.has_value() && loaded.repair->changed();
+  return j;
+}
+
 namespace {
 
 void line(std::ostream& out, const char* label, const std::string& value) {
@@ -108,24 +115,47 @@ void print_check(std::ostream& out, const MeshCheckReport& r) {
     out << "  - " << p << "\n";
 }
 
-void print_import_notes(const Tool& tool, const std::string& file, const ImportReport& report) {
-  for (const std::string& note : report.notes)
-    tool.info(file, note);
+namespace {
+
+std::string joined(const std::vector<std::string>& items, const char* separator) {
+  std::string text;
+  for (const std::string& item : items)
+    text += (text.empty() ? "" : separator) + item;
+  return text;
 }
 
-void print_repair_actions(const Tool& tool, const std::string& file, const RepairReport& report) {
+}  // namespace
+
+void print_import_notes(const Tool& tool, const std::string& file, const ImportReport& report) {
+  if (!report.notes.empty()) tool.info(file, joined(report.notes, "; "));
+}
+
+std::string repair_note(const RepairReport& report, bool by_default) {
   std::vector<std::string> actions = report.actions();
-  if (actions.empty()) tool.info(file, "repair: nothing to repair");
-  for (const std::string& action : actions)
-    tool.info(file, "repair: " + action);
+  if (by_default)
+    return "repaired (positions unchanged; --strict refuses instead): " + joined(actions, ", ");
+  return "repair: " + (actions.empty() ? std::string("nothing to repair") : joined(actions, ", "));
 }
 
 int load_input(const Tool& tool, const std::string& path, const LoadOptions& options,
                LoadedMesh* loaded) {
+  if (options.repair && options.strict)
+    return tool.usage_error("--strict refuses what --repair would fix: give one of them");
   Status status = load_mesh(path, options, loaded);
-  print_import_notes(tool, path, loaded->import);
-  if (loaded->repair) print_repair_actions(tool, path, *loaded->repair);
+  // A failure is its one error line; the notes of a run that stops there
+  // would only add lines about a mesh nothing is made from.
   if (!status.is_ok()) return tool.fail(path, status);
+  // Everything the tool changed or left out on the way in, as one line.
+  std::vector<std::string> notes = loaded->import.notes;
+  if (loaded->seam_vertices != 0)
+    notes.push_back("split vertices on attribute seams, adding " +
+                    std::to_string(loaded->seam_vertices) +
+                    " (a progressive mesh records per-vertex attributes only)");
+  if (loaded->repair) notes.push_back(repair_note(*loaded->repair, loaded->repaired_by_default));
+  if (loaded->dropped_unreferenced != 0)
+    notes.push_back("dropped " + std::to_string(loaded->dropped_unreferenced) +
+                    " unreferenced vertices (no triangle uses them)");
+  if (!notes.empty()) tool.info(path, joined(notes, "; "));
   const MeshCheckReport& check =
       loaded->check_after_repair ? *loaded->check_after_repair : loaded->check;
   for (MeshProblem problem : kAllMeshProblems) {
@@ -133,9 +163,6 @@ int load_input(const Tool& tool, const std::string& path, const LoadOptions& opt
     if (check.count(problem) == 0) continue;
     tool.warn(path, "kept as it is: " + check.describe(problem) + " (use --repair to fix)");
   }
-  if (loaded->dropped_unreferenced != 0)
-    tool.info(path, "dropped " + std::to_string(loaded->dropped_unreferenced) +
-                        " unreferenced vertices (no triangle uses them)");
   return 0;
 }
 

@@ -19,15 +19,22 @@ namespace lodbake::cli {
 nlohmann::json to_json(const MeshCheckReport& report);
 nlohmann::json to_json(const ImportReport& report);
 nlohmann::json to_json(const RepairReport& report);
+// The "repairs" object of a tool's JSON report: to_json() of the repair
+// that ran (all counts zero when none did), "mode" ("default", "repair" for
+// --repair, "strict" for --strict) and "changed" (whether the mesh the tool
+// used differs from the one read, unreferenced vertices aside).
+nlohmann::json repairs_json(const LoadOptions& options, const LoadedMesh& loaded);
 nlohmann::json to_json(const Vec3f& v);
 
 // "label         value" lines of the check report.
 void print_check(std::ostream& out, const MeshCheckReport& report);
 
-// The import notes and repair actions as "tool: FILE: ..." lines on stderr
-// (nothing is dropped silently), unless --quiet.
+// The import notes as one "tool: FILE: ...; ..." line on stderr (nothing
+// is dropped silently), unless --quiet.
 void print_import_notes(const Tool& tool, const std::string& file, const ImportReport& report);
-void print_repair_actions(const Tool& tool, const std::string& file, const RepairReport& report);
+// What a repair did, as one note: "repaired (...): A, B" for the default
+// repair, "repair: A, B" (or "repair: nothing to repair") for --repair.
+std::string repair_note(const RepairReport& report, bool by_default);
 
 // `text` with every byte that is not part of valid UTF-8 replaced by U+FFFD,
 // for strings that must be valid UTF-8 (META) but come from file names.
@@ -39,10 +46,11 @@ std::string to_valid_utf8(const std::string& text);
 // `bytes` is the file's content when already read, else null.
 bool is_container_input(const std::string& path, const Bytes* bytes = nullptr);
 
-// Loads a tool's input mesh the way every baking tool does: prints the
-// import notes and repair actions, a warning per problem kept, and how many
-// unreferenced vertices were dropped. Returns 0, or the exit code after
-// printing the error.
+// Loads a tool's input mesh the way every baking tool does and prints
+// either the one error line, or at most one note line (import notes, seam
+// split, repair, unreferenced vertices dropped) and a warning per problem
+// the policy lets through. --strict with --repair is a usage error. Returns
+// 0, or the exit code after printing the error.
 int load_input(const Tool& tool, const std::string& path, const LoadOptions& options,
                LoadedMesh* loaded);
 

@@ -34,6 +34,7 @@ struct Request {
   std::string input;
   std::string output;
   bool repair = false;
+  bool strict = false;
   bool compare = false;
   FanBuildOptions options;
 };
@@ -162,6 +163,7 @@ Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
 int run(const Tool& tool, Request& request) {
   LoadOptions load;
   load.repair = request.repair;
+  load.strict = request.strict;
   load.drop_unreferenced = true;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
@@ -220,6 +222,7 @@ int run(const Tool& tool, Request& request) {
       {"input", request.input},
       {"output", request.output},
       {"import", to_json(loaded.import)},
+      {"repairs", repairs_json(load, loaded)},
       {"input_counts",
        {{"vertices", loaded.mesh.vertex_count()}, {"triangles", loaded.mesh.triangle_count()}}},
       {"coarsest_counts",
@@ -297,6 +300,10 @@ int main(int argc, char** argv) {
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse fan-merges that turn a modified triangle by more than DEG degrees (default 90)")(
       "repair", po::bool_switch(&request.repair), "repair the input first (see lodbake-pack)")(
+      "strict", po::bool_switch(&request.strict),
+      "refuse a mesh that needs repairing (exit 3) instead of repairing it by default: "
+      "non-manifold edges or vertices, degenerate or duplicate triangles, inconsistent "
+      "orientation")(
       "compare", po::bool_switch(&request.compare),
       "also build the balanced vertex hierarchy of the mesh and report both side by side: build "
       "time, internal nodes, leaves, depth, average children, bytes and their ratios");

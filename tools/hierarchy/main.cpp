@@ -47,6 +47,7 @@ struct Request {
   bool dage = false;
   bool vtre = false;
   bool repair = false;
+  bool strict = false;
   BalancedBuildOptions options;
 };
 
@@ -68,6 +69,7 @@ struct Input {
   TriangleMesh mesh;
   MetaInput meta;
   std::string source = "mesh";  // or "progressive mesh"
+  nlohmann::json repairs;       // of a mesh input
 };
 
 // A container: the hierarchy is rebuilt from the mesh it stands for (a
@@ -103,11 +105,13 @@ int run(const Tool& tool, const Request& request) {
   if (is_container_input(request.input, &bytes.value())) {
     // As lodbake-pack: a container's progressive mesh is not repaired.
     if (request.repair) return tool.usage_error("--repair applies to a mesh input");
+    if (request.strict) return tool.usage_error("--strict applies to a mesh input");
     if (int code = load_container(tool, request.input, std::move(bytes).value(), &in); code != 0)
       return code;
   } else {
     LoadOptions load;
     load.repair = request.repair;
+    load.strict = request.strict;
     load.drop_unreferenced = true;
     LoadedMesh loaded;
     if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
@@ -115,6 +119,7 @@ int run(const Tool& tool, const Request& request) {
     in.mesh.normals = MeshAttribute();
     in.mesh.texcoords = MeshAttribute();
     in.meta = meta_input(request.input, loaded);
+    in.repairs = repairs_json(load, loaded);
   }
 
   Progress progress(tool, "building the hierarchy");
@@ -268,6 +273,7 @@ int run(const Tool& tool, const Request& request) {
       {"output", request.output},
       {"bytes", container.value().size()},
       {"sections", section_report}};
+  if (in.source == "mesh") report["repairs"] = in.repairs;
   if (tool.json()) {
     tool.print_json(report);
     return 0;
@@ -336,7 +342,11 @@ int main(int argc, char** argv) {
       "max-normal-change",
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
-      "repair", po::bool_switch(&request.repair), "repair an input mesh first (see lodbake-pack)");
+      "repair", po::bool_switch(&request.repair), "repair an input mesh first (see lodbake-pack)")(
+      "strict", po::bool_switch(&request.strict),
+      "refuse a mesh that needs repairing (exit 3) instead of repairing it by default: "
+      "non-manifold edges or vertices, degenerate or duplicate triangles, inconsistent "
+      "orientation");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;

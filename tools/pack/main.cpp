@@ -1,6 +1,6 @@
 // lodbake-pack, two modes chosen by the inputs:
-// - a mesh: imports it, checks it (optionally repairs it) and writes a
-//   container with META and BASE;
+// - a mesh: imports it, checks it, repairs what the other tools could not
+//   take, and writes a container with META and BASE;
 // - containers (.lbk, told by their magic): merges their sections, drops or
 //   keeps tags, rewrites META and recodes the other kinds lodbake defines
 //   (compact by default, BASE with Draco on request), printing each
@@ -35,6 +35,7 @@ constexpr const char* kRepackSchema = "lodbake.pack.containers/1";
 struct PackOptions {
   std::string output;
   bool repair = false;
+  bool strict = false;
   int quantize_bits = 0;  // 0: float32 positions (containers: keep the encoding)
   int error_bits = 0;     // 0: keep VSPL's errors as they are
   bool draco = false;
@@ -172,6 +173,7 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
 int pack(const Tool& tool, const std::string& input, const PackOptions& options) {
   LoadOptions load;
   load.repair = options.repair;
+  load.strict = options.strict;
   load.drop_unreferenced = true;
   LoadedMesh loaded;
   if (int code = load_input(tool, input, load, &loaded); code != 0) return code;
@@ -197,7 +199,7 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
                            {"output", options.output},
                            {"import", to_json(loaded.import)},
                            {"check", to_json(loaded.check)}};
-  if (loaded.repair) report["repair"] = to_json(*loaded.repair);
+  report["repairs"] = repairs_json(load, loaded);
   report["dropped_unreferenced_vertices"] = loaded.dropped_unreferenced;
   if (encoding.quantize) {
     Result<QuantizationReport> q = measure_quantization(loaded.mesh.positions, encoding.bits);
@@ -244,10 +246,13 @@ int main(int argc, char** argv) {
   Tool tool("lodbake-pack",
             "MESH -o OUT.lbk [options]\n       lodbake-pack A.lbk [B.lbk ...] -o OUT.lbk [options]",
             "With a mesh (.obj .ply .off .stl .gltf .glb .drc, optionally .gz): imports it,\n"
-            "checks it, optionally repairs it, and writes a lodbake container with a META\n"
+            "checks it, repairs it where needed, and writes a lodbake container with a META\n"
             "section (tool, options, input name and SHA-256, counts) and a BASE section.\n"
-            "Meshes with non-finite coordinates or edges shared by more than two triangles\n"
-            "are refused unless --repair fixes them; other problems are kept with a warning.\n"
+            "The stored mesh is what lodbake-simplify, -hierarchy, -fan and -strips take:\n"
+            "non-manifold edges and vertices are split, degenerate and duplicate triangles\n"
+            "dropped and the winding made consistent (positions unchanged; one line says\n"
+            "what changed; --strict refuses instead). Non-finite coordinates are refused\n"
+            "unless --repair drops the triangles around them.\n"
             "\n"
             "With containers (.lbk) baked from the same input (META input hash): merges\n"
             "their sections, drops or keeps tags, stores VSPL, VHIE, RFIN, DAGE, VTRE, FANH,\n"
@@ -263,6 +268,10 @@ int main(int argc, char** argv) {
       "mesh input: fix what can be fixed first (CGAL Polygon Mesh Processing): drop "
       "non-finite, degenerate and duplicate triangles and unreferenced vertices, split "
       "non-manifold edges and vertices, orient consistently")(
+      "strict", po::bool_switch(&options.strict),
+      "mesh input: refuse a mesh that needs repairing (exit 3) instead of repairing it by "
+      "default: non-manifold edges or vertices, degenerate or duplicate triangles, "
+      "inconsistent orientation")(
       "quantize", po::value<int>(&options.quantize_bits)->value_name("BITS"),
       "store positions quantized to BITS (1..30) bits per coordinate instead of float32 "
       "(containers: BASE and VSPL positions not already at BITS)")(
@@ -335,6 +344,7 @@ int main(int argc, char** argv) {
     return tool.usage_error("'" + input + "' is not a lodbake container (a mesh is packed alone)");
   }
   if (options.repair) return tool.usage_error("--repair applies to a mesh input");
+  if (options.strict) return tool.usage_error("--strict applies to a mesh input");
   if (!options.draco && (tool.has("qp") || tool.has("cl")))
     return tool.usage_error("--qp and --cl apply with --draco");
   if (options.draco && !draco_codec_built())

@@ -38,6 +38,7 @@ struct Request {
   std::string lods;            // "0.5,0.25,0.1" as given
   std::vector<double> ratios;  // parsed --lods
   bool repair = false;
+  bool strict = false;
   int quantize_bits = 0;
   bool metrics = true;
   SimplifyOptions options;
@@ -176,6 +177,8 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
 int run(const Tool& tool, Request& request) {
   LoadOptions load;
   load.repair = request.repair;
+  load.strict = request.strict;
+  load.per_vertex_attributes = !request.pm_output.empty() || !request.ratios.empty();
   load.drop_unreferenced = true;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
@@ -216,7 +219,7 @@ int run(const Tool& tool, Request& request) {
         {"other", result.stats.refused_other},
         {"height", result.stats.refused_height}}},
       {"max_collapse_error", result.stats.max_collapse_error}};
-  if (loaded.repair) report["repair"] = to_json(*loaded.repair);
+  report["repairs"] = repairs_json(load, loaded);
 
   StagedOutputs staged;
   std::vector<std::string> lossy;
@@ -341,8 +344,11 @@ int main(int argc, char** argv) {
       "sqrt(F * the pass's error scale) from the removed vertex; default 1.333, larger refuses "
       "fewer collapses and is faster (3: about 1.05 times the time)")(
       "repair", po::bool_switch(&request.repair), "repair the input first (see lodbake-pack)")(
-      "quantize", po::value<int>(&request.quantize_bits)->value_name("BITS"),
-      "store the PM's positions quantized to BITS (1..30) bits")(
+      "strict", po::bool_switch(&request.strict),
+      "refuse a mesh that needs repairing (exit 3) instead of repairing it by default: "
+      "non-manifold edges or vertices, degenerate or duplicate triangles, inconsistent "
+      "orientation")("quantize", po::value<int>(&request.quantize_bits)->value_name("BITS"),
+                     "store the PM's positions quantized to BITS (1..30) bits")(
       "threads", po::value<unsigned>(&request.options.threads)->value_name("N"),
       "threads for the engine's parallel steps: 1 (default) or 2 (0: 2 when there are two "
       "cores); two take less wall time and about twice the CPU time, the output is the same")(

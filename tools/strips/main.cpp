@@ -35,6 +35,7 @@ struct Request {
   std::string output;
   bool strips_only = false;
   bool repair = false;
+  bool strict = false;
 };
 
 // The paper's in-memory SETS sizes (Table 2), for the report.
@@ -91,12 +92,14 @@ int load_container_input(const Tool& tool, const Request& request, Input* in) {
 int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
   LoadOptions load;
   load.repair = request.repair;
+  load.strict = request.strict;
+  load.per_vertex_attributes = !request.strips_only;  // the simplification records a PM
   load.drop_unreferenced = true;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
   in->meta = meta_input(request.input, loaded);
   in->report = {{"kind", "mesh"}, {"import", to_json(loaded.import)}};
-  if (loaded.repair) in->report["repair"] = to_json(*loaded.repair);
+  in->report["repairs"] = repairs_json(load, loaded);
   if (request.strips_only) {
     in->mesh = std::move(loaded.mesh);
     return 0;
@@ -142,6 +145,9 @@ Result<Bytes> finish_container(const Request& request, const Input& in, const By
 
 int run(const Tool& tool, const Request& request) {
   Input in;
+  if (is_container_input(request.input) && (request.repair || request.strict))
+    return tool.usage_error(std::string(request.repair ? "--repair" : "--strict") +
+                            " applies to a mesh input");
   const int loaded = is_container_input(request.input) ? load_container_input(tool, request, &in)
                                                        : load_mesh_input(tool, request, &in);
   if (loaded != 0) return loaded;
@@ -263,7 +269,11 @@ int main(int argc, char** argv) {
       "output,o", po::value<std::string>(&request.output)->value_name("OUT.lbk"),
       "the container to write")("strips-only", po::bool_switch(&request.strips_only),
                                 "write only the strips of the full mesh (STRP), no graph")(
-      "repair", po::bool_switch(&request.repair), "repair a mesh input first (see lodbake-pack)");
+      "repair", po::bool_switch(&request.repair), "repair a mesh input first (see lodbake-pack)")(
+      "strict", po::bool_switch(&request.strict),
+      "refuse a mesh that needs repairing (exit 3) instead of repairing it by default: "
+      "non-manifold edges or vertices, degenerate or duplicate triangles, inconsistent "
+      "orientation");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;
