@@ -1,7 +1,10 @@
 #include "lib/ingest/load_mesh.h"
 
+#include "formats/container/container_layout.h"
+#include "formats/sections/open_container.h"
 #include "lib/core/sha256.h"
 #include "lib/core/unreferenced_vertices.h"
+#include "lib/ingest/container_mesh.h"
 #include "lib/meshio/corner_split.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/meshio/writer_support.h"
@@ -17,7 +20,16 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
                        LoadedMesh* loaded) {
   loaded->file_bytes = bytes.size();
   loaded->sha256 = sha256_hex(bytes.data(), bytes.size());
-  LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
+  if (starts_with_container_magic(bytes.data(), bytes.size())) {
+    // Another tool's output: the mesh it stands for, checked like any mesh.
+    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(std::move(bytes)));
+    LODBAKE_ASSIGN_OR_RETURN(ContainerMesh mesh, container_input_mesh(file));
+    loaded->mesh = std::move(mesh.mesh);
+    loaded->original_input = mesh.input;
+    loaded->import.format = "lodbake container (" + mesh.source + ")";
+  } else {
+    LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
+  }
   bytes = Bytes();  // the parsed mesh replaces the file's bytes; free them early
 
   if (options.per_vertex_attributes &&

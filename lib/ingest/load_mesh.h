@@ -9,6 +9,7 @@
 #include <string>
 
 #include "formats/mesh/triangle_mesh.h"
+#include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 #include "lib/check/mesh_check.h"
@@ -54,6 +55,9 @@ struct LoadedMesh {
   uint64_t dropped_unreferenced = 0;  // by LoadOptions::drop_unreferenced
   uint64_t file_bytes = 0;
   std::string sha256;  // of the file's bytes
+  // A container's original input as its META records it (a container is
+  // read as the mesh it stands for, lib/ingest/container_mesh.h).
+  std::optional<MetaInput> original_input;
 };
 
 // Loads `path`. Fails with the reader's status (kIo, kInvalidInput,

@@ -28,7 +28,8 @@
 // - A re-quantized or Draco-coded BASE moves the base vertices within the
 //   quantization error; VSPL records that leave vs in place (no stored vs
 //   positions) take vs's position from BASE when read, so they follow, and
-//   the compact codec predicts from the BASE as written.
+//   the compact codec predicts from the BASE as written. VTRE's copy of the
+//   base positions is rewritten to follow the BASE likewise.
 // - The output META is "lodbake-pack" with the options, the common input,
 //   the union of the inputs' counts (a disagreement is an error) and the
 //   inputs' provenance in "sources"; a source that is itself a pack
@@ -51,6 +52,7 @@
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vspl_compact.h"
+#include "formats/sections/vtre.h"
 #include "formats/support/string_format.h"
 
 namespace lodbake {
@@ -257,6 +259,23 @@ bool base_as_requested(const Section& section, const BaseSummary& summary,
                                         summary.quantization_bits == options.quantize_bits);
 }
 
+// VTRE keeps its own copy of the base vertices' positions: when BASE was
+// re-quantized or Draco-coded they follow it, as VSPL's implied positions
+// do, so the trees stay those of the hierarchy over the BASE as written.
+Result<Bytes> vtre_on_base(const Bytes& raw, const TriangleMesh& base) {
+  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw.data(), raw.size()));
+  if (trees.base_vertex_count != base.vertex_count() ||
+      trees.positions.size() < trees.base_vertex_count)
+    return raw;  // not this BASE's trees: --validate reports it
+  bool moved = false;
+  for (uint32_t v = 0; v < trees.base_vertex_count; ++v) {
+    moved = moved || !(trees.positions[v] == base.positions[v]);
+    trees.positions[v] = base.positions[v];
+  }
+  if (!moved) return raw;
+  return encode_vtre(trees);
+}
+
 // Writes one output group's sections: META first (group 0 only), BASE,
 // VSPL, then the others as first seen, recoded as `options` asks.
 Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, uint32_t index,
@@ -417,7 +436,10 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     } else if (it->second.decoded->known &&
                (has_standalone_compact_codec(tag) || has_base_compact_codec(tag))) {
       const Chosen& c = it->second;
-      const Bytes c_raw = c.raw();
+      Bytes c_raw = c.raw();
+      if (tag == kVtreTag && written_base) {
+        LODBAKE_ASSIGN_OR_RETURN(c_raw, vtre_on_base(c_raw, *written_base));
+      }
       decoded_size = c_raw.size();
       stored = c_raw;
       // FANH's and STRP's codecs use BASE's triangles, which recoding BASE

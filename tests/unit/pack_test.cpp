@@ -744,5 +744,53 @@ TEST(SectionCodecs, UndefinedCodecWrongDecodedSizeAndMissingBase) {
       w.add_stored_section(kBaseTag, base, SectionCodec::kRaw, base.size() + 1, true).is_ok());
 }
 
+// Two progressive meshes of one input over different BASEs merge into two
+// groups; packed compact, each group's VSPL decodes against its own BASE,
+// and consumers find groups by the sections they need.
+TEST(Repack, GroupsDecodeEachAgainstItsOwnBase) {
+  const ProgressiveMesh pm = record_pm(attributed_grid(6));
+  const Bytes merged = repack({pm_container(pm), pm_container(pm, 12)}, RepackOptions{}).file;
+  Result<OpenedContainer> opened = open_container(merged);
+  ASSERT_TRUE(opened.is_ok()) << opened.status().message();
+  const OpenedContainer& file = opened.value();
+  ASSERT_EQ(file.group_count(), 2u);
+  for (uint32_t g = 0; g < 2; ++g) {
+    const Section* vspl = file.find(kVsplTag, g);
+    ASSERT_NE(vspl, nullptr);
+    EXPECT_EQ(file.stored_of(*vspl).entry.codec, static_cast<uint16_t>(SectionCodec::kCompact));
+    const Section* base = file.find(kBaseTag, g);
+    Result<ProgressiveMesh> decoded =
+        decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size);
+    ASSERT_TRUE(decoded.is_ok()) << decoded.status().message();
+    EXPECT_EQ(decoded.value().splits.size(), pm.splits.size());
+    // Group 1 holds the 12-bit copy: its positions moved, group 0's did not.
+    const double moved = max_position_error(decoded.value().base.positions, pm.base.positions);
+    if (g == 0) {
+      EXPECT_EQ(moved, 0.0);
+    } else {
+      EXPECT_GT(moved, 0.0);
+    }
+  }
+  EXPECT_EQ(file.group_with({kBaseTag, kVsplTag}, "mode x", "tool y").value(), 0u);
+  Result<uint32_t> missing = file.group_with({kBaseTag, kSetsTag}, "mode sets", "lodbake-strips");
+  ASSERT_FALSE(missing.is_ok());
+  EXPECT_EQ(missing.status().message(),
+            "LBK-E024: the container has no SETS section; mode sets needs BASE + SETS "
+            "(lodbake-strips)");
+
+  // BASE in group 0 and VSPL in group 1: both present, never together.
+  ContainerWriter writer;
+  ASSERT_TRUE(writer.add_section(kBaseTag, encode_base(pm.base, {}).value(), true).is_ok());
+  ASSERT_TRUE(writer.add_section(kVsplTag, encode_vspl(pm, {}).value(), false, 1).is_ok());
+  const Bytes split = writer.finish().value();
+  Result<OpenedContainer> split_open = open_container(split);
+  ASSERT_TRUE(split_open.is_ok()) << split_open.status().message();
+  Result<uint32_t> none = split_open.value().group_with({kBaseTag, kVsplTag}, "mode dag", "z");
+  ASSERT_FALSE(none.is_ok());
+  EXPECT_EQ(none.status().message(),
+            "LBK-E024: no group of the container holds BASE + VSPL together over one base "
+            "mesh; mode dag needs BASE + VSPL (z)");
+}
+
 }  // namespace
 }  // namespace lodbake

@@ -175,6 +175,8 @@ std::optional<int> check_quantize_bits(const Tool& tool, int bits) {
 }
 
 MetaInput meta_input(const std::string& path, const LoadedMesh& loaded) {
+  // Containers of one input stay mergeable: a container names its input.
+  if (loaded.original_input) return *loaded.original_input;
   size_t slash = path.find_last_of('/');
   std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
   return MetaInput{to_valid_utf8(name), loaded.sha256, loaded.file_bytes};
