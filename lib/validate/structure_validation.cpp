@@ -98,6 +98,82 @@ void check_pm(const Container& decoded, uint32_t group, Findings* f) {
     f->add(kVsplTag, who, "collapsing every split does not give BASE's mesh back");
 }
 
+// The fundamental cut vertices against the finest mesh (docs/hierarchy.md,
+// "Fundamental cut vertices"): every face of it whose corners are not in
+// three trees is the wing face of exactly one split, the node s where its
+// deepest pair of corners meet, one corner under each child; it is s's
+// left wing (left leaf, right leaf, cut_left[s]) or its right wing (right
+// leaf, left leaf, cut_right[s]), counter-clockwise. When every split has
+// exactly the wings its cut vertices say, every front the refiner and the
+// stream can reach splits and collapses as the build did; a cut vertex that
+// only works in one order of splits fails here.
+std::vector<std::string> wing_problems(const VertexHierarchy& h,
+                                       const std::vector<Triangle>& faces) {
+  const auto n = static_cast<uint32_t>(h.node_count());
+  std::vector<uint32_t> depth(n, 0);
+  for (uint32_t v = 0; v < n; ++v) {
+    if (h.parent[v] != kNoNode) depth[v] = depth[h.parent[v]] + 1;
+  }
+  // The meeting node of leaves a and b and the children of it above them,
+  // kNoNode when they are in different trees.
+  auto meet = [&](uint32_t a, uint32_t b, uint32_t* below_a, uint32_t* below_b) {
+    uint32_t pa = kNoNode, pb = kNoNode;
+    while (depth[a] > depth[b])
+      pa = a, a = h.parent[a];
+    while (depth[b] > depth[a])
+      pb = b, b = h.parent[b];
+    while (a != b) {
+      pa = a, a = h.parent[a];
+      pb = b, b = h.parent[b];
+      if (a == kNoNode || b == kNoNode) return kNoNode;
+    }
+    *below_a = pa;
+    *below_b = pb;
+    return a;
+  };
+  std::vector<uint32_t> left(n, kNoNode), right(n, kNoNode);
+  std::vector<uint8_t> left_count(n, 0), right_count(n, 0);
+  size_t base_faces = 0;
+  for (const Triangle& t : faces) {
+    uint32_t best = kNoNode, corner = 0, ca = 0, cb = 0;
+    for (uint32_t k = 0; k < 3; ++k) {
+      uint32_t a = 0, b = 0;
+      const uint32_t m = meet(t[k], t[(k + 1) % 3], &a, &b);
+      if (m != kNoNode && (best == kNoNode || depth[m] > depth[best])) {
+        best = m, corner = k, ca = a, cb = b;
+      }
+    }
+    if (best == kNoNode) {
+      ++base_faces;
+      continue;
+    }
+    const uint32_t z = t[(corner + 2) % 3];
+    const uint32_t first = h.first_child[best];
+    if (ca == first && cb == first + 1) {
+      left[best] = z;
+      left_count[best] = static_cast<uint8_t>(std::min(left_count[best] + 1, 2));
+    } else {
+      right[best] = z;
+      right_count[best] = static_cast<uint8_t>(std::min(right_count[best] + 1, 2));
+    }
+  }
+  std::vector<std::string> problems;
+  for (uint32_t s = 0; s < n && problems.empty(); ++s) {
+    if (h.is_leaf(s)) continue;
+    const bool lw = h.cut_left[s] != kNoNode, rw = h.cut_right[s] != kNoNode;
+    if (left_count[s] != lw || (lw && left[s] != h.cut_left[s]) || right_count[s] != rw ||
+        (rw && right[s] != h.cut_right[s])) {
+      problems.push_back("the cut vertices of node " + std::to_string(s) +
+                         " are not the corners of its wing faces");
+    }
+  }
+  if (problems.empty() && base_faces != h.base.triangle_count()) {
+    problems.push_back(std::to_string(base_faces) + " faces of the finest mesh join three trees, " +
+                       "BASE has " + std::to_string(h.base.triangle_count()) + " triangles");
+  }
+  return problems;
+}
+
 // Mode vhier: every node split (with the splits it depends on) to the
 // leaves, then everything collapsed back to the roots.
 void check_vhier(const Container& decoded, uint32_t group, Findings* f) {
@@ -122,6 +198,7 @@ void check_vhier(const Container& decoded, uint32_t group, Findings* f) {
                       " active nodes, not the " + std::to_string(leaves) + " leaves");
   }
   if (!f->none(kVhieTag, who, "the finest mesh", check_vhier_mesh(r))) return;
+  if (!f->none(kVhieTag, who, "the finest mesh", wing_problems(h, r.triangles()))) return;
   const Status s = r.collapse_to_base();
   if (!s.is_ok()) return f->add(kVhieTag, who, "collapsing back to the roots: " + s.message());
   if (!f->none(kVhieTag, who, "back at the roots", check_vhier_mesh(r))) return;

@@ -248,10 +248,29 @@ extern "C" size_t LLVMFuzzerCustomMutator(uint8_t* data, size_t size, size_t max
   const bool raw = s.entry.codec != 0 && rng() % 2 == 0;
   const Section& from = raw ? d : s;
   Bytes payload(from.data, from.data + from.size);
-  const size_t room = payload.size() + 64;
-  payload.resize(room);
-  const size_t n = LLVMFuzzerMutate(payload.data(), from.size, room);
-  payload.resize(n);
+  // Whole-payload mutations mostly break the decoder; a word copied from
+  // elsewhere in the payload or nudged by a few keeps the layout and
+  // changes what it says (an index, a count, a label), which is the damage
+  // only the deep checks can see.
+  const unsigned kind = rng() % 3;
+  if (kind != 0 && payload.size() >= 8) {
+    const size_t words = payload.size() / 4;
+    const size_t at = 4 * (rng() % words);
+    uint32_t word;
+    std::memcpy(&word, payload.data() + at, 4);
+    if (kind == 1) {
+      std::memcpy(&word, payload.data() + 4 * (rng() % words), 4);
+    } else {
+      const uint32_t delta = 1 + rng() % 3;
+      word = rng() % 2 == 0 ? word + delta : word - delta;
+    }
+    std::memcpy(payload.data() + at, &word, 4);
+  } else {
+    const size_t room = payload.size() + 64;
+    payload.resize(room);
+    payload.resize(LLVMFuzzerMutate(payload.data(), from.size, room));
+  }
+  const size_t n = payload.size();
   const SectionCodec codec = raw ? SectionCodec::kRaw : static_cast<SectionCodec>(s.entry.codec);
   const uint64_t decoded_size = codec == SectionCodec::kRaw ? n : s.entry.decoded_size;
   Result<Bytes> out = rewrite(stored, index, std::move(payload), codec, decoded_size);
