@@ -28,7 +28,8 @@
 // - A re-quantized or Draco-coded BASE moves the base vertices within the
 //   quantization error; VSPL records that leave vs in place (no stored vs
 //   positions) take vs's position from BASE when read, so they follow, and
-//   the compact codec predicts from the BASE as written.
+//   the compact codec predicts from the BASE as written. VTRE's base nodes
+//   are given the written BASE's positions (mode vtrees checks them).
 // - The output META is "lodbake-pack" with the options, the common input,
 //   the union of the inputs' counts (a disagreement is an error) and the
 //   inputs' provenance in "sources"; a source that is itself a pack
@@ -51,12 +52,30 @@
 #include "formats/sections/section_payloads.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vspl_compact.h"
+#include "formats/sections/vtre.h"
 #include "formats/support/string_format.h"
 
 namespace lodbake {
 namespace {
 
 constexpr const char* kPackTool = "lodbake-pack";
+
+// VTRE's base nodes carry BASE's positions (mode vtrees compares them with
+// the hierarchy's, whose roots are BASE's vertices): when BASE was
+// re-quantized or Draco-coded they follow it, as VSPL's records do. A VTRE
+// over another vertex count is left for --validate to report.
+Result<Bytes> vtre_on_base(Bytes raw, const TriangleMesh& base) {
+  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw.data(), raw.size()));
+  if (trees.base_vertex_count != base.vertex_count()) return raw;
+  bool moved = false;
+  for (uint32_t v = 0; v < trees.base_vertex_count; ++v) {
+    if (trees.positions[v] == base.positions[v]) continue;
+    trees.positions[v] = base.positions[v];
+    moved = true;
+  }
+  if (!moved) return raw;
+  return encode_vtre(trees);
+}
 
 std::string codec_text(uint16_t codec) {
   const char* name = codec_name(codec);
@@ -417,7 +436,10 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     } else if (it->second.decoded->known &&
                (has_standalone_compact_codec(tag) || has_base_compact_codec(tag))) {
       const Chosen& c = it->second;
-      const Bytes c_raw = c.raw();
+      Bytes c_raw = c.raw();
+      if (tag == kVtreTag && written_base) {
+        LODBAKE_ASSIGN_OR_RETURN(c_raw, vtre_on_base(std::move(c_raw), *written_base));
+      }
       decoded_size = c_raw.size();
       stored = c_raw;
       // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
