@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@
 #include "lib/replay/replay_check.h"
 #include "lib/replay/sets_replay.h"
 #include "lib/replay/stream_session.h"
+#include "lib/replay/structure_cross_check.h"
 #include "lib/replay/structure_loading.h"
 #include "lib/replay/vhier_replay.h"
 #include "lib/replay/vtrees_session.h"
@@ -68,15 +70,47 @@ std::vector<CameraFrame> sample_path(const BoundingSphere& sphere) {
   return out;
 }
 
+// --validate's cross-structure check of modes vhier and dag: when the
+// group's VSPL + DAGE are the hierarchy's (else the check is not made), the
+// replay's front against the other structure after every frame.
+struct Cross {
+  std::optional<VhierStructure> h;
+  std::optional<DagStructure> dag;
+  std::optional<StructureCrossCheck> check;
+};
+
+void prepare_cross(const OpenedContainer& file, uint32_t group, Cross* cross) {
+  const Container& c = file.decoded();
+  if (c.find(kVhieTag, group) == nullptr || c.find(kRfinTag, group) == nullptr ||
+      c.find(kVsplTag, group) == nullptr || c.find(kDageTag, group) == nullptr)
+    return;
+  Result<VhierStructure> h = load_vhier_structure(c, group);
+  Result<DagStructure> dag = load_dag_structure(c, group);
+  if (!h.is_ok() || !dag.is_ok()) return;
+  cross->h.emplace(std::move(h).value());
+  cross->dag.emplace(std::move(dag).value());
+  Result<StructureCrossCheck> check =
+      StructureCrossCheck::create(*cross->h->h, *cross->dag->pm, *cross->dag->dag);
+  if (check.is_ok()) cross->check.emplace(std::move(check).value());
+}
+
 void run_vhier(const OpenedContainer& file, uint32_t group) {
   Result<VhierStructure> loaded = load_vhier_structure(file.decoded(), group);
   require_ok(loaded.status(), "mode vhier (load)");
   VhierStructure& s = loaded.value();
   const BoundingSphere sphere = bounding_sphere(s.h->position);
+  Cross cross;
+  prepare_cross(file, group, &cross);
   for (const CameraFrame& frame : sample_path(sphere)) {
     require_ok(adapt_vhier_frame(&*s.refiner, *s.h, s.data, sphere, frame, {}).status(),
                "mode vhier");
     require_clean(check_vhier_mesh(*s.refiner), "mode vhier --validate");
+    if (cross.check) {
+      std::vector<uint8_t> flags = cross.check->refiner_splits(*s.refiner);
+      const bool own = cross.check->close(&flags);
+      require_clean(cross.check->compare(flags, own ? &*s.refiner : nullptr, nullptr),
+                    "mode vhier --validate (cross-check)");
+    }
   }
 }
 
@@ -94,9 +128,19 @@ void run_dag(const OpenedContainer& file, uint32_t group) {
     require_ok(replay.status(), "mode dag (create)");
     DagReplayOptions options;
     options.traversal = t;
+    Cross cross;
+    prepare_cross(file, group, &cross);
     for (const CameraFrame& frame : sample_path(sphere)) {
       require_ok(replay.value().adapt(sphere, frame, options).status(), "mode dag");
       require_clean(replay.value().check(), "mode dag --validate");
+      if (cross.check) {
+        std::vector<uint8_t> flags = cross.check->dag_splits(replay.value().fronts());
+        const bool own = cross.check->close(&flags);
+        const std::vector<Triangle> cut =
+            own ? replay.value().cut_triangles() : std::vector<Triangle>();
+        require_clean(cross.check->compare(flags, nullptr, own ? &cut : nullptr),
+                      "mode dag --validate (cross-check)");
+      }
     }
   }
 }
