@@ -28,8 +28,8 @@
 // - A re-quantized or Draco-coded BASE moves the base vertices within the
 //   quantization error; VSPL records that leave vs in place (no stored vs
 //   positions) take vs's position from BASE when read, so they follow, and
-//   the compact codec predicts from the BASE as written. VTRE's copy of the
-//   base positions is rewritten to follow the BASE likewise.
+//   the compact codec predicts from the BASE as written. VTRE's base nodes
+//   are given the written BASE's positions (mode vtrees checks them).
 // - The output META is "lodbake-pack" with the options, the common input,
 //   the union of the inputs' counts (a disagreement is an error) and the
 //   inputs' provenance in "sources"; a source that is itself a pack
@@ -59,6 +59,25 @@ namespace lodbake {
 namespace {
 
 constexpr const char* kPackTool = "lodbake-pack";
+
+// VTRE's base nodes carry BASE's positions (mode vtrees compares them with
+// the hierarchy's, whose roots are BASE's vertices): when BASE was
+// re-quantized or Draco-coded they follow it, as VSPL's records do. A VTRE
+// over another vertex count is left for --validate to report.
+Result<Bytes> vtre_on_base(Bytes raw, const TriangleMesh& base) {
+  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw.data(), raw.size()));
+  if (trees.base_vertex_count != base.vertex_count() ||
+      trees.positions.size() < trees.base_vertex_count)
+    return raw;
+  bool moved = false;
+  for (uint32_t v = 0; v < trees.base_vertex_count; ++v) {
+    if (trees.positions[v] == base.positions[v]) continue;
+    trees.positions[v] = base.positions[v];
+    moved = true;
+  }
+  if (!moved) return raw;
+  return encode_vtre(trees);
+}
 
 std::string codec_text(uint16_t codec) {
   const char* name = codec_name(codec);
@@ -259,23 +278,6 @@ bool base_as_requested(const Section& section, const BaseSummary& summary,
                                         summary.quantization_bits == options.quantize_bits);
 }
 
-// VTRE keeps its own copy of the base vertices' positions: when BASE was
-// re-quantized or Draco-coded they follow it, as VSPL's implied positions
-// do, so the trees stay those of the hierarchy over the BASE as written.
-Result<Bytes> vtre_on_base(const Bytes& raw, const TriangleMesh& base) {
-  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw.data(), raw.size()));
-  if (trees.base_vertex_count != base.vertex_count() ||
-      trees.positions.size() < trees.base_vertex_count)
-    return raw;  // not this BASE's trees: --validate reports it
-  bool moved = false;
-  for (uint32_t v = 0; v < trees.base_vertex_count; ++v) {
-    moved = moved || !(trees.positions[v] == base.positions[v]);
-    trees.positions[v] = base.positions[v];
-  }
-  if (!moved) return raw;
-  return encode_vtre(trees);
-}
-
 // Writes one output group's sections: META first (group 0 only), BASE,
 // VSPL, then the others as first seen, recoded as `options` asks.
 Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, uint32_t index,
@@ -438,7 +440,7 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
       const Chosen& c = it->second;
       Bytes c_raw = c.raw();
       if (tag == kVtreTag && written_base) {
-        LODBAKE_ASSIGN_OR_RETURN(c_raw, vtre_on_base(c_raw, *written_base));
+        LODBAKE_ASSIGN_OR_RETURN(c_raw, vtre_on_base(std::move(c_raw), *written_base));
       }
       decoded_size = c_raw.size();
       stored = c_raw;

@@ -61,6 +61,7 @@
 #include "lib/strips/sets_build.h"
 #include "lib/strips/sets_recovery.h"
 #include "lib/strips/stripify.h"
+#include "lib/validate/structure_validation.h"
 #include "lib/vtrees/vertex_tree_builder.h"
 #include "simplify_test_meshes.h"
 
@@ -315,9 +316,9 @@ TEST_P(PackEverySection, KeepsIdsCopiesByteForByteValidatesAndIsIdempotent) {
   ASSERT_FALSE(after.bytes.empty());
 
   // The checks lodbake-inspect --validate runs, on the written and the packed file.
-  for (const SectionFinding& f : validate_sections(before.decoded))
+  for (const SectionFinding& f : validate_container(before.decoded))
     ADD_FAILURE() << "as written: " << f.tag << ": " << f.message;
-  for (const SectionFinding& f : validate_sections(after.decoded))
+  for (const SectionFinding& f : validate_container(after.decoded))
     ADD_FAILURE() << "packed: " << f.tag << ": " << f.message;
 
   // The same sections in pack's order (META, BASE, VSPL, then the others

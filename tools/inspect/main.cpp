@@ -30,6 +30,7 @@
 #include "lib/meshio/mesh_writers.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/pm_replay.h"
+#include "lib/validate/structure_validation.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -512,7 +513,7 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
 
   std::vector<SectionFinding> findings;
   if (options.validate || options.strict) {
-    findings = validate_sections(file.decoded());
+    findings = validate_container(file.decoded());
     nlohmann::json jf = nlohmann::json::array();
     for (const SectionFinding& f : findings)
       jf.push_back({{"section", f.tag}, {"message", f.message}});

@@ -29,6 +29,7 @@
 #include "lib/replay/fan_replay.h"
 #include "lib/replay/replay_check.h"
 #include "lib/replay/structure_cross_check.h"
+#include "lib/replay/structure_loading.h"
 #include "lib/replay/vhier_replay.h"
 #include "tools/replay/frame_support.h"
 #include "tools/replay/plots.h"
@@ -127,17 +128,12 @@ struct Session {
   std::shared_ptr<CrossCheckState> cross;  // with --validate in modes vhier and dag
 };
 
-struct VhierState {
-  VertexHierarchy h;
-  std::vector<NodeRefinement> data;
-  std::optional<SelectiveRefiner> refiner;
-};
+using VhierState = VhierStructure;
 
 // The DAG's lanes, and the priority-oriented reference their accuracy is
 // measured against when no lane is priority-oriented.
 struct DagState {
-  ProgressiveMesh pm;
-  VsplitDag dag;
+  DagStructure loaded;
   std::vector<DagReplay> lanes;
   std::optional<DagReplay> reference;
 };
@@ -147,19 +143,11 @@ struct FanState {
 };
 
 Result<Session> load_vhier(const OpenedContainer& file, const Request& request) {
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
-                           file.group_with({kBaseTag, kVhieTag, kRfinTag}, "mode vhier",
-                                           "lodbake-hierarchy --sections vhie"));
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kVhier));
   const Section& base = *file.find(kBaseTag, group);
-  const Section* vhie = file.find(kVhieTag, group);
-  const Section* rfin = file.find(kRfinTag, group);
-  auto state = std::make_shared<VhierState>();
-  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base.data, base.size));
-  LODBAKE_ASSIGN_OR_RETURN(state->h, decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));
-  LODBAKE_ASSIGN_OR_RETURN(state->data, decode_rfin(rfin->data, rfin->size, state->h));
-  LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner refiner, SelectiveRefiner::create(state->h));
-  state->refiner.emplace(std::move(refiner));
-  const VertexHierarchy& h = state->h;
+  LODBAKE_ASSIGN_OR_RETURN(VhierStructure loaded, load_vhier_structure(file.decoded(), group));
+  auto state = std::make_shared<VhierState>(std::move(loaded));
+  const VertexHierarchy& h = *state->h;
   Session session;
   session.sphere = bounding_sphere(h.position);
   session.structure = {{"nodes", h.node_count()},
@@ -174,7 +162,7 @@ Result<Session> load_vhier(const OpenedContainer& file, const Request& request) 
   session.step = [state, options, sphere](const CameraFrame& frame) -> Result<std::vector<Row>> {
     LODBAKE_ASSIGN_OR_RETURN(
         VhierFrameStats f,
-        adapt_vhier_frame(&*state->refiner, state->h, state->data, sphere, frame, options));
+        adapt_vhier_frame(&*state->refiner, *state->h, state->data, sphere, frame, options));
     Row row;
     row.splits = f.splits;
     row.collapses = f.collapses;
@@ -185,7 +173,7 @@ Result<Session> load_vhier(const OpenedContainer& file, const Request& request) 
     return std::vector<Row>{row};
   };
   if (request.validate)
-    session.cross = prepare_cross_check(file, group, base, &state->h, nullptr, nullptr);
+    session.cross = prepare_cross_check(file, group, base, state->h.get(), nullptr, nullptr);
   std::shared_ptr<CrossCheckState> cross = session.cross;
   session.check = [state, cross] {
     std::vector<std::string> problems = check_vhier_mesh(*state->refiner);
@@ -203,38 +191,34 @@ Result<Session> load_vhier(const OpenedContainer& file, const Request& request) 
 }
 
 Result<Session> load_dag(const OpenedContainer& file, const Request& request) {
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
-                           file.group_with({kBaseTag, kVsplTag, kDageTag}, "mode dag",
-                                           "lodbake-hierarchy --sections dage"));
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kDag));
   const Section& base = *file.find(kBaseTag, group);
-  const Section* vspl = file.find(kVsplTag, group);
-  const Section* dage = file.find(kDageTag, group);
   auto state = std::make_shared<DagState>();
-  LODBAKE_ASSIGN_OR_RETURN(state->pm,
-                           decode_progressive_mesh(base.data, base.size, vspl->data, vspl->size));
-  LODBAKE_ASSIGN_OR_RETURN(state->dag, decode_dage(dage->data, dage->size));
+  LODBAKE_ASSIGN_OR_RETURN(state->loaded, load_dag_structure(file.decoded(), group));
+  const ProgressiveMesh& pm = *state->loaded.pm;
+  const VsplitDag& dag = *state->loaded.dag;
   const std::vector<DagTraversal>& traversals = request.traversals;
   for (size_t i = 0; i < traversals.size(); ++i) {
-    LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(state->pm, state->dag));
+    LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(pm, dag));
     state->lanes.push_back(std::move(replay));
   }
   const bool has_priority =
       std::find(traversals.begin(), traversals.end(), DagTraversal::kPriority) != traversals.end();
   if (!has_priority) {
-    LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(state->pm, state->dag));
+    LODBAKE_ASSIGN_OR_RETURN(DagReplay replay, DagReplay::create(pm, dag));
     state->reference.emplace(std::move(replay));
   }
-  std::vector<Vec3f> points = state->pm.base.positions;
-  for (const VertexSplit& split : state->pm.splits)
+  std::vector<Vec3f> points = pm.base.positions;
+  for (const VertexSplit& split : pm.splits)
     points.push_back(split.vt_position);
   Session session;
   session.sphere = bounding_sphere(points);
-  session.structure = {{"nodes", state->dag.node_count()},
-                       {"edges", state->dag.edge_count()},
-                       {"base_triangles", state->pm.base.triangle_count()}};
-  session.structure_text = std::to_string(state->dag.node_count()) + " nodes, " +
-                           std::to_string(state->dag.edge_count()) + " edges, " +
-                           std::to_string(state->pm.base.triangle_count()) + " base triangles";
+  session.structure = {{"nodes", dag.node_count()},
+                       {"edges", dag.edge_count()},
+                       {"base_triangles", pm.base.triangle_count()}};
+  session.structure_text = std::to_string(dag.node_count()) + " nodes, " +
+                           std::to_string(dag.edge_count()) + " edges, " +
+                           std::to_string(pm.base.triangle_count()) + " base triangles";
   for (DagTraversal t : traversals)
     session.lanes.push_back(dag_traversal_name(t));
   const DagReplayOptions options = request.dag;
@@ -274,8 +258,7 @@ Result<Session> load_dag(const OpenedContainer& file, const Request& request) {
     }
     return rows;
   };
-  if (request.validate)
-    session.cross = prepare_cross_check(file, group, base, nullptr, &state->pm, &state->dag);
+  if (request.validate) session.cross = prepare_cross_check(file, group, base, nullptr, &pm, &dag);
   std::shared_ptr<CrossCheckState> cross = session.cross;
   session.check = [state, traversals, cross] {
     std::vector<std::string> problems;
@@ -300,15 +283,12 @@ Result<Session> load_dag(const OpenedContainer& file, const Request& request) {
 }
 
 Result<Session> load_fan(const OpenedContainer& file, const Request& request) {
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
-                           file.group_with({kBaseTag, kFanhTag}, "mode fan", "lodbake-fan"));
-  const Section& base = *file.find(kBaseTag, group);
-  const Section* fanh = file.find(kFanhTag, group);
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kFan));
   auto state = std::make_shared<FanState>();
-  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh input, decode_base(base.data, base.size));
-  LODBAKE_ASSIGN_OR_RETURN(FanHierarchy h, decode_fanh(fanh->data, fanh->size));
-  LODBAKE_ASSIGN_OR_RETURN(FanReplay replay, FanReplay::create(input, h));
-  state->replay.emplace(std::move(replay));
+  LODBAKE_ASSIGN_OR_RETURN(FanStructure loaded, load_fan_structure(file.decoded(), group));
+  state->replay.emplace(std::move(*loaded.replay));
+  const TriangleMesh& input = loaded.input;
+  const FanHierarchy& h = loaded.h;
   const FanhStats stats = fanh_stats(h);
   const FanRuntime& rt = state->replay->runtime();
   Session session;

@@ -8,12 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "formats/container/section_registry.h"
-#include "formats/sections/base.h"
 #include "formats/sections/open_container.h"
-#include "formats/sections/sets.h"
-#include "formats/sections/vspl.h"
 #include "lib/replay/sets_replay.h"
+#include "lib/replay/structure_loading.h"
 #include "tools/replay/plots.h"
 #include "tools/replay/replay_request.h"
 #include "tools/replay/report_support.h"
@@ -21,28 +18,10 @@
 namespace lodbake::cli::replay {
 namespace {
 
-// Mode sets: the progressive mesh and its SETS graph.
-struct SetsData {
-  ProgressiveMesh pm;
-  SetsGraph graph;
-};
-
-Result<SetsData> load_sets(const Bytes& bytes) {
+Result<SetsStructure> load_sets(const Bytes& bytes) {
   LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, file.group_with({kBaseTag, kVsplTag, kSetsTag},
-                                                           "mode sets", "lodbake-strips"));
-  const Section* base = file.find(kBaseTag, group);
-  const Section* vspl = file.find(kVsplTag, group);
-  const Section* sets = file.find(kSetsTag, group);
-  try {
-    SetsData data;
-    LODBAKE_ASSIGN_OR_RETURN(
-        data.pm, decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size));
-    LODBAKE_ASSIGN_OR_RETURN(data.graph, decode_sets(sets->data, sets->size));
-    return data;
-  } catch (const std::bad_alloc&) {
-    return runtime_error("out of memory loading the container");
-  }
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kSets));
+  return load_sets_structure(file.decoded(), group);
 }
 
 std::string percent_text(double percent) {
@@ -56,10 +35,11 @@ std::string percent_text(double percent) {
 // The recovery tests: every (spacing, percent), linear first, each from LoD
 // 0 to the coarsest LoD and back.
 int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
-  Result<SetsData> loaded = load_sets(bytes);
+  Result<SetsStructure> loaded = load_sets(bytes);
   if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
-  const SetsData& data = loaded.value();
-  Result<SetsReplay> created = SetsReplay::create(data.pm, data.graph);
+  const ProgressiveMesh& pm = *loaded.value().pm;
+  const SetsGraph& graph = *loaded.value().graph;
+  Result<SetsReplay> created = SetsReplay::create(pm, graph);
   if (!created.is_ok()) return tool.fail(request.input, created.status());
   SetsReplay& replay = created.value();
 
@@ -106,7 +86,6 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
     if (!written.is_ok()) return tool.fail(request.csv, written);
   }
 
-  const SetsGraph& graph = data.graph;
   if (tool.json()) {
     nlohmann::json rows = nlohmann::json::array();
     for (const SetsTestSummary& t : summaries) {
@@ -127,7 +106,7 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
                               {{"strips", graph.strip_count()},
                                {"nodes", graph.node_count()},
                                {"lods", graph.lod_count},
-                               {"base_triangles", data.pm.base.triangle_count()}}},
+                               {"base_triangles", pm.base.triangle_count()}}},
                              {"spacing", request.spacing},
                              {"percents", request.percents},
                              {"lods_recovered", recovered},
@@ -141,7 +120,7 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
             << " recovery tests, " << recovered << " LoDs recovered"
             << (request.validate ? ", every LoD validated" : "") << "\n";
   std::cout << "sets          " << graph.strip_count() << " strips, " << graph.node_count()
-            << " nodes over " << graph.lod_count << " LoDs, " << data.pm.base.triangle_count()
+            << " nodes over " << graph.lod_count << " LoDs, " << pm.base.triangle_count()
             << " base triangles\n";
   print_plots(request, plots);
   std::cout

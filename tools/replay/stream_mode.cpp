@@ -22,6 +22,7 @@
 #include "lib/replay/replay_check.h"
 #include "lib/replay/stream_session.h"
 #include "lib/replay/stream_transport.h"
+#include "lib/replay/structure_loading.h"
 #include "tools/replay/frame_support.h"
 #include "tools/replay/replay_request.h"
 #include "tools/replay/report_support.h"
@@ -31,29 +32,12 @@ namespace lodbake::cli::replay {
 namespace {
 
 // Mode stream's database: the container's hierarchy and RFIN records.
-struct StreamDb {
-  std::unique_ptr<VertexHierarchy> h;  // StreamHierarchy points at it
-  std::unique_ptr<StreamHierarchy> db;
-};
+using StreamDb = StreamStructure;
 
 Result<StreamDb> load_stream_db(const Bytes& bytes) {
   LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
-                           file.group_with({kBaseTag, kVhieTag, kRfinTag}, "mode stream",
-                                           "lodbake-hierarchy --sections vhie"));
-  const Section* base = file.find(kBaseTag, group);
-  const Section* vhie = file.find(kVhieTag, group);
-  const Section* rfin = file.find(kRfinTag, group);
-  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
-  LODBAKE_ASSIGN_OR_RETURN(VertexHierarchy h,
-                           decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));
-  StreamDb out;
-  out.h = std::make_unique<VertexHierarchy>(std::move(h));
-  LODBAKE_ASSIGN_OR_RETURN(std::vector<RfinRecord> records,
-                           decode_rfin_records(rfin->data, rfin->size, *out.h));
-  LODBAKE_ASSIGN_OR_RETURN(StreamHierarchy db, StreamHierarchy::create(*out.h, std::move(records)));
-  out.db = std::make_unique<StreamHierarchy>(std::move(db));
-  return out;
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kStream));
+  return load_stream_structure(file.decoded(), group);
 }
 
 StreamReplayOptions stream_options(const Request& request) {

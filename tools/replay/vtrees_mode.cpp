@@ -22,6 +22,7 @@
 #include "lib/replay/replay_check.h"
 #include "lib/replay/stream_session.h"
 #include "lib/replay/stream_transport.h"
+#include "lib/replay/structure_loading.h"
 #include "lib/replay/vtrees_session.h"
 #include "tools/replay/frame_support.h"
 #include "tools/replay/replay_request.h"
@@ -33,37 +34,12 @@ namespace {
 
 // Mode vtrees' database: the container's hierarchy, refinement data and
 // vertex trees.
-struct VtreesDb {
-  std::unique_ptr<VertexHierarchy> h;
-  std::unique_ptr<VertexTrees> trees;  // VtreesDatabase points at it
-  std::unique_ptr<VtreesDatabase> db;
-};
+using VtreesDb = VtreesStructure;
 
 Result<VtreesDb> load_vtrees_db(const Bytes& bytes) {
   LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(bytes));
-  LODBAKE_ASSIGN_OR_RETURN(uint32_t group,
-                           file.group_with({kBaseTag, kVhieTag, kRfinTag, kVtreTag}, "mode vtrees",
-                                           "lodbake-hierarchy --sections vhie,vtre"));
-  const Section* base = file.find(kBaseTag, group);
-  const Section* vhie = file.find(kVhieTag, group);
-  const Section* rfin = file.find(kRfinTag, group);
-  const Section* vtre = file.find(kVtreTag, group);
-  LODBAKE_ASSIGN_OR_RETURN(TriangleMesh base_mesh, decode_base(base->data, base->size));
-  LODBAKE_ASSIGN_OR_RETURN(VertexHierarchy h,
-                           decode_vhie(vhie->data, vhie->size, std::move(base_mesh)));
-  VtreesDb out;
-  out.h = std::make_unique<VertexHierarchy>(std::move(h));
-  LODBAKE_ASSIGN_OR_RETURN(std::vector<RfinRecord> records,
-                           decode_rfin_records(rfin->data, rfin->size, *out.h));
-  // The same dequantized refinement data as mode stream's server.
-  LODBAKE_ASSIGN_OR_RETURN(StreamHierarchy refinement,
-                           StreamHierarchy::create(*out.h, std::move(records)));
-  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(vtre->data, vtre->size));
-  out.trees = std::make_unique<VertexTrees>(std::move(trees));
-  LODBAKE_ASSIGN_OR_RETURN(VtreesDatabase db,
-                           VtreesDatabase::create(*out.trees, *out.h, refinement.data));
-  out.db = std::make_unique<VtreesDatabase>(std::move(db));
-  return out;
+  LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kVtrees));
+  return load_vtrees_structure(file.decoded(), group);
 }
 
 VtreesReplayOptions vtrees_options(const Request& request) {
