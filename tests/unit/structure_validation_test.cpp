@@ -120,7 +120,9 @@ std::vector<SectionFinding> damaged(const std::string& name, const char* tag,
   const OpenedContainer broken = replaced(file, tag, bytes.value());
   // Damage that only the use of the structure shows passes the sections'
   // own checks.
-  if (deep_only) EXPECT_TRUE(validate_sections(broken.decoded()).empty()) << tag;
+  if (deep_only) {
+    EXPECT_TRUE(validate_sections(broken.decoded()).empty()) << tag;
+  }
   return validate_container(broken.decoded());
 }
 
