@@ -6,6 +6,7 @@
 #include "lib/core/unreferenced_vertices.h"
 #include "lib/ingest/container_mesh.h"
 #include "lib/meshio/corner_split.h"
+#include "lib/meshio/file_name.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/meshio/writer_support.h"
 
@@ -20,12 +21,15 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
                        LoadedMesh* loaded) {
   loaded->file_bytes = bytes.size();
   loaded->sha256 = sha256_hex(bytes.data(), bytes.size());
-  if (starts_with_container_magic(bytes.data(), bytes.size())) {
-    // Another tool's output: the mesh it stands for, checked like any mesh.
+  // Another tool's output (its magic, or a .lbk name so that a broken
+  // header gets the container reader's error): the mesh it stands for,
+  // checked like any mesh.
+  if (starts_with_container_magic(bytes.data(), bytes.size()) || lower_extension(path) == "lbk") {
     LODBAKE_ASSIGN_OR_RETURN(OpenedContainer file, open_container(std::move(bytes)));
     LODBAKE_ASSIGN_OR_RETURN(ContainerMesh mesh, container_input_mesh(file));
     loaded->mesh = std::move(mesh.mesh);
     loaded->original_input = mesh.input;
+    loaded->container_source = mesh.source;
     loaded->import.format = "lodbake container (" + mesh.source + ")";
   } else {
     LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));

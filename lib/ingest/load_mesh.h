@@ -58,6 +58,8 @@ struct LoadedMesh {
   // A container's original input as its META records it (a container is
   // read as the mesh it stands for, lib/ingest/container_mesh.h).
   std::optional<MetaInput> original_input;
+  // For a container: what its mesh is ("progressive mesh" or "base mesh").
+  std::string container_source;
 };
 
 // Loads `path`. Fails with the reader's status (kIo, kInvalidInput,

@@ -280,7 +280,8 @@ int main(int argc, char** argv) {
             "META, the mesh (BASE) and the hierarchy (FANH). Stops at the first of\n"
             "--vertices and --ratio reached, or when no legal fan-merge is left;\n"
             "--error skips fans over the limit. --compare also builds the balanced vertex\n"
-            "hierarchy of the same mesh (as lodbake-hierarchy) and reports both side by side.");
+            "hierarchy of the same mesh (as lodbake-hierarchy) and reports both side by side.\n"
+            "MESH may also be a lodbake container (.lbk), read as the mesh it stands for.");
   Request request;
   double ratio = 0, error = 0;
   uint64_t vertices = 0;

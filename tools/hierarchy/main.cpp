@@ -16,7 +16,6 @@
 #include "formats/sections/base.h"
 #include "formats/sections/dage.h"
 #include "formats/sections/meta.h"
-#include "formats/sections/open_container.h"
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
@@ -27,7 +26,6 @@
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
-#include "lib/ingest/container_mesh.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
@@ -72,53 +70,37 @@ struct Input {
   nlohmann::json repairs;       // of a mesh input
 };
 
-// A container: the hierarchy is rebuilt from the mesh it stands for (a
-// progressive mesh's greedy collapse order is not balanced).
-int load_container(const Tool& tool, const std::string& path, Bytes bytes, Input* in) {
-  LoadedMesh loaded;
-  loaded.file_bytes = bytes.size();
-  loaded.sha256 = sha256_hex(bytes.data(), bytes.size());
-  Result<OpenedContainer> file = open_container(std::move(bytes));
-  if (!file.is_ok()) return tool.fail(path, file.status());
-  Result<ContainerMesh> mesh = container_input_mesh(file.value());
-  if (!mesh.is_ok()) return tool.fail(path, mesh.status());
-  in->mesh = std::move(mesh.value().mesh);
-  in->mesh.normals = MeshAttribute();
-  in->mesh.texcoords = MeshAttribute();
-  in->source = mesh.value().source;
-  // Containers of one input stay mergeable: META names the original input.
-  in->meta = mesh.value().input ? *mesh.value().input : meta_input(path, loaded);
-  if (mesh.value().source == "progressive mesh") {
-    tool.info(path,
-              "a progressive mesh's greedy collapse order is not balanced: rebuilding the "
-              "hierarchy from its fully refined mesh (" +
-                  std::to_string(in->mesh.vertex_count()) + " vertices)");
-  }
-  return 0;
-}
-
 int run(const Tool& tool, const Request& request) {
   using Clock = std::chrono::steady_clock;
   Input in;
-  Result<Bytes> bytes = read_file(request.input);
-  if (!bytes.is_ok()) return tool.fail(request.input, bytes.status());
-  if (is_container_input(request.input, &bytes.value())) {
+  // A container is read as the mesh it stands for (a progressive mesh's
+  // greedy collapse order is not balanced: the hierarchy is rebuilt from its
+  // fully refined mesh).
+  const bool from_container = is_container_input(request.input);
+  if (from_container) {
     // As lodbake-pack: a container's progressive mesh is not repaired.
     if (request.repair) return tool.usage_error("--repair applies to a mesh input");
     if (request.strict) return tool.usage_error("--strict applies to a mesh input");
-    if (int code = load_container(tool, request.input, std::move(bytes).value(), &in); code != 0)
-      return code;
+  }
+  LoadOptions load;
+  load.repair = request.repair;
+  load.strict = request.strict;
+  load.drop_unreferenced = true;
+  LoadedMesh loaded;
+  if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
+  in.mesh = std::move(loaded.mesh);
+  in.mesh.normals = MeshAttribute();
+  in.mesh.texcoords = MeshAttribute();
+  in.meta = meta_input(request.input, loaded);
+  if (from_container) {
+    in.source = loaded.container_source;
+    if (in.source == "progressive mesh") {
+      tool.info(request.input,
+                "a progressive mesh's greedy collapse order is not balanced: rebuilding the "
+                "hierarchy from its fully refined mesh (" +
+                    std::to_string(in.mesh.vertex_count()) + " vertices)");
+    }
   } else {
-    LoadOptions load;
-    load.repair = request.repair;
-    load.strict = request.strict;
-    load.drop_unreferenced = true;
-    LoadedMesh loaded;
-    if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
-    in.mesh = std::move(loaded.mesh);
-    in.mesh.normals = MeshAttribute();
-    in.mesh.texcoords = MeshAttribute();
-    in.meta = meta_input(request.input, loaded);
     in.repairs = repairs_json(load, loaded);
   }
 

@@ -306,7 +306,9 @@ int main(int argc, char** argv) {
             "writes the result, an LOD chain (--lods), and/or the progressive mesh it\n"
             "recorded (--pm: a container with BASE and VSPL that inspect can extract any\n"
             "level of detail from). Stops at the first of --ratio, --triangles and --error\n"
-            "reached, or when no collapse is legal.");
+            "reached, or when no collapse is legal. MESH may also be a lodbake container\n"
+            "(.lbk), read as the mesh it stands for (a progressive mesh's full mesh, or a\n"
+            "BASE that is the input).");
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;
