@@ -15,6 +15,9 @@ struct ImportReport {
   uint64_t polygons_triangulated = 0;  // faces with more than 3 corners
   uint64_t welded_vertices = 0;        // corners merged by exact position (STL, glTF)
   std::vector<std::string> notes;      // one line each, e.g. "ignored vertex property 'confidence'"
+  // Things the user must hear about although the read succeeded, one line
+  // each, e.g. "image 2 'Lantern_baseColor.png' is missing".
+  std::vector<std::string> warnings;
 };
 
 }  // namespace lodbake
