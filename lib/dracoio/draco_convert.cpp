@@ -24,6 +24,8 @@ std::string att_name(const draco::PointAttribute& att) {
   return draco::GeometryAttribute::TypeToString(att.attribute_type());
 }
 
+}  // namespace
+
 // The attribute holds numbers, and every point's mapping leads to a stored
 // value. DT_BOOL is refused before any read: Draco's ConvertValue loads it as
 // a C++ bool, which is undefined for decoded bytes other than 0 and 1.
@@ -53,6 +55,8 @@ Status check_mapping(const draco::PointAttribute& att, uint32_t num_points) {
   return Status::ok();
 }
 
+namespace {
+
 Status read_value(const draco::PointAttribute& att, uint32_t index, uint32_t components,
                   float* out) {
   if (!att.ConvertValue<float>(draco::AttributeValueIndex(index), static_cast<int8_t>(components),
@@ -76,6 +80,8 @@ uint32_t value_of(const draco::PointAttribute& att, uint32_t point) {
   return att.mapped_index(draco::PointIndex(point)).value();
 }
 
+}  // namespace
+
 Status check_faces(const draco::Mesh& mesh) {
   for (uint32_t f = 0; f < mesh.num_faces(); ++f) {
     const auto& face = mesh.face(draco::FaceIndex(f));
@@ -88,6 +94,8 @@ Status check_faces(const draco::Mesh& mesh) {
   }
   return Status::ok();
 }
+
+namespace {
 
 // The first NORMAL or TEX_COORD attribute as a per-vertex attribute over the
 // position values when the mapping allows it, per corner otherwise.

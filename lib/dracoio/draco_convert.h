@@ -36,6 +36,13 @@ Result<RawMesh> raw_mesh_from_draco(const draco::Mesh& mesh, int64_t position_id
 // check_mesh_for_export).
 Result<std::unique_ptr<draco::Mesh>> to_draco_mesh(const TriangleMesh& mesh);
 
+// The attribute holds numbers (DT_BOOL is refused: Draco loads it as a C++
+// bool), and every point's mapping leads to a stored value.
+Status check_mapping(const draco::PointAttribute& att, uint32_t num_points);
+
+// Every face corner names a point below num_points().
+Status check_faces(const draco::Mesh& mesh);
+
 // Index ranges and attribute sizes of a TriangleMesh about to be exported.
 Status check_mesh_for_export(const TriangleMesh& mesh);
 

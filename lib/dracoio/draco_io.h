@@ -14,6 +14,7 @@
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 #include "lib/meshio/import_report.h"
+#include "lib/scene/scene_io.h"
 
 namespace lodbake {
 
@@ -25,9 +26,13 @@ namespace lodbake {
 // reads back as written; attributes that then disagree become per-corner.
 // Texture v is flipped to a bottom-left origin.
 // Points and lines primitives, other attributes, materials and the like are
-// skipped with one note each. External (non data:) buffer URIs are refused
-// (kUnsupported). report->format is "gltf" or "glb".
-Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report);
+// skipped with one note each. External (non data:) buffer URIs are read
+// through `resources` (read_resource(), confined to its folder); with the
+// default, memory only, they are refused (kUnsupported).
+// EXT_meshopt_compression bufferViews are decoded. report->format is "gltf"
+// or "glb".
+Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report,
+                                const SceneResources& resources = SceneResources());
 
 // A Draco-compressed mesh (.drc): one vertex per Draco POSITION value (not
 // welded further), the first NORMAL and TEX_COORD per vertex or per corner

@@ -156,6 +156,10 @@ Result<ByteSpan> buffer_view_bytes(const GltfDocument& doc, int64_t index,
   const std::string view_where = "bufferView " + str(static_cast<uint64_t>(index));
   const Json& v = (*views)[static_cast<size_t>(index)];
   if (!v.is_object()) return invalid_input(view_where + " is not a JSON object");
+  const auto decoded = doc.decoded_views.find(index);
+  if (decoded != doc.decoded_views.end()) {
+    return ByteSpan{decoded->second.data(), decoded->second.size()};
+  }
   LODBAKE_ASSIGN_OR_RETURN(const int64_t buffer,
                            member_index(v, "buffer", doc.buffers.size(), "buffer", view_where));
   if (buffer < 0) return invalid_input(view_where + " has no buffer");

@@ -9,16 +9,21 @@
 //   forbids it, but some exporters write one); it is skipped.
 // - JSON nesting is bounded (kMaxJsonDepth) by a scan before parsing.
 // - Buffers: byteLength may be smaller than the data (the rest is ignored),
-//   never larger. Only base64 data: URIs are accepted; any other URI names a
-//   file that a reader working from memory cannot open.
+//   never larger. Only base64 data: URIs are embedded; any other URI names a
+//   file, read through read_resource() (refused when reading from memory).
+// - A buffer without uri (other than a GLB's buffer 0) is accepted only as
+//   an EXT_meshopt_compression fallback; it holds no bytes, so a bufferView
+//   into it reads only when the extension decodes that view.
 #include "lib/dracoio/gltf_document.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <utility>
 
 #include "formats/support/byte_reader.h"
+#include "lib/dracoio/gltf_meshopt.h"
 
 namespace lodbake {
 namespace dracoio {
@@ -27,6 +32,8 @@ namespace {
 constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
 constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
 constexpr uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
+constexpr uint64_t kMinDecodeBudget = uint64_t{1} << 26;
+constexpr uint64_t kDecodeBudgetPerByte = 64;
 
 std::string str(uint64_t v) {
   return std::to_string(v);
@@ -158,7 +165,17 @@ Result<Bytes> decode_base64(const std::string& text, size_t begin, const std::st
   return out;
 }
 
-Status load_buffers(const Container& container, GltfDocument* doc) {
+bool is_meshopt_fallback(const Json& buffer) {
+  const auto ext = buffer.find("extensions");
+  if (ext == buffer.end() || !ext->is_object()) return false;
+  const auto meshopt = ext->find("EXT_meshopt_compression");
+  if (meshopt == ext->end() || !meshopt->is_object()) return false;
+  const auto fallback = meshopt->find("fallback");
+  return fallback != meshopt->end() && fallback->is_boolean() && fallback->get<bool>();
+}
+
+Status load_buffers(const Container& container, const SceneResources& resources,
+                    GltfDocument* doc) {
   LODBAKE_ASSIGN_OR_RETURN(const Json* buffers, member_array(doc->root, "buffers", "glTF"));
   if (buffers == nullptr) return Status::ok();
   doc->buffers.reserve(buffers->size());
@@ -174,36 +191,43 @@ Status load_buffers(const Container& container, GltfDocument* doc) {
     const auto uri = buffer.find("uri");
     ByteSpan span;
     if (uri == buffer.end()) {
-      if (!doc->binary || i != 0) {
-        return invalid_input(where + " has no uri (only buffer 0 of a GLB may use the BIN chunk)");
+      if (doc->binary && i == 0) {
+        if (!container.has_bin) {
+          return invalid_input(where + " refers to a BIN chunk the GLB lacks");
+        }
+        if (byte_length > container.bin_size) {
+          return invalid_input(where + " declares " + str(byte_length) +
+                               " bytes, the GLB BIN chunk holds " + str(container.bin_size));
+        }
+        span.data = container.bin;
+        span.size = static_cast<size_t>(byte_length);
+      } else if (!is_meshopt_fallback(buffer)) {
+        return invalid_input(where +
+                             " has no uri (only buffer 0 of a GLB may use the BIN chunk, and "
+                             "an EXT_meshopt_compression fallback buffer may have no data)");
       }
-      if (!container.has_bin) return invalid_input(where + " refers to a BIN chunk the GLB lacks");
-      if (byte_length > container.bin_size) {
-        return invalid_input(where + " declares " + str(byte_length) +
-                             " bytes, the GLB BIN chunk holds " + str(container.bin_size));
-      }
-      span.data = container.bin;
-    } else {
-      if (!uri->is_string()) return invalid_input(where + ": 'uri' is not a string");
-      const std::string& text = uri->get_ref<const std::string&>();
-      if (text.compare(0, 5, "data:") != 0) {
-        return unsupported(where + ": external file '" + text.substr(0, 200) +
-                           "' is not supported (the glTF is read from memory, without a file "
-                           "system context); embed it as a data: URI or use GLB");
-      }
-      const size_t comma = text.find(',');
-      if (comma == std::string::npos || comma < 12 || text.compare(comma - 7, 7, ";base64") != 0) {
-        return unsupported(where + ": only base64 data: URIs are supported");
-      }
-      LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, decode_base64(text, comma + 1, where));
-      if (byte_length > bytes.size()) {
-        return invalid_input(where + " declares " + str(byte_length) +
-                             " bytes, its data: URI holds " + str(bytes.size()));
-      }
-      doc->decoded.push_back(std::move(bytes));
-      // Moving a vector keeps its heap block, so this pointer stays valid.
-      span.data = doc->decoded.back().data();
+      doc->buffers.push_back(span);
+      continue;
     }
+    if (!uri->is_string()) return invalid_input(where + ": 'uri' is not a string");
+    const std::string& text = uri->get_ref<const std::string&>();
+    Bytes bytes;
+    if (text.compare(0, 5, "data:") == 0) {
+      LODBAKE_ASSIGN_OR_RETURN(bytes, decode_data_uri(text, where));
+    } else {
+      auto read = read_resource(resources, text);
+      if (!read.is_ok())
+        return Status(read.status().kind(), where + ": " + read.status().message());
+      bytes = std::move(read).value();
+    }
+    if (byte_length > bytes.size()) {
+      return invalid_input(where + " declares " + str(byte_length) + " bytes, its " +
+                           (text.compare(0, 5, "data:") == 0 ? "data: URI" : "file") + " holds " +
+                           str(bytes.size()));
+    }
+    doc->decoded.push_back(std::move(bytes));
+    // Moving a vector keeps its heap block, so this pointer stays valid.
+    span.data = doc->decoded.back().data();
     span.size = static_cast<size_t>(byte_length);
     doc->buffers.push_back(span);
   }
@@ -253,7 +277,26 @@ bool integral(const Json& value, int64_t* out) {
 
 }  // namespace
 
-Result<GltfDocument> load_gltf_document(const uint8_t* data, size_t size) {
+Status DecodeBudget::charge(uint64_t bytes, const std::string& what) {
+  if (bytes > limit_ - used_) {
+    return invalid_input(what + " would decode more than " + str(limit_) +
+                         " bytes in all, the limit for an input of this size");
+  }
+  used_ += bytes;
+  return Status::ok();
+}
+
+Result<Bytes> decode_data_uri(const std::string& text, const std::string& where) {
+  const size_t comma = text.find(',');
+  if (text.compare(0, 5, "data:") != 0 || comma == std::string::npos || comma < 12 ||
+      text.compare(comma - 7, 7, ";base64") != 0) {
+    return unsupported(where + ": only base64 data: URIs are supported");
+  }
+  return decode_base64(text, comma + 1, where);
+}
+
+Result<GltfDocument> load_gltf_document(const uint8_t* data, size_t size,
+                                        const SceneResources& resources) {
   GltfDocument doc;
   Container container;
   if (size >= 4) {
@@ -280,7 +323,12 @@ Result<GltfDocument> load_gltf_document(const uint8_t* data, size_t size) {
   }
   if (!doc.root.is_object()) return invalid_input("glTF JSON is not an object");
   LODBAKE_RETURN_IF_ERROR(check_asset(doc.root));
-  LODBAKE_RETURN_IF_ERROR(load_buffers(container, &doc));
+  LODBAKE_RETURN_IF_ERROR(load_buffers(container, resources, &doc));
+  uint64_t input_bytes = size;
+  for (const Bytes& b : doc.decoded)
+    input_bytes += b.size();
+  doc.budget = DecodeBudget(std::max(kMinDecodeBudget, kDecodeBudgetPerByte * input_bytes));
+  LODBAKE_RETURN_IF_ERROR(decode_meshopt_views(&doc));
   return doc;
 }
 

@@ -1,12 +1,14 @@
 // Internal to lib/dracoio: a glTF 2.0 asset loaded from memory, with its
-// container checked (GLB header and chunks, JSON nesting) and every buffer
-// resolved to bytes (GLB BIN chunk or base64 data: URI), plus typed JSON
+// container checked (GLB header and chunks, JSON nesting), every buffer
+// resolved to bytes (GLB BIN chunk, base64 data: URI or a file read through
+// SceneResources) and EXT_meshopt_compression bufferViews decoded, plus typed JSON
 // accessors that turn a wrong type or an out-of-range index into a one-line
 // Status naming the object ("node 3: 'mesh' 7 out of range (2 meshes)").
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/scene/scene_io.h"
 
 namespace lodbake {
 namespace dracoio {
@@ -25,11 +28,31 @@ struct ByteSpan {
   size_t size = 0;
 };
 
+// A cap on the bytes a reader may produce from one asset (decoded
+// compression, densified accessors, zero-filled accessors without data), so
+// that a small file cannot ask for gigabytes.
+class DecodeBudget {
+ public:
+  explicit DecodeBudget(uint64_t limit = 0) : limit_(limit) {}
+  // Takes `bytes` from the budget, or fails naming `what`.
+  Status charge(uint64_t bytes, const std::string& what);
+  uint64_t limit() const { return limit_; }
+
+ private:
+  uint64_t limit_;
+  uint64_t used_ = 0;
+};
+
 struct GltfDocument {
   Json root;                      // the top-level JSON object
   bool binary = false;            // read from a GLB container
   std::vector<ByteSpan> buffers;  // buffers[i].size == buffers[i].byteLength
-  std::vector<Bytes> decoded;     // storage behind data: URI buffers
+  std::vector<Bytes> decoded;     // storage behind data: URI and external buffers
+  // EXT_meshopt_compression bufferViews, decoded: buffer_view_bytes() hands
+  // these out instead of the view's (fallback) buffer range.
+  std::map<int64_t, Bytes> decoded_views;
+  // max(2^26, 64 x (input + buffer bytes)); meshopt decoding has drawn on it.
+  DecodeBudget budget;
 };
 
 // Deepest JSON nesting accepted; real assets stay far below it, and the bound
@@ -37,8 +60,15 @@ struct GltfDocument {
 constexpr size_t kMaxJsonDepth = 64;
 
 // Parses a .gltf (JSON text) or .glb (binary container) held in memory.
-// External buffer URIs are refused: there is no file system context.
-Result<GltfDocument> load_gltf_document(const uint8_t* data, size_t size);
+// External buffer URIs are read through `resources` (read_resource(): with
+// the default, memory only, they are refused with kUnsupported). A buffer
+// with no uri that EXT_meshopt_compression marks as a fallback has no bytes;
+// the compressed bufferViews that use it are decoded here.
+Result<GltfDocument> load_gltf_document(const uint8_t* data, size_t size,
+                                        const SceneResources& resources = SceneResources());
+
+// The bytes of a base64 data: URI, `where` naming its owner.
+Result<Bytes> decode_data_uri(const std::string& uri, const std::string& where);
 
 // Members of `object` named `key`. Absent members give an empty array / the
 // default; a member of the wrong type or out of range is an error naming

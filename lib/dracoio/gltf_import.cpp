@@ -34,6 +34,11 @@
 //   relates to the topology ("none": it is the topology; "manifold_edges":
 //   only seams were split), so that a repaired mesh reads back as written
 //   (mesh_weld.h, docs/import.md). Other values weld every position.
+// - External buffers are read through SceneResources (the caller passes the
+//   file's folder); EXT_meshopt_compression views are decoded by the
+//   document loader. This reader stays separate from read_gltf_scene()
+//   (gltf_scene_import.cpp), which keeps what this one merges or drops;
+//   flattening a Scene here instead would make one reader of the two.
 // - Draco itself is not bounded in time: a crafted 200-byte Draco stream can
 //   keep its texture-coordinate prediction decoder busy for seconds (it
 //   loops over an orientation count read from the stream). Each compressed
@@ -81,10 +86,10 @@ const char* mode_name(int64_t mode) {
 
 // Required extensions that do not change geometry, or that this reader handles.
 bool required_extension_ok(const std::string& name) {
-  return name == "KHR_draco_mesh_compression" || name == "KHR_mesh_quantization" ||
-         name == "KHR_texture_transform" || name == "KHR_texture_basisu" ||
-         name == "EXT_texture_webp" || name == "KHR_lights_punctual" ||
-         name.compare(0, 14, "KHR_materials_") == 0;
+  return name == "KHR_draco_mesh_compression" || name == "EXT_meshopt_compression" ||
+         name == "KHR_mesh_quantization" || name == "KHR_texture_transform" ||
+         name == "KHR_texture_basisu" || name == "EXT_texture_webp" ||
+         name == "KHR_lights_punctual" || name.compare(0, 14, "KHR_materials_") == 0;
 }
 
 struct Primitive {
@@ -173,7 +178,8 @@ Status GltfImporter::check_extensions() {
     for (const Json& e : *used) {
       if (!e.is_string()) continue;
       const std::string& name = e.get_ref<const std::string&>();
-      if (name != "KHR_draco_mesh_compression" && name != "KHR_mesh_quantization") {
+      if (name != "KHR_draco_mesh_compression" && name != "KHR_mesh_quantization" &&
+          name != "EXT_meshopt_compression") {
         note("ignored glTF extension '" + name.substr(0, 100) + "'");
       }
     }
@@ -524,17 +530,20 @@ Result<TriangleMesh> GltfImporter::run(ImportReport* report) {
   return mesh;
 }
 
-Result<TriangleMesh> parse_gltf_unchecked(const uint8_t* data, size_t size, ImportReport* report) {
-  LODBAKE_ASSIGN_OR_RETURN(const GltfDocument doc, dracoio::load_gltf_document(data, size));
+Result<TriangleMesh> parse_gltf_unchecked(const uint8_t* data, size_t size, ImportReport* report,
+                                          const SceneResources& resources) {
+  LODBAKE_ASSIGN_OR_RETURN(const GltfDocument doc,
+                           dracoio::load_gltf_document(data, size, resources));
   GltfImporter importer(doc, size);
   return importer.run(report);
 }
 
 }  // namespace
 
-Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report) {
+Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report,
+                                const SceneResources& resources) {
   try {
-    return parse_gltf_unchecked(data, size, report);
+    return parse_gltf_unchecked(data, size, report, resources);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while reading glTF");
   } catch (const std::exception& e) {

@@ -117,13 +117,13 @@ Result<MeshFormat> detect_mesh_format(const std::string& file_name, const Bytes&
 }
 
 Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& bytes,
-                                 ImportReport* report) {
+                                 ImportReport* report, const SceneResources* resources) {
   if (is_gzip(bytes)) {
     LODBAKE_ASSIGN_OR_RETURN(Bytes inflated,
                              gunzip(bytes.data(), bytes.size(), kMaxDecompressedBytes));
     report->notes.push_back("decompressed gzip input (" + std::to_string(bytes.size()) + " -> " +
                             std::to_string(inflated.size()) + " bytes)");
-    return import_mesh(strip_gz(file_name), inflated, report);
+    return import_mesh(strip_gz(file_name), inflated, report, resources);
   }
   if (bytes.empty()) return invalid_input("file is empty");
   LODBAKE_ASSIGN_OR_RETURN(MeshFormat format, detect_mesh_format(file_name, bytes));
@@ -147,8 +147,17 @@ Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& byte
     case MeshFormat::kStl:
       return parse_stl(data, size, report);
     case MeshFormat::kGltf:
-    case MeshFormat::kGlb:
-      return parse_gltf(data, size, report);
+    case MeshFormat::kGlb: {
+      SceneResources folder;
+      if (resources != nullptr) {
+        folder = *resources;
+      } else {
+        const size_t slash = file_name.find_last_of('/');
+        folder.folder = slash == std::string::npos ? "." : file_name.substr(0, slash + 1);
+        if (folder.folder.size() > 1) folder.folder.pop_back();  // "a/b/" -> "a/b", "/" stays
+      }
+      return parse_gltf(data, size, report, folder);
+    }
     case MeshFormat::kDraco:
       return parse_draco(data, size, report);
   }

@@ -11,6 +11,7 @@
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 #include "lib/meshio/import_report.h"
+#include "lib/scene/scene_io.h"
 
 namespace lodbake {
 
@@ -22,9 +23,12 @@ const char* mesh_format_name(MeshFormat format);
 // as a hint only when the content does not decide it.
 Result<MeshFormat> detect_mesh_format(const std::string& file_name, const Bytes& bytes);
 
-// Parses `bytes` read from `file_name` (used for the format hint only).
+// Parses `bytes` read from `file_name`, which gives the format hint and the
+// folder a .gltf's external buffers are read from (confined to it: see
+// read_resource(); "." for a bare name). `resources`, when given, replaces
+// that folder (an empty SceneResources reads from memory only).
 Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& bytes,
-                                 ImportReport* report);
+                                 ImportReport* report, const SceneResources* resources = nullptr);
 
 // Reads and parses a file.
 Result<TriangleMesh> import_mesh_file(const std::string& path, ImportReport* report);
