@@ -111,7 +111,7 @@ struct ScenePrimitive {
   // so that equal primitives compare equal.
   std::vector<SceneAttribute> attributes;
   std::vector<std::vector<SceneAttribute>> targets;  // morph targets, each sorted by semantic
-  SceneJson extras;      // null when absent
+  SceneJson extras;                                  // null when absent
   SceneJson extensions;  // null when absent; decoded compression extensions removed
 
   // The stream named `semantic`, or nullptr.
@@ -188,7 +188,9 @@ struct SceneRoots {
 
 struct SceneImage {
   std::string name;
-  std::string mime_type;  // as the file gave it, or empty
+  // As the file gave it; when it gave none, from the bytes' signature (PNG,
+  // JPEG, KTX2, WebP), or empty.
+  std::string mime_type;
   // The file name to write the image under beside a .gltf: the URI the
   // input gave (percent-decoded, relative), or empty for an embedded image
   // (bufferView or data: URI), which a writer names itself.

@@ -39,8 +39,8 @@ Result<Bytes> read_resource(const SceneResources& resources, const std::string& 
 // mesh, primitive and attribute stream as the file has it (never welded),
 // KHR_draco_mesh_compression and EXT_meshopt_compression decoded,
 // KHR_mesh_quantization types kept, sparse accessors made dense, images read
-// (a missing image is a warning in report->notes, a missing buffer an
-// error), the rest carried. A required extension lodbake cannot read fails
+// (a missing image is a warning in report->warnings, a missing buffer
+// an error), the rest carried. A required extension lodbake cannot read fails
 // with kUnsupported naming it. report->format is "gltf" or "glb".
 // Defined in lib/dracoio.
 Result<Scene> read_gltf_scene(const uint8_t* data, size_t size, const SceneResources& resources,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -46,6 +47,17 @@ Result<Scene> read_text(const std::string& text, ImportReport* report = nullptr,
   ImportReport local;
   return read_gltf_scene(reinterpret_cast<const uint8_t*>(text.data()), text.size(), resources,
                          report != nullptr ? report : &local);
+}
+
+// With LODBAKE_REGENERATE_GOLDEN=1, a hand-made file becomes a seed of the
+// fuzz_gltf_scene corpus (in LODBAKE_SOURCE_DIR, or this source tree).
+void maybe_write_seed(const std::string& name, const std::string& text) {
+  const char* regenerate = std::getenv("LODBAKE_REGENERATE_GOLDEN");
+  if (regenerate == nullptr || std::string(regenerate) != "1") return;
+  const char* source = std::getenv("LODBAKE_SOURCE_DIR");
+  const std::string dir = std::string(source != nullptr ? source : LODBAKE_TEST_SOURCE_DIR) +
+                          "/tests/fuzz/corpus/gltf_scene/";
+  ASSERT_TRUE(write_file_atomic(dir + name, text).is_ok()) << dir + name;
 }
 
 std::string base64(const std::vector<uint8_t>& bytes) {
@@ -311,6 +323,7 @@ TEST(GltfSceneReader, SparseAccessorsAreMadeDense) {
         "indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":2}}}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":0},
                              {"attributes":{"POSITION":1},"mode":0}]}]})";
+  maybe_write_seed("sparse.gltf", text);
   Result<Scene> scene = read_text(text);
   ASSERT_TRUE(scene.is_ok()) << scene.status().message();
   const SceneMesh& mesh = scene.value().meshes.at(0);
@@ -358,6 +371,7 @@ TEST(GltfSceneReader, QuantizedStreamsKeepTheirIntegerTypes) {
     "meshes":[{"primitives":[{"attributes":{"TEXCOORD_0":2,"POSITION":0,"NORMAL":1},
                               "indices":3}]}],
     "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+  maybe_write_seed("quantized.gltf", text);
   Result<Scene> scene = read_text(text);
   ASSERT_TRUE(scene.is_ok()) << scene.status().message();
   const ScenePrimitive& p = scene.value().meshes.at(0).primitives.at(0);
@@ -459,6 +473,7 @@ TEST(GltfSceneReader, MeshoptCompressedFileReadsLikeThePlainOne) {
       std::to_string(idx_offset) + R"(,"byteLength":)" + std::to_string(idx.size()) +
       R"(,"byteStride":2,"count":)" + std::to_string(triangles.size()) +
       R"(,"mode":"TRIANGLES"}}}],)" + tail;
+  maybe_write_seed("meshopt.gltf", meshopt_text);
   Result<Scene> a = read_text(plain_text);
   Result<Scene> b = read_text(meshopt_text);
   ASSERT_TRUE(a.is_ok()) << a.status().message();
@@ -609,6 +624,7 @@ TEST(GltfSceneReader, InstancingAttributesBecomeSceneAccessors) {
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":0}]}],
     "nodes":[{"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":
               {"attributes":{"TRANSLATION":1,"SCALE":1}}}}]})";
+  maybe_write_seed("instancing.gltf", text);
   ImportReport report;
   Result<Scene> scene = read_text(text, &report);
   ASSERT_TRUE(scene.is_ok()) << scene.status().message();
