@@ -7,8 +7,10 @@
 // file), and only a group that mixes both drops them, with a note.
 #include "lib/scene/obj_scene.h"
 
+#include <algorithm>
 #include <limits>
 #include <new>
+#include <optional>
 #include <vector>
 
 #include "lib/meshio/mesh_readers.h"
@@ -19,6 +21,37 @@ namespace lodbake {
 namespace {
 
 constexpr uint32_t kUnmapped = std::numeric_limits<uint32_t>::max();
+
+// An old -> new index map reused across groups: clearing only the entries a
+// group set keeps the work proportional to the group, not to the file (a
+// hostile file may hold many one-face groups over many vertices).
+class Renumbering {
+ public:
+  explicit Renumbering(size_t size) : new_of_old_(size, kUnmapped) {}
+  Renumbering(const Renumbering&) = delete;
+  Renumbering& operator=(const Renumbering&) = delete;
+
+  // The new index of `old`, the next free one when first asked for.
+  uint32_t map(uint32_t old, bool* added) {
+    uint32_t& slot = new_of_old_[old];
+    *added = slot == kUnmapped;
+    if (*added) {
+      slot = static_cast<uint32_t>(old_of_new_.size());
+      old_of_new_.push_back(old);
+    }
+    return slot;
+  }
+  const std::vector<uint32_t>& old_of_new() const { return old_of_new_; }
+  void clear() {
+    for (uint32_t old : old_of_new_)
+      new_of_old_[old] = kUnmapped;
+    old_of_new_.clear();
+  }
+
+ private:
+  std::vector<uint32_t> new_of_old_;
+  std::vector<uint32_t> old_of_new_;
+};
 
 // How many of `triangles` have an attribute index on every corner of `a`.
 size_t triangles_with(const MeshAttribute& a, const std::vector<uint32_t>& triangles) {
@@ -33,7 +66,7 @@ size_t triangles_with(const MeshAttribute& a, const std::vector<uint32_t>& trian
 // `a` restricted to `triangles` of a sub-mesh whose vertex v is the mesh's
 // vertex old_of_new[v]: values compacted in order of first use.
 MeshAttribute sub_attribute(const MeshAttribute& a, const std::vector<uint32_t>& triangles,
-                            const std::vector<uint32_t>& old_of_new) {
+                            const std::vector<uint32_t>& old_of_new, Renumbering* values) {
   MeshAttribute out;
   if (!a.present()) return out;
   out.binding = a.binding;
@@ -46,49 +79,58 @@ MeshAttribute sub_attribute(const MeshAttribute& a, const std::vector<uint32_t>&
                         a.values.begin() + size_t{v + 1} * c);
     return out;
   }
-  std::vector<uint32_t> new_of_old(a.value_count(), kUnmapped);
   out.corners.reserve(triangles.size());
   for (uint32_t t : triangles) {
     Triangle corner{};
     for (int k = 0; k < 3; ++k) {
       const uint32_t old = a.corners[t][k];
-      if (new_of_old[old] == kUnmapped) {
-        new_of_old[old] = static_cast<uint32_t>(out.values.size() / c);
+      bool added = false;
+      corner[k] = values->map(old, &added);
+      if (added) {
         out.values.insert(out.values.end(), a.values.begin() + size_t{old} * c,
                           a.values.begin() + size_t{old + 1} * c);
       }
-      corner[k] = new_of_old[old];
     }
     out.corners.push_back(corner);
   }
+  values->clear();
   return out;
 }
 
 // The triangles of one group as a mesh of the vertices they use, numbered
 // in order of first use.
+// The scratch maps of sub_mesh(), one per index space.
+struct SubMeshScratch {
+  explicit SubMeshScratch(const TriangleMesh& mesh, const ObjMaterialGroups& groups)
+      : vertices(mesh.positions.size()),
+        texcoords(std::max(mesh.texcoords.value_count(), groups.partial_texcoords.value_count())),
+        normals(std::max(mesh.normals.value_count(), groups.partial_normals.value_count())) {}
+  Renumbering vertices;
+  Renumbering texcoords;
+  Renumbering normals;
+};
+
 TriangleMesh sub_mesh(const TriangleMesh& mesh, const std::vector<uint32_t>& triangles,
-                      const MeshAttribute& texcoords, const MeshAttribute& normals) {
+                      const MeshAttribute& texcoords, const MeshAttribute& normals,
+                      SubMeshScratch* scratch) {
   TriangleMesh out;
-  std::vector<uint32_t> new_of_old(mesh.positions.size(), kUnmapped);
-  std::vector<uint32_t> old_of_new;
+  Renumbering& vertices = scratch->vertices;
   out.triangles.reserve(triangles.size());
   for (uint32_t t : triangles) {
     Triangle tri{};
     for (int k = 0; k < 3; ++k) {
-      const uint32_t old = mesh.triangles[t][k];
-      if (new_of_old[old] == kUnmapped) {
-        new_of_old[old] = static_cast<uint32_t>(old_of_new.size());
-        old_of_new.push_back(old);
-      }
-      tri[k] = new_of_old[old];
+      bool added = false;
+      tri[k] = vertices.map(mesh.triangles[t][k], &added);
     }
     out.triangles.push_back(tri);
   }
+  const std::vector<uint32_t>& old_of_new = vertices.old_of_new();
   out.positions.reserve(old_of_new.size());
   for (uint32_t v : old_of_new)
     out.positions.push_back(mesh.positions[v]);
-  out.texcoords = sub_attribute(texcoords, triangles, old_of_new);
-  out.normals = sub_attribute(normals, triangles, old_of_new);
+  out.texcoords = sub_attribute(texcoords, triangles, old_of_new, &scratch->texcoords);
+  out.normals = sub_attribute(normals, triangles, old_of_new, &scratch->normals);
+  vertices.clear();
   return out;
 }
 
@@ -139,6 +181,8 @@ Result<Scene> read_obj_scene(const uint8_t* data, size_t size, const std::string
 
     std::vector<std::string> used_names;
     std::vector<ScenePrimitive> primitives;
+    std::optional<SubMeshScratch> scratch;
+    if (non_empty > 1) scratch.emplace(mesh, groups);
     for (size_t g = 0; g < members.size(); ++g) {
       const std::vector<uint32_t>& triangles = members[g];
       if (triangles.empty()) continue;
@@ -151,8 +195,9 @@ Result<Scene> read_obj_scene(const uint8_t* data, size_t size, const std::string
                                                      triangles, "normals", group, report);
       // One group: every vertex stays, as import_mesh() keeps them.
       Result<ScenePrimitive> primitive =
-          non_empty == 1 ? primitive_from_mesh(whole_mesh(&mesh, texcoords, normals))
-                         : primitive_from_mesh(sub_mesh(mesh, triangles, texcoords, normals));
+          non_empty == 1
+              ? primitive_from_mesh(whole_mesh(&mesh, texcoords, normals))
+              : primitive_from_mesh(sub_mesh(mesh, triangles, texcoords, normals, &*scratch));
       if (!primitive.is_ok()) return primitive.status();
       if (g != 0) {
         primitive.value().material = static_cast<int32_t>(used_names.size());
