@@ -348,6 +348,38 @@ TEST(SceneImport, MissingTextureIsOneWarning) {
             SceneJson({0.5, 0.5, 0.5, 1.0}));
 }
 
+TEST(SceneImport, GroupMixingTextureCoordinatesDropsThemWithANote) {
+  const std::string folder = temp_folder();
+  write_text(folder + "/m.obj",
+             "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+             "usemtl a\nf 1/1 2/1 3/1\nf 1 3 2\nusemtl b\nf 1/1 3/1 2/1\n");
+  write_text(folder + "/m.mtl",
+             "newmtl a\nTr 0.75\nPm 0.5\nPr 0.25\nKa 1 1 1\nnewmtl b\nmap_Ke -o 0 0 e.png\n");
+  write_text(folder + "/e.png", "E");
+  ImportReport report;
+  Scene scene = read_ok(folder + "/m.obj", &report);
+  EXPECT_TRUE(report.warnings.empty());
+  const std::vector<ScenePrimitive>& prims = scene.meshes.at(0).primitives;
+  ASSERT_EQ(prims.size(), 2u);
+  EXPECT_EQ(prims[0].find("TEXCOORD_0"), nullptr);
+  EXPECT_NE(prims[1].find("TEXCOORD_0"), nullptr);
+  bool noted = false;
+  for (const std::string& note : report.notes)
+    noted =
+        noted || note == "dropped texture coordinates of material 'a': 1 of 2 triangles have none";
+  EXPECT_TRUE(noted);
+  const SceneJson& a = scene.materials.at(0);
+  EXPECT_EQ(a["pbrMetallicRoughness"]["baseColorFactor"], SceneJson({1.0, 1.0, 1.0, 0.25}));
+  EXPECT_EQ(a["pbrMetallicRoughness"]["metallicFactor"], 0.5);
+  EXPECT_EQ(a["pbrMetallicRoughness"]["roughnessFactor"], 0.25);
+  const SceneJson& b = scene.materials.at(1);
+  EXPECT_EQ(b["emissiveTexture"]["index"], 0);
+  EXPECT_EQ(b["emissiveFactor"], SceneJson({1.0, 1.0, 1.0}));
+  ASSERT_EQ(scene.images.size(), 1u);
+  EXPECT_EQ(scene.images[0].uri, "e.png");
+  EXPECT_EQ(scene.images[0].bytes, Bytes{'E'});
+}
+
 TEST(SceneImport, PlyUcharColoursBecomeNormalizedUnsignedBytes) {
   const std::string folder = temp_folder();
   write_text(folder + "/c.ply",
