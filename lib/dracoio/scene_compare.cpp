@@ -94,7 +94,7 @@ std::string optional_text(const T& value) {
   return json_text(Json(*value));
 }
 
-// Appends "<where> <what>" to `out` when nothing was found yet.
+// Keeps the first difference noted; later checks are skipped once one is found.
 class Finder {
  public:
   bool found() const { return !line_.empty(); }
