@@ -111,7 +111,7 @@ struct ScenePrimitive {
   // so that equal primitives compare equal.
   std::vector<SceneAttribute> attributes;
   std::vector<std::vector<SceneAttribute>> targets;  // morph targets, each sorted by semantic
-  SceneJson extras;      // null when absent
+  SceneJson extras;                                  // null when absent
   SceneJson extensions;  // null when absent; decoded compression extensions removed
 
   // The stream named `semantic`, or nullptr.
