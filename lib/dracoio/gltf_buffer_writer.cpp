@@ -1,6 +1,8 @@
 // The buffer layout of written glTF scenes (gltf_buffer_writer.h).
 #include "lib/dracoio/gltf_buffer_writer.h"
 
+#include "formats/scene/accessor_values.h"
+
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -28,48 +30,15 @@ uint32_t round_up4(uint64_t n) {
   return static_cast<uint32_t>((n + 3) & ~uint64_t{3});
 }
 
-// One component as a double, in its component type (not normalized).
-double component_value(const uint8_t* p, ComponentType t) {
-  switch (t) {
-    case ComponentType::kByte:
-      return static_cast<int8_t>(p[0]);
-    case ComponentType::kUnsignedByte:
-      return p[0];
-    case ComponentType::kShort: {
-      int16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case ComponentType::kUnsignedShort: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case ComponentType::kUnsignedInt: {
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case ComponentType::kFloat: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-  }
-  return 0;
-}
-
 // Per-component min and max; false when a float component is not finite
 // (JSON cannot hold it, and such data is not valid glTF anyway).
 bool bounds_of(const AccessorData& data, nlohmann::json* min, nlohmann::json* max) {
   const uint32_t n = data.components();
-  const uint32_t size = component_size(data.component_type);
   std::vector<double> lo(n, std::numeric_limits<double>::infinity());
   std::vector<double> hi(n, -std::numeric_limits<double>::infinity());
   for (uint32_t e = 0; e < data.count; ++e) {
     for (uint32_t c = 0; c < n; ++c) {
-      const double v =
-          component_value(data.bytes.data() + (size_t{e} * n + c) * size, data.component_type);
+      const double v = stored_value(data, e, c);
       if (!std::isfinite(v)) return false;
       lo[c] = std::min(lo[c], v);
       hi[c] = std::max(hi[c], v);

@@ -2,6 +2,8 @@
 // lib/dracoio until lib/scene has a library of its own.
 #include "lib/scene/scene_compare.h"
 
+#include "formats/scene/accessor_values.h"
+
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -38,36 +40,6 @@ const char* component_name(ComponentType t) {
 const char* element_name(ElementType t) {
   static const char* const kNames[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
   return kNames[static_cast<int>(t)];
-}
-
-double component_value(const uint8_t* p, ComponentType t) {
-  switch (t) {
-    case ComponentType::kByte:
-      return static_cast<int8_t>(p[0]);
-    case ComponentType::kUnsignedByte:
-      return p[0];
-    case ComponentType::kShort: {
-      int16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case ComponentType::kUnsignedShort: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case ComponentType::kUnsignedInt: {
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case ComponentType::kFloat: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-  }
-  return 0;
 }
 
 std::string json_text(const Json& j) {
@@ -143,11 +115,12 @@ class Finder {
     const uint32_t size = component_size(a.component_type);
     for (size_t i = 0; i + size <= a.bytes.size(); i += size) {
       if (std::memcmp(a.bytes.data() + i, b.bytes.data() + i, size) == 0) continue;
-      const size_t component = i / size;
-      return note(where + ": element " + std::to_string(component / a.components()) +
-                  " component " + std::to_string(component % a.components()) + " differs (" +
-                  number(component_value(a.bytes.data() + i, a.component_type)) + " vs " +
-                  number(component_value(b.bytes.data() + i, b.component_type)) + ")");
+      const size_t element = i / size / a.components();
+      const uint32_t component = static_cast<uint32_t>(i / size % a.components());
+      return note(where + ": element " + std::to_string(element) + " component " +
+                  std::to_string(component) + " differs (" +
+                  number(stored_value(a, element, component)) + " vs " +
+                  number(stored_value(b, element, component)) + ")");
     }
   }
 
