@@ -18,9 +18,15 @@ FUZZ_PACKAGES := clang libclang-rt-14-dev
 # .spm anchor). Without them those rows are left out with a note.
 BENCH_PACKAGES := libopenmesh-apps
 
-CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA)
+# Node tools the tests and benchmarks run (tests/npm/package.json: Khronos's
+# gltf-validator, gltfpack, @gltf-transform/cli), installed from the committed
+# lock into the build folder, never the source tree.
+NPM_DIR ?= $(abspath $(BUILD))/npm
 
-.PHONY: all deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
+CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA) \
+  -DLODBAKE_NPM_DIR=$(NPM_DIR)
+
+.PHONY: all deps npm-deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
   bench-heldout \
   format format-check clean
 
@@ -35,6 +41,20 @@ deps:
 	  SUDO=; [ "$$(id -u)" -eq 0 ] || SUDO=sudo; \
 	  $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
 	  $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+# `npm ci` from tests/npm's lock, quiet; skipped when the same lock is
+# already installed (the stamp is written only after a complete install).
+npm-deps:
+	@command -v npm > /dev/null || { echo "Error: npm is needed for the gltf tests (Node.js 20 or later)"; exit 1; }
+	@mkdir -p $(NPM_DIR); \
+	if ! cmp -s tests/npm/package-lock.json $(NPM_DIR)/installed.lock || [ ! -d $(NPM_DIR)/node_modules ]; then \
+	  echo "lodbake: installing the npm test tools into $(NPM_DIR)"; \
+	  rm -f $(NPM_DIR)/installed.lock; \
+	  cp tests/npm/package.json tests/npm/package-lock.json $(NPM_DIR)/ && \
+	  npm ci --prefix $(NPM_DIR) --no-audit --no-fund --loglevel=error > $(NPM_DIR).log 2>&1 \
+	    || { cat $(NPM_DIR).log; exit 1; }; \
+	  cp tests/npm/package-lock.json $(NPM_DIR)/installed.lock; \
 	fi
 
 fuzz-deps:
@@ -53,7 +73,7 @@ build: configure
 run: build
 	@LODBAKE_BIN=$(BUILD)/tools samples/bake.sh $(BUILD)/sample
 
-test: build
+test: build npm-deps
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # Unit and fuzz-corpus tests under AddressSanitizer + UndefinedBehaviorSanitizer.

@@ -27,6 +27,8 @@ const std::vector<SectionKind>& known_section_kinds() {
        false},
       {kStrpTag, "triangle strips over BASE's vertices", false},
       {kSetsTag, "SETS multiresolution strip graph over a progressive mesh's contractions", false},
+      {kScneTag, "the asset: glTF scene (nodes, materials, textures, skins) and its meshes' groups",
+       false},
   };
   return kinds;
 }

@@ -20,6 +20,7 @@ inline constexpr char kRfinTag[] = "RFIN";  ///< per-split refinement data (form
 inline constexpr char kFanhTag[] = "FANH";  ///< fan-merge hierarchy (formats/sections/fanh.h)
 inline constexpr char kStrpTag[] = "STRP";  ///< triangle strips (formats/sections/strp.h)
 inline constexpr char kSetsTag[] = "SETS";  ///< SETS strip graph (formats/sections/sets.h)
+inline constexpr char kScneTag[] = "SCNE";  ///< the asset's scene (formats/sections/scne.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters

@@ -13,6 +13,7 @@
 #include "formats/sections/fanh.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/rfin.h"
+#include "formats/sections/scne.h"
 #include "formats/sections/sets.h"
 #include "formats/sections/strp.h"
 #include "formats/sections/vhie.h"
@@ -289,9 +290,7 @@ std::vector<SectionFinding> validate_group(const Container& container) {
   return findings;
 }
 
-}  // namespace
-
-std::vector<SectionFinding> validate_sections(const Container& container) {
+std::vector<SectionFinding> validate_groups(const Container& container) {
   if (container.group_count() <= 1) return validate_group(container);
   std::vector<SectionFinding> findings;
   for (uint32_t group = 0; group < container.group_count(); ++group) {
@@ -300,6 +299,30 @@ std::vector<SectionFinding> validate_sections(const Container& container) {
       findings.push_back(std::move(f));
     }
   }
+  return findings;
+}
+
+// SCNE names the group of each scene mesh: that group must hold a BASE.
+void check_scene_map(const Container& container, std::vector<SectionFinding>* findings) {
+  const Section* scne = container.find(kScneTag, 0);
+  if (scne == nullptr) return;
+  Result<SceneSection> scene = decode_scne(scne->data, scne->size);
+  if (!scene.is_ok()) {
+    findings->push_back({kScneTag, scene.status().message()});
+    return;
+  }
+  for (const SceneMeshGroup& m : scene.value().meshes) {
+    if (container.find(kBaseTag, m.group) == nullptr)
+      findings->push_back({kScneTag, "mesh " + std::to_string(m.mesh) + "'s group " +
+                                         std::to_string(m.group) + " has no BASE section"});
+  }
+}
+
+}  // namespace
+
+std::vector<SectionFinding> validate_sections(const Container& container) {
+  std::vector<SectionFinding> findings = validate_groups(container);
+  check_scene_map(container, &findings);
   return findings;
 }
 

@@ -38,15 +38,26 @@ void copy_value(const MeshAttribute& from, uint32_t index, std::vector<float>* t
 }  // namespace
 
 TriangleMesh split_corner_attributes(const TriangleMesh& mesh) {
+  std::vector<uint32_t> source;
+  return split_corner_attributes(mesh, &source);
+}
+
+TriangleMesh split_corner_attributes(const TriangleMesh& mesh,
+                                     std::vector<uint32_t>* source_vertex) {
   if (mesh.normals.binding != AttributeBinding::kPerCorner &&
-      mesh.texcoords.binding != AttributeBinding::kPerCorner)
+      mesh.texcoords.binding != AttributeBinding::kPerCorner) {
+    source_vertex->resize(mesh.positions.size());
+    for (size_t i = 0; i < source_vertex->size(); ++i)
+      (*source_vertex)[i] = static_cast<uint32_t>(i);
     return mesh;
+  }
   const size_t v = mesh.positions.size();
   // keys[i] for i < v: the combination owning vertex i; for i >= v: the
   // duplicates, chained per source vertex through next_variant.
   std::vector<Key> keys(v);
   std::vector<bool> used(v, false);
-  std::vector<uint32_t> source(v);
+  std::vector<uint32_t>& source = *source_vertex;
+  source.resize(v);
   std::vector<uint32_t> next_variant(v, kUnset);
   for (size_t i = 0; i < v; ++i)
     source[i] = static_cast<uint32_t>(i);

@@ -3,6 +3,9 @@
 // OFF variants, glTF).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "formats/mesh/triangle_mesh.h"
 
 namespace lodbake {
@@ -17,5 +20,10 @@ namespace lodbake {
 /// attributes are returned unchanged.
 /// \pre check_writable(mesh) is ok.
 TriangleMesh split_corner_attributes(const TriangleMesh& mesh);
+
+/// The same, also giving for every vertex of the result the vertex of
+/// `mesh` it comes from (so that other per-vertex data can follow the split).
+TriangleMesh split_corner_attributes(const TriangleMesh& mesh,
+                                     std::vector<uint32_t>* source_vertex);
 
 }  // namespace lodbake

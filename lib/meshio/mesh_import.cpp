@@ -116,18 +116,26 @@ Result<MeshFormat> detect_mesh_format(const std::string& file_name, const Bytes&
       ".gltf .glb .drc, each optionally .gz)");
 }
 
-Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& bytes,
-                                 ImportReport* report, const SceneResources* resources) {
-  if (is_gzip(bytes)) {
+Result<MeshContent> prepare_mesh_content(const std::string& file_name, const Bytes& bytes,
+                                         ImportReport* report) {
+  MeshContent content;
+  content.file_name = file_name;
+  // Nested gzip (.gz.gz) is undone layer by layer, each layer bounded.
+  while (is_gzip(content.bytes(bytes))) {
+    const Bytes& packed = content.bytes(bytes);
     LODBAKE_ASSIGN_OR_RETURN(Bytes inflated,
-                             gunzip(bytes.data(), bytes.size(), kMaxDecompressedBytes));
-    report->notes.push_back("decompressed gzip input (" + std::to_string(bytes.size()) + " -> " +
+                             gunzip(packed.data(), packed.size(), kMaxDecompressedBytes));
+    report->notes.push_back("decompressed gzip input (" + std::to_string(packed.size()) + " -> " +
                             std::to_string(inflated.size()) + " bytes)");
-    return import_mesh(strip_gz(file_name), inflated, report, resources);
+    content.inflated = std::move(inflated);
+    content.decompressed = true;
+    content.file_name = strip_gz(content.file_name);
   }
-  if (bytes.empty()) return invalid_input("file is empty");
-  LODBAKE_ASSIGN_OR_RETURN(MeshFormat format, detect_mesh_format(file_name, bytes));
-  std::optional<MeshFormat> by_name = format_from_extension(lower_extension(file_name));
+  const Bytes& data = content.bytes(bytes);
+  if (data.empty()) return invalid_input("file is empty");
+  LODBAKE_ASSIGN_OR_RETURN(content.format, detect_mesh_format(content.file_name, data));
+  std::optional<MeshFormat> by_name = format_from_extension(lower_extension(content.file_name));
+  const MeshFormat format = content.format;
   if (by_name && *by_name != format &&
       !(*by_name == MeshFormat::kGltf && format == MeshFormat::kGlb) &&
       !(*by_name == MeshFormat::kGlb && format == MeshFormat::kGltf)) {
@@ -135,9 +143,16 @@ Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& byte
                             " although the name says " + mesh_format_name(*by_name) + "; read as " +
                             mesh_format_name(format));
   }
-  const uint8_t* data = bytes.data();
-  size_t size = bytes.size();
-  switch (format) {
+  return content;
+}
+
+Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& bytes,
+                                 ImportReport* report, const SceneResources* resources) {
+  LODBAKE_ASSIGN_OR_RETURN(MeshContent content, prepare_mesh_content(file_name, bytes, report));
+  const Bytes& data_bytes = content.bytes(bytes);
+  const uint8_t* data = data_bytes.data();
+  size_t size = data_bytes.size();
+  switch (content.format) {
     case MeshFormat::kObj:
       return parse_obj(data, size, report);
     case MeshFormat::kOff:
@@ -147,7 +162,8 @@ Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& byte
     case MeshFormat::kStl:
       return parse_stl(data, size, report);
     case MeshFormat::kGltf:
-    case MeshFormat::kGlb: {
+    case MeshFormat::kGlb:
+    {
       SceneResources folder;
       if (resources != nullptr) {
         folder = *resources;

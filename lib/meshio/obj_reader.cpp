@@ -20,6 +20,9 @@
 //   the extra values noted; "vt u" gets v = 0; "vt u v w" drops w with a note.
 // - Non-finite numbers (nan, inf) in v, vt, vn are errors: no lodbake
 //   algorithm can use them and repair cannot invent coordinates.
+// - Asked for material groups (lib/scene), 'mtllib' names its libraries
+//   (several, blank-separated) and 'usemtl' the rest of its line; each
+//   triangle records the material in use.
 // - Every other statement (o, g, s, usemtl, mtllib, l, p, curves, ...) is
 //   counted and reported in one note per keyword; lines starting with
 //   anything else are counted as unknown. A file without any face is an
@@ -43,7 +46,7 @@
 namespace lodbake {
 namespace {
 
-constexpr uint32_t kNoIndex = std::numeric_limits<uint32_t>::max();
+constexpr uint32_t kNoIndex = kObjNoIndex;
 
 // Statements of the OBJ spec that lodbake reads past; anything else is
 // counted as "unknown" (its keyword may be binary junk, unfit for a note).
@@ -79,8 +82,9 @@ struct CornerStream {
 
 class ObjReader {
  public:
-  ObjReader(const uint8_t* data, size_t size, ImportReport* report)
-      : text_(data), size_(size), scanner_(data, size), report_(report) {
+  ObjReader(const uint8_t* data, size_t size, ImportReport* report,
+            ObjMaterialGroups* groups = nullptr)
+      : text_(data), size_(size), scanner_(data, size), report_(report), groups_(groups) {
     scanner_.set_line_continuation(true);
   }
 
@@ -93,6 +97,8 @@ class ObjReader {
   Status read_texcoord();
   Status read_normal();
   Status read_face();
+  void read_mtllib();
+  void read_usemtl();
   // Resolves a 1-based or negative OBJ index against `count` elements so far.
   Status resolve(std::string_view text, uint64_t count, const char* what, uint32_t* out) const;
   // Reads the tokens left on the line (noting how many) and moves past it.
@@ -106,6 +112,9 @@ class ObjReader {
   size_t size_;
   TextScanner scanner_;
   ImportReport* report_;
+  ObjMaterialGroups* groups_;  // null: materials are ignored
+  int32_t material_ = -1;      // index into groups_->materials of the 'usemtl' in force
+  std::map<std::string, int32_t, std::less<>> material_index_;
   TriangleMesh mesh_;
   std::vector<float> texcoord_values_;
   std::vector<float> normal_values_;
@@ -297,6 +306,7 @@ Status ObjReader::read_face() {
         triangulator_.triangulate(face_v_.data(), n, mesh_.positions, &mesh_.triangles, &slots_));
   }
   const size_t added = mesh_.triangles.size() - first;
+  if (groups_ != nullptr) groups_->triangle_material.resize(first + added, material_);
   auto follow = [&](CornerStream* stream, const std::vector<uint32_t>& indices) {
     if (indices.empty()) {
       ++stream->faces_without;
@@ -315,6 +325,32 @@ Status ObjReader::read_face() {
   return Status::ok();
 }
 
+void ObjReader::read_mtllib() {
+  for (;;) {
+    std::string_view t = scanner_.token_until('#');
+    if (t.empty()) break;
+    groups_->libraries.emplace_back(t);
+  }
+  scanner_.skip_line();
+}
+
+void ObjReader::read_usemtl() {
+  std::string name;
+  for (;;) {
+    std::string_view t = scanner_.token_until('#');
+    if (t.empty()) break;
+    if (!name.empty()) name += ' ';
+    name += t;
+  }
+  scanner_.skip_line();
+  auto it = material_index_.find(name);
+  if (it == material_index_.end()) {
+    it = material_index_.emplace(name, static_cast<int32_t>(groups_->materials.size())).first;
+    groups_->materials.push_back(name);
+  }
+  material_ = it->second;
+}
+
 Status ObjReader::finish_attribute(CornerStream* stream, std::vector<float>* values,
                                    uint32_t components, const char* name, const char* keyword,
                                    MeshAttribute* out) {
@@ -327,6 +363,15 @@ Status ObjReader::finish_attribute(CornerStream* stream, std::vector<float>* val
     return Status::ok();
   }
   if (stream->faces_without != 0) {
+    if (groups_ != nullptr) {
+      MeshAttribute* partial =
+          components == 2 ? &groups_->partial_texcoords : &groups_->partial_normals;
+      partial->binding = AttributeBinding::kPerCorner;
+      partial->components = components;
+      partial->values = std::move(*values);
+      partial->corners = std::move(stream->corners);
+      return Status::ok();  // the caller says what it keeps
+    }
     report_->notes.push_back("dropped " + std::string(name) + ": " +
                              std::to_string(stream->faces_without) + " of " +
                              std::to_string(faces_) + " faces have none");
@@ -378,6 +423,10 @@ Result<TriangleMesh> ObjReader::read() {
       LODBAKE_RETURN_IF_ERROR(read_texcoord());
     } else if (keyword == "vn") {
       LODBAKE_RETURN_IF_ERROR(read_normal());
+    } else if (groups_ != nullptr && keyword == "mtllib") {
+      read_mtllib();
+    } else if (groups_ != nullptr && keyword == "usemtl") {
+      read_usemtl();
     } else if (is_known_ignored_keyword(keyword)) {
       auto it = ignored_.find(keyword);
       if (it == ignored_.end()) it = ignored_.emplace(std::string(keyword), 0).first;
@@ -424,6 +473,12 @@ Result<TriangleMesh> ObjReader::read() {
 
 Result<TriangleMesh> parse_obj(const uint8_t* data, size_t size, ImportReport* report) {
   return read_text_mesh<ObjReader>(data, size, report, "OBJ");
+}
+
+Result<TriangleMesh> parse_obj(const uint8_t* data, size_t size, ImportReport* report,
+                               ObjMaterialGroups* groups) {
+  *groups = ObjMaterialGroups();
+  return read_text_mesh<ObjReader>(data, size, report, "OBJ", groups);
 }
 
 }  // namespace lodbake

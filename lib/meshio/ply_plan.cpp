@@ -3,7 +3,10 @@
 // - Positions are `vertex` x y z of any scalar type (float and double are
 //   the usual ones); normals need all of nx ny nz; texture coordinates are
 //   the first complete pair of u v, s t, texture_u texture_v, texture_s
-//   texture_t. Everything else (confidence, intensity, colours, a partial
+//   texture_t. Colours, when the caller wants them, are red green blue
+//   [alpha] of one type among uchar, ushort, float and double (the types
+//   glTF's COLOR_n can hold, double narrowed to float). Everything else
+//   (confidence, intensity, colours of other types or not wanted, a partial
 //   normal, a second texture pair, list properties) is skipped with a note.
 // - Faces are the `face` element's vertex_indices list, or vertex_index as
 //   older writers call it; strips are the `tristrips` element's
@@ -39,7 +42,36 @@ int scalar_property(const PlyElement& element, const char* name) {
   return i >= 0 && !element.properties[static_cast<size_t>(i)].is_list ? i : -1;
 }
 
-Status plan_vertex(const PlyElement& element, PlyElementPlan* plan, PlyPlan* out) {
+bool is_colour_type(PlyType type) {
+  return type == PlyType::kUint8 || type == PlyType::kUint16 || type == PlyType::kFloat32 ||
+         type == PlyType::kFloat64;
+}
+
+void plan_colours(const PlyElement& element, PlyElementPlan* plan, PlyPlan* out) {
+  static const char* const kChannels[4] = {"red", "green", "blue", "alpha"};
+  int found[4];
+  for (int c = 0; c < 4; ++c)
+    found[c] = scalar_property(element, kChannels[c]);
+  if (found[0] < 0 || found[1] < 0 || found[2] < 0) return;
+  const PlyType type = element.properties[static_cast<size_t>(found[0])].type;
+  if (!is_colour_type(type)) return;
+  uint32_t components = 3;
+  for (int c = 1; c < 4; ++c) {
+    if (found[c] < 0) continue;
+    if (element.properties[static_cast<size_t>(found[c])].type != type) {
+      if (c == 3) break;  // an alpha of another type is skipped alone
+      return;
+    }
+    if (c == 3) components = 4;
+  }
+  for (uint32_t c = 0; c < components; ++c)
+    plan->slots[static_cast<size_t>(found[c])] = static_cast<uint8_t>(kSlotRed + c);
+  out->colour_components = components;
+  out->colour_type = type;
+}
+
+Status plan_vertex(const PlyElement& element, PlyElementPlan* plan, PlyPlan* out,
+                   bool want_colours) {
   static const char* const kAxes[3] = {"x", "y", "z"};
   for (uint8_t axis = 0; axis < 3; ++axis) {
     int i = element.find(kAxes[axis]);
@@ -72,6 +104,7 @@ Status plan_vertex(const PlyElement& element, PlyElementPlan* plan, PlyPlan* out
       break;
     }
   }
+  if (want_colours) plan_colours(element, plan, out);
   return Status::ok();
 }
 
@@ -129,7 +162,8 @@ Status check_body_size(const PlyPlan& plan, PlyFormat format, uint64_t body_size
 
 }  // namespace
 
-Result<PlyPlan> plan_ply(const PlyHeader& header, uint64_t body_size, ImportReport* report) {
+Result<PlyPlan> plan_ply(const PlyHeader& header, uint64_t body_size, ImportReport* report,
+                         bool want_colours) {
   PlyPlan plan;
   bool have_vertex = false;
   bool have_triangles = false;
@@ -139,7 +173,7 @@ Result<PlyPlan> plan_ply(const PlyHeader& header, uint64_t body_size, ImportRepo
     e.slots.assign(element.properties.size(), kSlotSkip);
     if (element.name == "vertex") {
       e.role = PlyRole::kVertex;
-      LODBAKE_RETURN_IF_ERROR(plan_vertex(element, &e, &plan));
+      LODBAKE_RETURN_IF_ERROR(plan_vertex(element, &e, &plan, want_colours));
       plan.vertex_count = element.count;
       have_vertex = true;
     } else if (element.name == "face" || element.name == "tristrips") {

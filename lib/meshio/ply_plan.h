@@ -17,7 +17,7 @@ namespace lodbake {
 
 enum class PlyRole : uint8_t { kVertex, kFace, kStrips, kSkip };
 
-// Destination of one property's values. Vertex slots index a float[8].
+// Destination of one property's values. Vertex slots index a float[kVertexSlots].
 enum PlySlot : uint8_t {
   kSlotX,
   kSlotY,
@@ -27,6 +27,10 @@ enum PlySlot : uint8_t {
   kSlotNz,
   kSlotU,
   kSlotV,
+  kSlotRed,
+  kSlotGreen,
+  kSlotBlue,
+  kSlotAlpha,
   kVertexSlots,
   kSlotSkip = 0xfe,     // read (validated) and dropped
   kSlotIndices = 0xff,  // the face or strip vertex index list
@@ -44,14 +48,21 @@ struct PlyPlan {
   uint64_t face_count = 0;  // items of the 'face' element (a reservation hint)
   bool has_normals = false;
   bool has_texcoords = false;
+  // Vertex colours, planned only when asked for: 0, 3 (red green blue) or 4
+  // (with alpha) components, all of `colour_type`.
+  uint32_t colour_components = 0;
+  PlyType colour_type = PlyType::kUint8;
 };
 
 /// Decides each element's role and each property's slot, appends one note to
 /// `report` per ignored property or skipped element, and checks that the
 /// `body_size` bytes after the header can hold the smallest body the header
-/// allows. Fails on a missing vertex element or x/y/z property, on a mesh
+/// allows. Colours are read only when `want_colours` (otherwise skipped
+/// with a note like any other property). Fails on a missing vertex element
+/// or x/y/z property, on a mesh
 /// without a face or tristrips element, on index lists of the wrong kind,
 /// and on counts the body cannot hold.
-Result<PlyPlan> plan_ply(const PlyHeader& header, uint64_t body_size, ImportReport* report);
+Result<PlyPlan> plan_ply(const PlyHeader& header, uint64_t body_size, ImportReport* report,
+                         bool want_colours = false);
 
 }  // namespace lodbake

@@ -17,6 +17,7 @@
 // The dragon (34 MB of ASCII) goes through one tight loop per element over a
 // TextScanner with std::from_chars, with every array reserved from header
 // counts that plan_ply() bounded by the body size first.
+#include <algorithm>
 #include <cmath>
 #include <new>
 #include <string>
@@ -53,13 +54,21 @@ struct PendingPolygon {
 template <class Source>
 class PlyBodyReader {
  public:
-  PlyBodyReader(Source* source, const PlyPlan& plan, TriangleMesh* mesh, ImportReport* report)
-      : src_(*source), plan_(plan), mesh_(*mesh), report_(*report) {}
+  PlyBodyReader(Source* source, const PlyPlan& plan, TriangleMesh* mesh, ImportReport* report,
+                VertexColours* colours)
+      : src_(*source), plan_(plan), mesh_(*mesh), report_(*report), colours_(colours) {}
 
   Status read() {
     mesh_.positions.resize(static_cast<size_t>(plan_.vertex_count));
     if (plan_.has_normals) normals_.resize(static_cast<size_t>(plan_.vertex_count) * 3);
     if (plan_.has_texcoords) texcoords_.resize(static_cast<size_t>(plan_.vertex_count) * 2);
+    if (plan_.colour_components != 0) {
+      colours_->components = plan_.colour_components;
+      colours_->max_value = plan_.colour_type == PlyType::kUint8    ? 255
+                            : plan_.colour_type == PlyType::kUint16 ? 65535
+                                                                    : 1;
+      colours_->values.resize(static_cast<size_t>(plan_.vertex_count) * plan_.colour_components);
+    }
     mesh_.triangles.reserve(static_cast<size_t>(plan_.face_count));
     for (const PlyElementPlan& e : plan_.elements) {
       switch (e.role) {
@@ -134,6 +143,9 @@ class PlyBodyReader {
       if (plan_.has_texcoords) {
         texcoords_[2 * index] = v[kSlotU];
         texcoords_[2 * index + 1] = v[kSlotV];
+      }
+      if (const uint32_t c = plan_.colour_components; c != 0) {
+        std::copy(v + kSlotRed, v + kSlotRed + c, colours_->values.begin() + c * index);
       }
     }
     return Status::ok();
@@ -324,6 +336,7 @@ class PlyBodyReader {
   const PlyPlan& plan_;
   TriangleMesh& mesh_;
   ImportReport& report_;
+  VertexColours* colours_;  // null unless the plan has colours
   std::vector<float> normals_;
   std::vector<float> texcoords_;
   std::vector<uint32_t> corners_;
@@ -335,15 +348,18 @@ class PlyBodyReader {
   int64_t bad_length_value_ = 0;
 };
 
-Result<TriangleMesh> parse_ply_impl(const uint8_t* data, size_t size, ImportReport* report) {
+Result<TriangleMesh> parse_ply_impl(const uint8_t* data, size_t size, ImportReport* report,
+                                    VertexColours* colours) {
   LODBAKE_ASSIGN_OR_RETURN(PlyHeader header, parse_ply_header(data, size));
-  LODBAKE_ASSIGN_OR_RETURN(PlyPlan plan, plan_ply(header, size - header.body_offset, report));
+  LODBAKE_ASSIGN_OR_RETURN(PlyPlan plan,
+                           plan_ply(header, size - header.body_offset, report, colours != nullptr));
   TriangleMesh mesh;
   switch (header.format) {
     case PlyFormat::kAscii: {
       report->format = "ply-ascii";
       PlyAsciiSource source(data, size, header.body_offset, header.body_first_line);
-      LODBAKE_RETURN_IF_ERROR(PlyBodyReader<PlyAsciiSource>(&source, plan, &mesh, report).read());
+      LODBAKE_RETURN_IF_ERROR(
+          PlyBodyReader<PlyAsciiSource>(&source, plan, &mesh, report, colours).read());
       break;
     }
     case PlyFormat::kBinaryLittleEndian:
@@ -352,7 +368,8 @@ Result<TriangleMesh> parse_ply_impl(const uint8_t* data, size_t size, ImportRepo
       report->format = little ? "ply-binary-le" : "ply-binary-be";
       PlyBinarySource source(data, size, header.body_offset,
                              little ? Endian::kLittle : Endian::kBig);
-      LODBAKE_RETURN_IF_ERROR(PlyBodyReader<PlyBinarySource>(&source, plan, &mesh, report).read());
+      LODBAKE_RETURN_IF_ERROR(
+          PlyBodyReader<PlyBinarySource>(&source, plan, &mesh, report, colours).read());
       break;
     }
   }
@@ -361,14 +378,20 @@ Result<TriangleMesh> parse_ply_impl(const uint8_t* data, size_t size, ImportRepo
 
 }  // namespace
 
-Result<TriangleMesh> parse_ply(const uint8_t* data, size_t size, ImportReport* report) {
+Result<TriangleMesh> parse_ply(const uint8_t* data, size_t size, ImportReport* report,
+                               VertexColours* colours) {
   ImportReport local;
   ImportReport* out = report != nullptr ? report : &local;
+  if (colours != nullptr) *colours = VertexColours();
   try {
-    return parse_ply_impl(data, size, out);
+    return parse_ply_impl(data, size, out, colours);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while reading the ply file");
   }
+}
+
+Result<TriangleMesh> parse_ply(const uint8_t* data, size_t size, ImportReport* report) {
+  return parse_ply(data, size, report, nullptr);
 }
 
 }  // namespace lodbake

@@ -29,18 +29,18 @@ inline Status prepare_text_into_report(const uint8_t** data, size_t* size,
   return Status::ok();
 }
 
-/// Prepares the text, then returns `Reader(data, size, report).read()`.
+/// Prepares the text, then returns `Reader(data, size, report, extra...).read()`.
 /// `report` may be null. std::bad_alloc and std::length_error become
 /// "out of memory while reading the <format> file" (kRuntime).
-template <typename Reader>
+template <typename Reader, typename... Extra>
 Result<TriangleMesh> read_text_mesh(const uint8_t* data, size_t size, ImportReport* report,
-                                    const char* format) {
+                                    const char* format, Extra... extra) {
   ImportReport local;
   if (report == nullptr) report = &local;
   try {
     std::vector<uint8_t> decoded;
     LODBAKE_RETURN_IF_ERROR(prepare_text_into_report(&data, &size, &decoded, report));
-    Reader reader(data, size, report);
+    Reader reader(data, size, report, extra...);
     return reader.read();
   } catch (const std::bad_alloc&) {
     return runtime_error(std::string("out of memory while reading the ") + format + " file");

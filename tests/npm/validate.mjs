@@ -1,0 +1,84 @@
+// Validates a .gltf or .glb with Khronos's glTF validator (npm
+// gltf-validator), external buffers and images read from the file's folder.
+// Prints the error count and each error; exits 1 when there is an error,
+// 77 (CTest's skip code here) when the validator is not installed, 2 on bad
+// usage or an unreadable file.
+//
+//   node validate.mjs [--modules NPM_DIR] [--allow-missing URI]... FILE
+//
+// --modules: the folder `make npm-deps` installed the packages into
+// (default: $LODBAKE_NPM_DIR, else this script's folder).
+// --allow-missing URI: the one error accepted, the validator's IO_ERROR for
+// an image or buffer whose file is absent, for this URI only (an input that
+// named a missing image: the writer keeps the reference; see docs/export.md).
+import fs from 'node:fs';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+import { fileURLToPath } from 'node:url';
+
+function usage(message) {
+  console.error(`Error: ${message}\nusage: node validate.mjs [--modules DIR] [--allow-missing URI]... FILE`);
+  process.exit(2);
+}
+
+let modules = process.env.LODBAKE_NPM_DIR || path.dirname(fileURLToPath(import.meta.url));
+const allowMissing = new Set();
+let file = null;
+const args = process.argv.slice(2);
+for (let i = 0; i < args.length; ++i) {
+  if (args[i] === '--modules' && i + 1 < args.length) modules = args[++i];
+  else if (args[i] === '--allow-missing' && i + 1 < args.length) allowMissing.add(args[++i]);
+  else if (args[i].startsWith('--')) usage(`unknown option ${args[i]}`);
+  else if (file === null) file = args[i];
+  else usage('one file only');
+}
+if (file === null) usage('no file given');
+
+let validator;
+try {
+  validator = createRequire(path.join(path.resolve(modules), 'package.json'))('gltf-validator');
+} catch (e) {
+  console.error(`Warning: gltf-validator is not installed in ${modules} (run make npm-deps): skipped`);
+  process.exit(77);
+}
+
+let bytes;
+try {
+  bytes = new Uint8Array(fs.readFileSync(file));
+} catch (e) {
+  console.error(`Error: ${file}: ${e.message}`);
+  process.exit(2);
+}
+
+const folder = path.dirname(path.resolve(file));
+const report = await validator.validateBytes(bytes, {
+  uri: path.basename(file),
+  maxIssues: 0,  // no limit
+  externalResourceFunction: (uri) =>
+    new Promise((resolve, reject) => {
+      fs.readFile(path.resolve(folder, decodeURIComponent(uri)), (err, data) =>
+        err ? reject(err.toString()) : resolve(new Uint8Array(data)));
+    }),
+});
+
+// The resource each pointer names ("/images/0" -> "Lantern_baseColor.png"),
+// to tell the accepted missing-file errors from any other.
+const uriOf = new Map();
+for (const resource of (report.info && report.info.resources) || []) {
+  if (resource.uri !== undefined) uriOf.set(resource.pointer, resource.uri);
+}
+const accepted = (m) =>
+  m.code === 'IO_ERROR' && m.pointer !== undefined && m.pointer.endsWith('/uri') &&
+  allowMissing.has(decodeURIComponent(uriOf.get(m.pointer.slice(0, -4)) || ''));
+
+const errors = report.issues.messages.filter((m) => m.severity === 0);
+const failing = errors.filter((m) => !accepted(m));
+console.log(`${file}: ${failing.length} errors (${errors.length - failing.length} accepted), ` +
+            `${report.issues.numWarnings} warnings, validator ${report.validatorVersion}`);
+for (const m of errors) {
+  console.log(`  ${accepted(m) ? 'accepted' : 'error'} ${m.code} at ${m.pointer || '/'}: ${m.message}`);
+}
+for (const m of report.issues.messages.filter((w) => w.severity === 1)) {
+  console.log(`  warning ${m.code} at ${m.pointer || '/'}: ${m.message}`);
+}
+process.exit(failing.length === 0 ? 0 : 1);
