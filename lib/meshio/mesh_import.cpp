@@ -162,8 +162,7 @@ Result<TriangleMesh> import_mesh(const std::string& file_name, const Bytes& byte
     case MeshFormat::kStl:
       return parse_stl(data, size, report);
     case MeshFormat::kGltf:
-    case MeshFormat::kGlb:
-    {
+    case MeshFormat::kGlb: {
       SceneResources folder;
       if (resources != nullptr) {
         folder = *resources;
