@@ -44,7 +44,9 @@ Result<Bytes> encode_scne(const SceneSection& section) {
   nlohmann::json meshes = nlohmann::json::array();
   for (const SceneMeshGroup& m : section.meshes)
     meshes.push_back({{"mesh", m.mesh}, {"group", m.group}, {"triangles", m.triangles}});
-  const std::string map = nlohmann::json({{"meshes", meshes}}).dump();
+  nlohmann::json map_json = {{"meshes", meshes}};
+  if (!section.image_uris.empty()) map_json["image_uris"] = section.image_uris;
+  const std::string map = map_json.dump();
   Bytes out(4);
   const uint32_t n = static_cast<uint32_t>(map.size());
   for (int i = 0; i < 4; ++i)
@@ -82,6 +84,13 @@ Result<SceneSection> decode_scne(const uint8_t* data, size_t size) {
       entry.triangles.push_back(t.get<uint64_t>());
     }
     section.meshes.push_back(std::move(entry));
+  }
+  if (map.contains("image_uris")) {
+    if (!map["image_uris"].is_array()) return bad("\"image_uris\" is not an array");
+    for (const nlohmann::json& uri : map["image_uris"]) {
+      if (!uri.is_string()) return bad("an image URI is not a string");
+      section.image_uris.push_back(uri.get<std::string>());
+    }
   }
   Status checked = check_map(section.meshes);
   if (!checked.is_ok()) return checked;

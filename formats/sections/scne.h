@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "formats/support/file_io.h"
@@ -30,9 +31,14 @@ struct SceneMeshGroup {
 
 struct SceneSection {
   std::vector<SceneMeshGroup> meshes;  ///< increasing mesh, each group at most once
-  Bytes glb;                           ///< the asset as a GLB 2.0 document
+  /// The file name each image had beside the input's .gltf ("" for an
+  /// embedded one), which the GLB cannot say: an extracted .gltf uses them.
+  std::vector<std::string> image_uris;
+  Bytes glb;  ///< the asset as a GLB 2.0 document
 
-  bool operator==(const SceneSection& o) const { return meshes == o.meshes && glb == o.glb; }
+  bool operator==(const SceneSection& o) const {
+    return meshes == o.meshes && image_uris == o.image_uris && glb == o.glb;
+  }
 };
 
 /// Largest map a reader accepts (the JSON before the GLB).

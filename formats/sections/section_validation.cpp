@@ -290,7 +290,9 @@ std::vector<SectionFinding> validate_group(const Container& container) {
   return findings;
 }
 
-std::vector<SectionFinding> validate_groups(const Container& container) {
+}  // namespace
+
+std::vector<SectionFinding> validate_group_sections(const Container& container) {
   if (container.group_count() <= 1) return validate_group(container);
   std::vector<SectionFinding> findings;
   for (uint32_t group = 0; group < container.group_count(); ++group) {
@@ -303,26 +305,27 @@ std::vector<SectionFinding> validate_groups(const Container& container) {
 }
 
 // SCNE names the group of each scene mesh: that group must hold a BASE.
-void check_scene_map(const Container& container, std::vector<SectionFinding>* findings) {
+std::vector<SectionFinding> validate_scene_map(const Container& container) {
+  std::vector<SectionFinding> findings;
   const Section* scne = container.find(kScneTag, 0);
-  if (scne == nullptr) return;
+  if (scne == nullptr) return findings;
   Result<SceneSection> scene = decode_scne(scne->data, scne->size);
   if (!scene.is_ok()) {
-    findings->push_back({kScneTag, scene.status().message()});
-    return;
+    findings.push_back({kScneTag, scene.status().message()});
+    return findings;
   }
   for (const SceneMeshGroup& m : scene.value().meshes) {
     if (container.find(kBaseTag, m.group) == nullptr)
-      findings->push_back({kScneTag, "mesh " + std::to_string(m.mesh) + "'s group " +
-                                         std::to_string(m.group) + " has no BASE section"});
+      findings.push_back({kScneTag, "mesh " + std::to_string(m.mesh) + "'s group " +
+                                        std::to_string(m.group) + " has no BASE section"});
   }
+  return findings;
 }
 
-}  // namespace
-
 std::vector<SectionFinding> validate_sections(const Container& container) {
-  std::vector<SectionFinding> findings = validate_groups(container);
-  check_scene_map(container, &findings);
+  std::vector<SectionFinding> findings = validate_group_sections(container);
+  for (SectionFinding& f : validate_scene_map(container))
+    findings.push_back(std::move(f));
   return findings;
 }
 

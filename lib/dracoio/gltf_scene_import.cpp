@@ -553,7 +553,9 @@ Status SceneReader::read_images() {
         auto bytes = read_resource(resources_, text);
         if (bytes.is_ok()) {
           out.bytes = std::move(bytes).value();
-        } else if (bytes.status().kind() == ErrorKind::kIo) {
+        } else if (bytes.status().kind() == ErrorKind::kIo || resources_.folder.empty()) {
+          // Read from memory (a container's SCNE keeps an image the input
+          // lacked as a reference), an image by URI is missing, not fatal.
           out.missing = true;
           warn(where + " '" + out.uri.substr(0, 200) + "' is missing");
         } else {

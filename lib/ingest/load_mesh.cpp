@@ -35,7 +35,10 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
     LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
   }
   bytes = Bytes();  // the parsed mesh replaces the file's bytes; free them early
+  return prepare_mesh(options, loaded);
+}
 
+Status prepare_mesh(const LoadOptions& options, LoadedMesh* loaded) {
   if (options.per_vertex_attributes &&
       (loaded->mesh.normals.binding == AttributeBinding::kPerCorner ||
        loaded->mesh.texcoords.binding == AttributeBinding::kPerCorner)) {

@@ -75,4 +75,9 @@ Status load_mesh(const std::string& path, const LoadOptions& options, LoadedMesh
 Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& options,
                        LoadedMesh* loaded);
 
+// The steps after parsing, on loaded->mesh already in place (a mesh that
+// comes from elsewhere than a file, e.g. a scene mesh's welded topology):
+// seam split, check, repair, policy, unreferenced vertices.
+Status prepare_mesh(const LoadOptions& options, LoadedMesh* loaded);
+
 }  // namespace lodbake

@@ -12,6 +12,7 @@
 #include "lib/scene/obj_scene.h"
 #include "lib/scene/scene_from_mesh.h"
 #include "lib/scene/scene_io.h"
+#include "lib/scene/scene_points.h"
 
 namespace lodbake {
 namespace {
@@ -74,8 +75,8 @@ Result<Scene> read_ply_scene(const uint8_t* data, size_t size, const std::string
   return scene_of_mesh(name, std::move(primitives));
 }
 
-Result<Scene> read_scene_bytes(const std::string& path, const Bytes& file_bytes,
-                               const SceneResources& resources, ImportReport* report) {
+Result<Scene> parse_scene(const std::string& path, const Bytes& file_bytes,
+                          const SceneResources& resources, ImportReport* report) {
   LODBAKE_ASSIGN_OR_RETURN(MeshContent content, prepare_mesh_content(path, file_bytes, report));
   const Bytes& bytes = content.bytes(file_bytes);
   const uint8_t* data = bytes.data();
@@ -107,17 +108,26 @@ Result<Scene> read_scene_bytes(const std::string& path, const Bytes& file_bytes,
 
 }  // namespace
 
-Result<Scene> read_scene_file(const std::string& path, const SceneResources& resources,
-                              ImportReport* report) {
-  LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, read_file(path));
+Result<Scene> read_scene_bytes(const std::string& path, const Bytes& bytes,
+                               const SceneResources& resources, ImportReport* report) {
   // References resolve from the file's own folder, whatever the caller's.
   SceneResources local = resources;
   local.folder = folder_of(path);
   try {
-    return read_scene_bytes(path, bytes, local, report);
+    Result<Scene> scene = parse_scene(path, bytes, local, report);
+    if (!scene.is_ok()) return scene;
+    for (SceneMesh& mesh : scene.value().meshes)
+      if (mesh.point_of_vertex.size() != mesh.primitives.size()) weld_mesh_points(&mesh);
+    return scene;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while reading the file");
   }
+}
+
+Result<Scene> read_scene_file(const std::string& path, const SceneResources& resources,
+                              ImportReport* report) {
+  LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, read_file(path));
+  return read_scene_bytes(path, bytes, resources, report);
 }
 
 }  // namespace lodbake

@@ -68,13 +68,31 @@ Result<std::vector<SceneOutputFile>> write_scene_gltf(const Scene& scene,
                                                       const std::string& gltf_name,
                                                       SceneWriteReport* report);
 
+// Writes the scene to `path`: a .glb, or a .gltf with its .bin and images
+// beside it (all files or none: staged, then renamed together). Another
+// extension fails with kUsage naming the two. Defined in lib/scene.
+Status write_scene_file(const std::string& path, const Scene& scene, SceneWriteReport* report);
+
+// The same, staged with the caller's other outputs (committed by the caller).
+Status stage_scene_file(StagedOutputs* staged, const std::string& path, const Scene& scene,
+                        SceneWriteReport* report);
+
+// True when `path` names a file write_scene_file() writes (.glb, .gltf).
+bool is_scene_output(const std::string& path);
+
 // Any asset or mesh file into a Scene, by content (as import_mesh() detects
 // it): glTF and GLB as read_gltf_scene(); OBJ with its .mtl (each usemtl
 // group a primitive, materials as glTF PBR materials, map_Kd as a texture);
 // PLY with normals, colours and texture coordinates; OFF, STL and .drc as one
 // mesh with one primitive. A mesh file's vertices are split only where the
 // file gives a corner different attributes. Defined in lib/scene.
+// Every mesh's point_of_vertex is filled (weld_mesh_points()).
 Result<Scene> read_scene_file(const std::string& path, const SceneResources& resources,
                               ImportReport* report);
+
+// The same for a file the caller has already read; references resolve from
+// `path`'s folder.
+Result<Scene> read_scene_bytes(const std::string& path, const Bytes& bytes,
+                               const SceneResources& resources, ImportReport* report);
 
 }  // namespace lodbake

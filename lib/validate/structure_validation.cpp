@@ -500,7 +500,7 @@ std::vector<SectionFinding> validate_container(const Container& decoded) {
   std::vector<SectionFinding> findings;
   const uint32_t groups = std::max<uint32_t>(decoded.group_count(), 1);
   for (uint32_t group = 0; group < groups; ++group) {
-    std::vector<SectionFinding> own = validate_sections(single_group(decoded, group));
+    std::vector<SectionFinding> own = validate_group_sections(single_group(decoded, group));
     std::vector<std::string> skip;
     for (const SectionFinding& finding : own)
       skip.push_back(finding.tag);
@@ -511,6 +511,8 @@ std::vector<SectionFinding> validate_container(const Container& decoded) {
       findings.push_back(std::move(finding));
     }
   }
+  for (SectionFinding& finding : validate_scene_map(decoded))
+    findings.push_back(std::move(finding));
   return findings;
 }
 

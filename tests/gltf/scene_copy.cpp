@@ -1,5 +1,5 @@
-// scene_copy ASSET OUTDIR: reads a glTF asset (.gltf or .glb) with
-// read_gltf_scene, writes it as OUTDIR/<stem>.glb and as
+// scene_copy ASSET OUTDIR: reads an asset (.gltf, .glb, or any mesh file
+// lodbake reads, with read_scene_file), writes it as OUTDIR/<stem>.glb and as
 // OUTDIR/<stem>/<stem>.gltf with its .bin and images, then reads both outputs
 // back and checks that each gives the input's scene (first_scene_difference).
 // Across formats an image's storage (uri, mimeType) is the writer's choice
@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
   const fs::path input = argv[1];
   const fs::path out = argv[2];
   const bool input_glb = input.extension() == ".glb";
-  Result<Scene> scene = read_scene(input);
+  const bool input_gltf = input.extension() == ".gltf";
+  lodbake::ImportReport imported;
+  Result<Scene> scene = lodbake::read_scene_file(input.string(), {}, &imported);
   if (!scene.is_ok()) return fail(input.string(), scene.status());
 
   lodbake::SceneWriteReport report;
@@ -70,7 +72,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "Warning: %s\n", warning.c_str());
 
   const std::pair<fs::path, bool> outputs[] = {{glb_path, input_glb},
-                                               {out / stem / (stem + ".gltf"), !input_glb}};
+                                               {out / stem / (stem + ".gltf"), input_gltf}};
   int result = 0;
   for (const auto& [path, same_format] : outputs) {
     Result<Scene> back = read_scene(path);

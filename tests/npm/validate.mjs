@@ -11,6 +11,10 @@
 // --allow-missing URI: the one error accepted, the validator's IO_ERROR for
 // an image or buffer whose file is absent, for this URI only (an input that
 // named a missing image: the writer keeps the reference; see docs/export.md).
+// --baseline INPUT: the file lodbake read to write FILE; errors of a kind
+// (code) INPUT already has are inherited, not lodbake's, and accepted
+// (CesiumMan's input has weights that do not sum to 1: lodbake keeps every
+// value as it is).
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
@@ -23,11 +27,13 @@ function usage(message) {
 
 let modules = process.env.LODBAKE_NPM_DIR || path.dirname(fileURLToPath(import.meta.url));
 const allowMissing = new Set();
+let baseline = null;
 let file = null;
 const args = process.argv.slice(2);
 for (let i = 0; i < args.length; ++i) {
   if (args[i] === '--modules' && i + 1 < args.length) modules = args[++i];
   else if (args[i] === '--allow-missing' && i + 1 < args.length) allowMissing.add(args[++i]);
+  else if (args[i] === '--baseline' && i + 1 < args.length) baseline = args[++i];
   else if (args[i].startsWith('--')) usage(`unknown option ${args[i]}`);
   else if (file === null) file = args[i];
   else usage('one file only');
@@ -42,24 +48,32 @@ try {
   process.exit(77);
 }
 
-let bytes;
-try {
-  bytes = new Uint8Array(fs.readFileSync(file));
-} catch (e) {
-  console.error(`Error: ${file}: ${e.message}`);
-  process.exit(2);
+async function validate(name) {
+  let bytes;
+  try {
+    bytes = new Uint8Array(fs.readFileSync(name));
+  } catch (e) {
+    console.error(`Error: ${name}: ${e.message}`);
+    process.exit(2);
+  }
+  const folder = path.dirname(path.resolve(name));
+  return validator.validateBytes(bytes, {
+    uri: path.basename(name),
+    maxIssues: 0,  // no limit
+    externalResourceFunction: (uri) =>
+      new Promise((resolve, reject) => {
+        fs.readFile(path.resolve(folder, decodeURIComponent(uri)), (err, data) =>
+          err ? reject(err.toString()) : resolve(new Uint8Array(data)));
+      }),
+  });
 }
 
-const folder = path.dirname(path.resolve(file));
-const report = await validator.validateBytes(bytes, {
-  uri: path.basename(file),
-  maxIssues: 0,  // no limit
-  externalResourceFunction: (uri) =>
-    new Promise((resolve, reject) => {
-      fs.readFile(path.resolve(folder, decodeURIComponent(uri)), (err, data) =>
-        err ? reject(err.toString()) : resolve(new Uint8Array(data)));
-    }),
-});
+const report = await validate(file);
+const inherited = new Set();
+if (baseline !== null) {
+  for (const m of (await validate(baseline)).issues.messages)
+    if (m.severity === 0) inherited.add(m.code);
+}
 
 // The resource each pointer names ("/images/0" -> "Lantern_baseColor.png"),
 // to tell the accepted missing-file errors from any other.
@@ -67,7 +81,7 @@ const uriOf = new Map();
 for (const resource of (report.info && report.info.resources) || []) {
   if (resource.uri !== undefined) uriOf.set(resource.pointer, resource.uri);
 }
-const accepted = (m) =>
+const accepted = (m) => inherited.has(m.code) ||
   m.code === 'IO_ERROR' && m.pointer !== undefined && m.pointer.endsWith('/uri') &&
   allowMissing.has(decodeURIComponent(uriOf.get(m.pointer.slice(0, -4)) || ''));
 

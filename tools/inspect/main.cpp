@@ -27,7 +27,11 @@
 #include "formats/support/bit_packing.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/meshio/mesh_import.h"
 #include "lib/meshio/mesh_writers.h"
+#include "lib/scene/scene_container.h"
+#include "lib/scene/scene_io.h"
+#include "lib/scene/scene_summary.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/validate/structure_validation.h"
@@ -47,6 +51,43 @@ struct InspectOptions {
   std::optional<LodRequest> lod;  // --lod: extract the PM at this level
   std::optional<uint32_t> group;  // --group: extract from this group
 };
+
+// The per mesh and primitive lines of an asset.
+void print_scene(std::ostream& out, const SceneSummary& s) {
+  out << "scene         " << s.nodes << " nodes, " << s.meshes.size() << " meshes (" << s.primitives
+      << " primitives, " << s.triangles << " triangles, " << s.instanced_triangles << " drawn), "
+      << s.materials << " materials, " << s.textures << " textures, " << s.images << " images";
+  if (s.missing_images != 0) out << " (" << s.missing_images << " missing)";
+  out << ", " << s.skins << " skins, " << s.animations << " animations\n";
+  if (!s.extensions_used.empty()) {
+    out << "extensions   ";
+    for (const std::string& e : s.extensions_used)
+      out << " " << e;
+    out << "\n";
+  }
+  for (size_t m = 0; m < s.meshes.size(); ++m) {
+    const MeshSummary& mesh = s.meshes[m];
+    out << "mesh " << m << (mesh.name.empty() ? "" : " '" + mesh.name + "'") << ": "
+        << mesh.triangles << " triangles, " << mesh.points << " points, used by "
+        << mesh.nodes.size() << (mesh.nodes.size() == 1 ? " node" : " nodes")
+        << (mesh.skinned ? ", skinned" : "") << ", " << mesh.seam_points << " seam points, "
+        << mesh.border_points << " material border points\n";
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const PrimitiveSummary& prim = mesh.primitives[p];
+      out << "  primitive " << p << ": " << prim.mode << ", " << prim.triangles << " triangles, "
+          << prim.vertices << " vertices, material ";
+      if (prim.material < 0) {
+        out << "none";
+      } else {
+        out << prim.material << (prim.material_name.empty() ? "" : " '" + prim.material_name + "'");
+      }
+      if (prim.targets != 0) out << ", " << prim.targets << " morph targets";
+      out << ", " << prim.seam_points << " seam points\n";
+      for (const std::string& a : prim.attributes)
+        out << "    " << a << "\n";
+    }
+  }
+}
 
 std::string hex32(uint32_t value) {
   char text[9];
@@ -468,6 +509,20 @@ FileStatus extract_base(const Tool& tool, const std::string& path, const OpenedC
   return {};
 }
 
+FileStatus extract_asset(const Tool& tool, const Scene& scene, const std::string& out_path,
+                         nlohmann::json* report) {
+  SceneWriteReport written;
+  Status status = write_scene_file(out_path, scene, &written);
+  if (!status.is_ok()) return {out_path, status};
+  for (const std::string& warning : written.warnings)
+    tool.warn(out_path, warning);
+  const SceneSummary s = summarize_scene(scene);
+  (*report)["extracted"] = {{"file", out_path},          {"asset", true},
+                            {"meshes", s.meshes.size()}, {"primitives", s.primitives},
+                            {"triangles", s.triangles},  {"images", s.images}};
+  return {};
+}
+
 int inspect_container(const Tool& tool, const std::string& path, const Bytes& bytes,
                       const InspectOptions& options) {
   ContainerListing listing = list_container(bytes.data(), bytes.size());
@@ -519,9 +574,25 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
       jf.push_back({{"section", f.tag}, {"message", f.message}});
     report["validation"] = {{"ok", findings.empty()}, {"findings", jf}};
   }
+  std::optional<Scene> asset;
+  if (has_scene(file.decoded()) && undecodable.is_ok()) {
+    Result<Scene> scene = scene_of_container(file.decoded());
+    if (scene.is_ok()) {
+      report["scene"] = to_json(summarize_scene(scene.value()));
+      asset = std::move(scene).value();
+    } else {
+      undecodable = scene.status();
+      if (!validating) report["error"] = undecodable.message();
+    }
+  }
   FileStatus extracted;
   if (!options.extract.empty() && findings.empty() && undecodable.is_ok()) {
-    extracted = extract_base(tool, path, file, options, &report);
+    // The whole asset back, unless a level or a group is asked for.
+    if (asset && !options.lod && !options.group && is_scene_output(options.extract)) {
+      extracted = extract_asset(tool, *asset, options.extract, &report);
+    } else {
+      extracted = extract_base(tool, path, file, options, &report);
+    }
     if (!extracted.status.is_ok()) report["error"] = extracted.status.message();
   }
 
@@ -536,15 +607,22 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
         print_contents(std::cout, report["groups"][g]);
       }
     }
+    if (asset) print_scene(std::cout, summarize_scene(*asset));
     if (report.contains("validation")) {
       std::cout << "validation    " << (findings.empty() ? "ok" : "FAILED") << "\n";
       for (const SectionFinding& f : findings)
         std::cout << "  - " << f.tag << ": " << f.message << "\n";
     }
-    if (report.contains("extracted"))
+    if (report.contains("extracted") && report["extracted"].contains("asset")) {
+      std::cout << "extracted     " << options.extract
+                << " (the asset: " << report["extracted"]["meshes"].get<uint64_t>() << " meshes, "
+                << report["extracted"]["triangles"].get<uint64_t>() << " triangles, "
+                << report["extracted"]["images"].get<uint64_t>() << " images)\n";
+    } else if (report.contains("extracted")) {
       std::cout << "extracted     " << options.extract << " ("
                 << report["extracted"]["triangles"].get<uint64_t>() << " triangles, "
                 << report["extracted"]["bytes"].get<uint64_t>() << " bytes)\n";
+    }
   }
   if (!findings.empty()) {
     return tool.fail(
@@ -564,12 +642,28 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
                  const InspectOptions& options) {
   if (!options.extract.empty())
     return tool.usage_error("--extract needs a .lbk container; '" + path + "' is a mesh file");
+  // Assets (glTF, GLB, OBJ with its materials) are also reported as scenes.
+  std::optional<SceneSummary> scene;
+  ImportReport probe;
+  Result<MeshContent> content = prepare_mesh_content(path, bytes, &probe);
+  if (content.is_ok() &&
+      (content.value().format == MeshFormat::kGltf || content.value().format == MeshFormat::kGlb ||
+       content.value().format == MeshFormat::kObj)) {
+    ImportReport scene_report;
+    Result<Scene> read = read_scene_bytes(path, bytes, SceneResources{}, &scene_report);
+    if (!read.is_ok()) return tool.fail(path, read.status());
+    for (const std::string& warning : scene_report.warnings)
+      tool.warn(path, warning);
+    scene = summarize_scene(read.value());
+  }
   LoadOptions load;
   load.policy.reset();  // a linter reports every problem instead of refusing
   LoadedMesh loaded;
   Status status = load_mesh_bytes(path, std::move(bytes), load, &loaded);
   if (!status.is_ok()) return tool.fail(path, status);
-  print_import_notes(tool, path, loaded.import);
+  // An asset's report says what it holds; the notes of the merged mesh the
+  // check runs on ("ignored 4 materials") would only contradict it.
+  if (!scene) print_import_notes(tool, path, loaded.import);
   const MeshCheckReport& check = loaded.check;
   if (tool.json()) {
     nlohmann::json report = {{"schema", kMeshSchema},
@@ -578,11 +672,13 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
                              {"sha256", loaded.sha256},
                              {"import", to_json(loaded.import)},
                              {"check", to_json(check)}};
+    if (scene) report["scene"] = to_json(*scene);
     tool.print_json(report);
   } else {
     std::cout << "file          " << path << " (" << loaded.file_bytes << " bytes)\n";
     std::cout << "format        " << loaded.import.format << "\n";
     print_check(std::cout, check);
+    if (scene) print_scene(std::cout, *scene);
   }
   if ((options.strict || options.validate) && check.has_problems()) {
     std::vector<std::string> problems = check.problems();
@@ -614,7 +710,9 @@ int main(int argc, char** argv) {
       "mesh: exit 7 when the check finds any problem (a linter for CI); container: as --validate")(
       "extract", po::value<std::string>(&options.extract)->value_name("OUT"),
       "container: write the base mesh to OUT (.obj .ply .off .glb); with STRP, the strips' "
-      "triangles as an indexed mesh over BASE's vertices")(
+      "triangles as an indexed mesh over BASE's vertices; a container of an asset (SCNE, "
+      "lodbake-pack ASSET.gltf) gives the whole asset back as OUT.glb or OUT.gltf (with its "
+      ".bin and images beside it) unless --lod or --group asks for one mesh")(
       "lod", po::value<std::string>()->value_name("N|Nt|R"),
       "with --extract on a progressive mesh: the level to write, as a vertex count (5000), "
       "a triangle count (5000t) or a ratio of the full mesh's triangles (0.25)")(

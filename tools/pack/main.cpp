@@ -20,8 +20,12 @@
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "formats/support/quantization.h"
+#include "lib/core/sha256.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/meshio/mesh_import.h"
 #include "lib/pack/pack_containers.h"
+#include "lib/scene/scene_io.h"
+#include "lib/scene/scene_pack.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -31,6 +35,8 @@ namespace {
 constexpr const char* kPackSchema = "lodbake.pack/1";
 
 constexpr const char* kRepackSchema = "lodbake.pack.containers/1";
+
+constexpr const char* kAssetSchema = "lodbake.pack.asset/1";
 
 struct PackOptions {
   std::string output;
@@ -44,7 +50,16 @@ struct PackOptions {
   bool raw = false;
   std::string drop;
   std::string keep;
+  bool allow_outside = false;
 };
+
+// A glTF or GLB input is an asset: packed as a scene (SCNE + a BASE per mesh).
+bool is_asset_input(const std::string& path, const Bytes& bytes) {
+  ImportReport ignored;
+  Result<MeshContent> content = prepare_mesh_content(path, bytes, &ignored);
+  return content.is_ok() && (content.value().format == MeshFormat::kGltf ||
+                             content.value().format == MeshFormat::kGlb);
+}
 
 // "A,B" -> {"A", "B"}; every tag must be 4 printable characters.
 bool parse_tags(const std::string& text, std::vector<std::string>* tags, std::string* bad) {
@@ -237,6 +252,66 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   return 0;
 }
 
+int pack_asset(const Tool& tool, const std::string& input, const Bytes& bytes,
+               const PackOptions& options) {
+  ImportReport report;
+  SceneResources resources;
+  resources.allow_outside = options.allow_outside;
+  Result<Scene> scene = read_scene_bytes(input, bytes, resources, &report);
+  if (!scene.is_ok()) return tool.fail(input, scene.status());
+  for (const std::string& warning : report.warnings)
+    tool.warn(input, warning);
+  print_import_notes(tool, input, report);
+
+  MetaSection meta = make_meta("lodbake-pack");
+  meta.options = {
+      {"repair", false},
+      {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
+                                                   : nlohmann::json(options.quantize_bits)}};
+  const size_t slash = input.find_last_of('/');
+  meta.input =
+      MetaInput{to_valid_utf8(slash == std::string::npos ? input : input.substr(slash + 1)),
+                sha256_hex(bytes.data(), bytes.size()), bytes.size()};
+  BaseEncodeOptions encoding;
+  encoding.quantize = options.quantize_bits != 0;
+  if (encoding.quantize) encoding.bits = options.quantize_bits;
+  Result<ScenePackResult> packed = pack_scene(scene.value(), meta, encoding);
+  if (!packed.is_ok()) return tool.fail(input, packed.status());
+  const ScenePackResult& r = packed.value();
+  for (const std::string& warning : r.warnings)
+    tool.warn(options.output, warning);
+  Status written = write_file_atomic(options.output, r.file);
+  if (!written.is_ok()) return tool.fail(options.output, written);
+
+  const nlohmann::json counts = scene_counts(scene.value());
+  if (tool.json()) {
+    nlohmann::json groups = nlohmann::json::array();
+    for (size_t g = 0; g < r.base_bytes.size(); ++g)
+      groups.push_back({{"group", g},
+                        {"vertices", r.base_vertices[g]},
+                        {"triangles", r.base_triangles[g]},
+                        {"base_bytes", r.base_bytes[g]}});
+    tool.print_json({{"schema", kAssetSchema},
+                     {"input", input},
+                     {"output", options.output},
+                     {"import", to_json(report)},
+                     {"scene", counts},
+                     {"bytes", r.file.size()},
+                     {"meta_bytes", r.meta_bytes},
+                     {"scne_bytes", r.scne_bytes},
+                     {"groups", groups}});
+    return 0;
+  }
+  std::cout << "wrote " << options.output << ": " << counts["meshes"].get<uint64_t>() << " meshes ("
+            << counts["primitives"].get<uint64_t>() << " primitives, "
+            << counts["triangles"].get<uint64_t>() << " triangles) in " << r.base_bytes.size()
+            << " groups, " << counts["nodes"].get<uint64_t>() << " nodes, "
+            << counts["materials"].get<uint64_t>() << " materials, "
+            << counts["images"].get<uint64_t>() << " images; " << r.file.size() << " bytes (META "
+            << r.meta_bytes << ", SCNE " << r.scne_bytes << ")\n";
+  return 0;
+}
+
 }  // namespace
 }  // namespace lodbake::cli
 
@@ -245,7 +320,13 @@ int main(int argc, char** argv) {
   using namespace lodbake::cli;
   Tool tool("lodbake-pack",
             "MESH -o OUT.lbk [options]\n       lodbake-pack A.lbk [B.lbk ...] -o OUT.lbk [options]",
-            "With a mesh (.obj .ply .off .stl .gltf .glb .drc, optionally .gz): imports it,\n"
+            "With a glTF asset (.gltf with its .bin and images beside it, or .glb): writes\n"
+            "the whole asset (every node, mesh, primitive, material, texture, image, skin,\n"
+            "animation and extension, in a SCNE section, which `lodbake-inspect --extract\n"
+            "OUT.glb` gives back) and, in one group per mesh, a BASE section with that mesh's\n"
+            "welded topology (its primitives share the positions along their borders).\n"
+            "\n"
+            "With a mesh (.obj .ply .off .stl .drc, optionally .gz): imports it,\n"
             "checks it, repairs it where needed, and writes a lodbake container with a META\n"
             "section (tool, options, input name and SHA-256, counts) and a BASE section.\n"
             "The stored mesh is what lodbake-simplify, -hierarchy, -fan and -strips take:\n"
@@ -291,7 +372,9 @@ int main(int argc, char** argv) {
       "drop", po::value<std::string>(&options.drop)->value_name("TAG,..."),
       "containers: leave out these sections")(
       "keep", po::value<std::string>(&options.keep)->value_name("TAG,..."),
-      "containers: write only these sections (and META)");
+      "containers: write only these sections (and META)")(
+      "allow-outside", po::bool_switch(&options.allow_outside),
+      "glTF asset: let its URIs name files outside the asset's folder (refused by default)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   const std::vector<std::string> inputs = tool.positionals("input");
@@ -333,7 +416,18 @@ int main(int argc, char** argv) {
       return tool.usage_error(
           "--draco, --qp, --cl, --raw, --error-bits, --drop and --keep apply to .lbk inputs");
     if (std::optional<int> code = tool.check_outputs({options.output})) return *code;
-    return tool.run([&] { return pack(tool, inputs.front(), options); });
+    return tool.run([&] {
+      Result<Bytes> bytes = read_file(inputs.front());
+      if (bytes.is_ok() && is_asset_input(inputs.front(), bytes.value())) {
+        if (options.repair || options.strict)
+          return tool.usage_error(
+              "--repair and --strict apply to a mesh; an asset's meshes are stored as the "
+              "file has them (a builder repairs what it must when it reads them)");
+        return pack_asset(tool, inputs.front(), bytes.value(), options);
+      }
+      if (options.allow_outside) return tool.usage_error("--allow-outside applies to a glTF asset");
+      return pack(tool, inputs.front(), options);
+    });
   }
   for (const std::string& input : inputs) {
     if (is_container_input(input)) continue;

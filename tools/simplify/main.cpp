@@ -18,8 +18,12 @@
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/meshio/mesh_import.h"
 #include "lib/meshio/mesh_writers.h"
 #include "lib/metrics/surface_distance.h"
+#include "lib/scene/scene_io.h"
+#include "lib/scene/scene_lods.h"
+#include "lib/scene/scene_summary.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/simplify.h"
 #include "tools/common/cli.h"
@@ -174,7 +178,109 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
   return writer.finish();
 }
 
+// A glTF or GLB input written as .glb or .gltf is simplified as an asset.
+bool is_asset_run(const Request& request, const Bytes& bytes) {
+  if (!request.pm_output.empty() || !is_scene_output(request.output)) return false;
+  ImportReport ignored;
+  Result<MeshContent> content = prepare_mesh_content(request.input, bytes, &ignored);
+  return content.is_ok() && (content.value().format == MeshFormat::kGltf ||
+                             content.value().format == MeshFormat::kGlb);
+}
+
+int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
+  ImportReport imported;
+  Result<Scene> scene = read_scene_bytes(request.input, bytes, SceneResources{}, &imported);
+  if (!scene.is_ok()) return tool.fail(request.input, scene.status());
+  for (const std::string& warning : imported.warnings)
+    tool.warn(request.input, warning);
+  print_import_notes(tool, request.input, imported);
+  const uint64_t triangles = summarize_scene(scene.value()).triangles;
+
+  SceneLodOptions options;
+  options.simplify = request.options;
+  options.load.repair = request.repair;
+  options.load.strict = request.strict;
+  if (!request.ratios.empty()) {
+    options.ratios = request.ratios;
+  } else if (request.options.target_ratio) {
+    options.ratios = {*request.options.target_ratio};
+  } else if (request.options.target_triangles && triangles > 0) {
+    // The asset's budget, shared by its meshes in proportion to their size.
+    options.ratios = {std::min(1.0, static_cast<double>(*request.options.target_triangles) /
+                                        static_cast<double>(triangles))};
+  }
+  options.simplify.target_triangles.reset();
+  auto start = std::chrono::steady_clock::now();
+  Result<SceneLods> lods = simplify_scene(scene.value(), options);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!lods.is_ok()) return tool.fail(request.input, lods.status());
+
+  StagedOutputs staged;
+  nlohmann::json outputs = nlohmann::json::array();
+  std::vector<std::string> warnings;
+  for (size_t level = 0; level < lods.value().levels.size(); ++level) {
+    const std::string path =
+        request.ratios.empty() ? request.output : lod_path(request.output, level);
+    SceneWriteReport written;
+    Status staged_ok = stage_scene_file(&staged, path, lods.value().levels[level], &written);
+    if (!staged_ok.is_ok()) return tool.fail(path, staged_ok);
+    for (const std::string& w : written.warnings)
+      warnings.push_back(path + ": " + w);
+    uint64_t level_triangles = 0;
+    for (const MeshLodReport& m : lods.value().meshes)
+      level_triangles += m.lod_triangles[level];
+    nlohmann::json out = {{"file", path}, {"triangles", level_triangles}};
+    if (!options.ratios.empty()) out["ratio"] = options.ratios[level];
+    outputs.push_back(std::move(out));
+  }
+  std::string failed_path;
+  if (Status committed = staged.commit(&failed_path); !committed.is_ok())
+    return tool.fail(failed_path, committed);
+  for (const std::string& w : warnings)
+    tool.warn("", w);
+
+  nlohmann::json meshes = nlohmann::json::array();
+  uint64_t borrowed = 0;
+  for (const MeshLodReport& m : lods.value().meshes) {
+    borrowed += m.borrowed_corners;
+    meshes.push_back({{"mesh", m.mesh},
+                      {"input_triangles", m.input_triangles},
+                      {"repaired", m.repaired},
+                      {"triangles", m.lod_triangles},
+                      {"borrowed_corners", m.borrowed_corners}});
+  }
+  if (tool.json()) {
+    tool.print_json({{"schema", kSimplifySchema},
+                     {"input", request.input},
+                     {"asset", true},
+                     {"import", to_json(imported)},
+                     {"input_counts", {{"triangles", triangles}}},
+                     {"seconds", seconds},
+                     {"meshes", meshes},
+                     {"outputs", outputs}});
+    return 0;
+  }
+  std::cout << "input         " << request.input << ": an asset, " << meshes.size()
+            << " meshes with " << triangles << " triangles\n";
+  std::cout << "simplified    each mesh once, its primitives together, in " << seconds << " s; "
+            << borrowed << " corners kept their own attributes across a material border\n";
+  for (const nlohmann::json& out : outputs)
+    std::cout << "wrote         " << out["file"].get<std::string>() << ": "
+              << out["triangles"].get<uint64_t>() << " triangles\n";
+  return 0;
+}
+
 int run(const Tool& tool, Request& request) {
+  {
+    Result<Bytes> bytes = read_file(request.input);
+    if (bytes.is_ok() && is_asset_run(request, bytes.value())) {
+      if (request.options.placement != Placement::kHalf)
+        return tool.usage_error(
+            "an asset is simplified with --placement half (its corners keep their "
+            "attributes at the input's points)");
+      return run_asset(tool, request, bytes.value());
+    }
+  }
   LoadOptions load;
   load.repair = request.repair;
   load.strict = request.strict;

@@ -1,0 +1,55 @@
+// write_scene_file(): a scene to a .glb, or to a .gltf with the files it
+// refers to, all or none.
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "lib/scene/scene_io.h"
+
+namespace lodbake {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+bool is_scene_output(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == "glb" || ext == "gltf";
+}
+
+Status stage_scene_file(StagedOutputs* staged, const std::string& path, const Scene& scene,
+                        SceneWriteReport* report) {
+  const std::string ext = lower_extension(path);
+  if (ext == "glb") {
+    LODBAKE_ASSIGN_OR_RETURN(Bytes glb, write_scene_glb(scene, report));
+    return staged->stage(path, glb);
+  }
+  if (ext != "gltf")
+    return Status(ErrorKind::kUsage, "a scene is written as .glb or .gltf, not '." + ext + "'");
+  const size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<SceneOutputFile> files,
+                           write_scene_gltf(scene, name, report));
+  for (const SceneOutputFile& file : files)
+    LODBAKE_RETURN_IF_ERROR(staged->stage(folder + file.name, file.bytes));
+  return Status::ok();
+}
+
+Status write_scene_file(const std::string& path, const Scene& scene, SceneWriteReport* report) {
+  StagedOutputs staged;
+  LODBAKE_RETURN_IF_ERROR(stage_scene_file(&staged, path, scene, report));
+  std::string failed;
+  return staged.commit(&failed);
+}
+
+}  // namespace lodbake
