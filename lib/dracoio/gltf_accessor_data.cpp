@@ -151,13 +151,8 @@ bool parse_element_type(const std::string& name, ElementType* out) {
 
 Result<AccessorData> accessor_declaration(const GltfDocument& doc, int64_t index) {
   const std::string where = "accessor " + str(static_cast<uint64_t>(index));
-  LODBAKE_ASSIGN_OR_RETURN(const Json* accessors, member_array(doc.root, "accessors", "glTF"));
-  if (accessors == nullptr || index < 0 || static_cast<uint64_t>(index) >= accessors->size()) {
-    return invalid_input(where + " out of range (" +
-                         str(accessors == nullptr ? 0 : accessors->size()) + " accessors)");
-  }
-  const Json& a = (*accessors)[static_cast<size_t>(index)];
-  if (!a.is_object()) return invalid_input(where + " is not a JSON object");
+  LODBAKE_ASSIGN_OR_RETURN(const Json* object, accessor_object(doc, index, where));
+  const Json& a = *object;
   AccessorData out;
   LODBAKE_ASSIGN_OR_RETURN(const uint64_t component_type,
                            member_uint(a, "componentType", 0, 0xFFFF, where));

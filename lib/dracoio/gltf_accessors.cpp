@@ -62,13 +62,8 @@ std::string accessor_name(int64_t index) {
 
 Result<Accessor> resolve(const GltfDocument& doc, int64_t index) {
   const std::string where = accessor_name(index);
-  LODBAKE_ASSIGN_OR_RETURN(const Json* accessors, member_array(doc.root, "accessors", "glTF"));
-  if (accessors == nullptr || index < 0 || static_cast<uint64_t>(index) >= accessors->size()) {
-    return invalid_input(where + " out of range (" +
-                         str(accessors == nullptr ? 0 : accessors->size()) + " accessors)");
-  }
-  const Json& a = (*accessors)[static_cast<size_t>(index)];
-  if (!a.is_object()) return invalid_input(where + " is not a JSON object");
+  LODBAKE_ASSIGN_OR_RETURN(const Json* object, accessor_object(doc, index, where));
+  const Json& a = *object;
   Accessor out;
   LODBAKE_ASSIGN_OR_RETURN(const uint64_t component_type,
                            member_uint(a, "componentType", 0, 0xFFFF, where));
@@ -144,6 +139,18 @@ float component_as_float(const Accessor& a, const uint8_t* p) {
 }
 
 }  // namespace
+
+Result<const Json*> accessor_object(const GltfDocument& doc, int64_t index,
+                                    const std::string& where) {
+  LODBAKE_ASSIGN_OR_RETURN(const Json* accessors, member_array(doc.root, "accessors", "glTF"));
+  if (accessors == nullptr || index < 0 || static_cast<uint64_t>(index) >= accessors->size()) {
+    return invalid_input(where + " out of range (" +
+                         str(accessors == nullptr ? 0 : accessors->size()) + " accessors)");
+  }
+  const Json& a = (*accessors)[static_cast<size_t>(index)];
+  if (!a.is_object()) return invalid_input(where + " is not a JSON object");
+  return &a;
+}
 
 Result<ByteSpan> buffer_view_bytes(const GltfDocument& doc, int64_t index,
                                    const std::string& where) {

@@ -8,7 +8,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <map>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -87,6 +89,21 @@ Result<std::vector<double>> member_numbers(const Json& object, const char* key, 
 // The value of an array element or member as an index (integral number).
 Result<int64_t> as_index(const Json& value, size_t limit, const char* what,
                          const std::string& where);
+
+// Runs a reader, turning the exceptions its bounded checks do not foresee
+// (out of memory, a library exception) into one-line statuses.
+template <typename T, typename Read>
+Result<T> guard_exceptions(Read&& read) {
+  try {
+    return read();
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory while reading glTF");
+  } catch (const std::exception& e) {
+    std::string what = e.what();
+    if (what.size() > 200) what.resize(200);
+    return invalid_input("glTF could not be read: " + what);
+  }
+}
 
 // The length of the named top-level array (0 when absent or not an array).
 size_t top_level_count(const Json& root, const char* key);

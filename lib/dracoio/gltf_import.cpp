@@ -542,17 +542,8 @@ Result<TriangleMesh> parse_gltf_unchecked(const uint8_t* data, size_t size, Impo
 
 Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report,
                                 const SceneResources& resources) {
-  try {
-    return parse_gltf_unchecked(data, size, report, resources);
-  } catch (const std::bad_alloc&) {
-    return runtime_error("out of memory while reading glTF");
-  } catch (const std::exception& e) {
-    // Only reachable through a library exception the checks above did not
-    // foresee; keep the message to one line.
-    std::string what = e.what();
-    if (what.size() > 200) what.resize(200);
-    return invalid_input("glTF could not be read: " + what);
-  }
+  return dracoio::guard_exceptions<TriangleMesh>(
+      [&] { return parse_gltf_unchecked(data, size, report, resources); });
 }
 
 }  // namespace lodbake

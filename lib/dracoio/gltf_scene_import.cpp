@@ -662,16 +662,8 @@ Result<Scene> read_unchecked(const uint8_t* data, size_t size, const SceneResour
 
 Result<Scene> read_gltf_scene(const uint8_t* data, size_t size, const SceneResources& resources,
                               ImportReport* report) {
-  try {
-    return read_unchecked(data, size, resources, report);
-  } catch (const std::bad_alloc&) {
-    return runtime_error("out of memory while reading glTF");
-  } catch (const std::exception& e) {
-    // Only reachable through a library exception the checks did not foresee.
-    std::string what = e.what();
-    if (what.size() > 200) what.resize(200);
-    return invalid_input("glTF could not be read: " + what);
-  }
+  return dracoio::guard_exceptions<Scene>(
+      [&] { return read_unchecked(data, size, resources, report); });
 }
 
 }  // namespace lodbake

@@ -7,34 +7,24 @@
 #include "formats/scene/accessor_values.h"
 #include "lib/scene/scene_summary.h"
 #include "lib/scene/scene_topology.h"
+#include "tests/gltf/sample_scenes.h"
 
 namespace lodbake {
 namespace {
 
-template <typename T>
-AccessorData stream(ComponentType type, ElementType element, const std::vector<T>& values,
-                    bool normalized = false) {
-  AccessorData d;
-  d.component_type = type;
-  d.type = element;
-  d.normalized = normalized;
-  d.count = static_cast<uint32_t>(values.size() / component_count(element));
-  d.bytes.resize(values.size() * sizeof(T));
-  std::memcpy(d.bytes.data(), values.data(), d.bytes.size());
-  return d;
-}
+using sample_scenes::accessor;
 
 TEST(AccessorValues, NormalizedIntegersFollowTheGltfRules) {
   const AccessorData u8 =
-      stream<uint8_t>(ComponentType::kUnsignedByte, ElementType::kVec2, {0, 255, 51, 102}, true);
+      accessor<uint8_t>(ComponentType::kUnsignedByte, ElementType::kVec2, {0, 255, 51, 102}, true);
   EXPECT_FLOAT_EQ(float_value(u8, 0, 1), 1.0f);
   EXPECT_FLOAT_EQ(float_value(u8, 1, 0), 0.2f);
   const AccessorData i16 =
-      stream<int16_t>(ComponentType::kShort, ElementType::kScalar, {-32768, 32767}, true);
+      accessor<int16_t>(ComponentType::kShort, ElementType::kScalar, {-32768, 32767}, true);
   EXPECT_FLOAT_EQ(float_value(i16, 0, 0), -1.0f);  // clamped, not -1.00003
   EXPECT_FLOAT_EQ(float_value(i16, 1, 0), 1.0f);
   const AccessorData plain =
-      stream<uint16_t>(ComponentType::kUnsignedShort, ElementType::kScalar, {700});
+      accessor<uint16_t>(ComponentType::kUnsignedShort, ElementType::kScalar, {700});
   EXPECT_FLOAT_EQ(float_value(plain, 0, 0), 700.0f);
   EXPECT_EQ(float_values(u8).size(), 4u);
 }
@@ -45,7 +35,7 @@ ScenePrimitive primitive(PrimitiveMode mode, std::vector<float> positions,
   p.mode = mode;
   p.indices = std::move(indices);
   p.attributes.push_back(
-      {"POSITION", stream<float>(ComponentType::kFloat, ElementType::kVec3, positions)});
+      {"POSITION", accessor<float>(ComponentType::kFloat, ElementType::kVec3, positions)});
   return p;
 }
 
@@ -78,8 +68,9 @@ Scene two_material_scene() {
       primitive(PrimitiveMode::kTriangles, {1, 0, 0, 2, 0, 0, 1, 1, 0, 2, 1, 0, 2, 1, 0},
                 std::vector<uint32_t>{0, 1, 2, 2, 1, 4});
   right.material = 1;
-  right.attributes.push_back({"TEXCOORD_0", stream<float>(ComponentType::kFloat, ElementType::kVec2,
-                                                          {0, 0, 1, 0, 0, 1, 1, 1, 0.5f, 1})});
+  right.attributes.push_back(
+      {"TEXCOORD_0", accessor<float>(ComponentType::kFloat, ElementType::kVec2,
+                                     {0, 0, 1, 0, 0, 1, 1, 1, 0.5f, 1})});
   mesh.primitives = {left, right};
   // Points: left 0,1,2; right's vertices 0 and 2 are left's 1 and 2; its
   // vertices 3 and 4 are one point with two UVs.
