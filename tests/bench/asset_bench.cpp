@@ -67,13 +67,13 @@ struct Row {
   GltfpackRow gltfpack;
 };
 
-// The best wall milliseconds of `runs` calls of `body`; -1 as soon as one fails.
+// The best wall milliseconds of `runs` calls of `body(run)`; -1 as soon as one fails.
 template <typename Body>
 double best_ms(int runs, Body body) {
   double best = 1e300;
   for (int i = 0; i < runs; ++i) {
     const Clock::time_point start = Clock::now();
-    if (!body()) return -1;
+    if (!body(i)) return -1;
     best = std::min(best, 1e3 * seconds_since(start));
   }
   return best;
@@ -119,11 +119,14 @@ uint64_t asset_input_bytes(const std::string& path) {
   return total;
 }
 
-LodbakeRow run_lodbake(const std::string& path, const fs::path& out_dir, int runs) {
+// Outputs go to `out_prefix` + a suffix naming the run: every run writes a
+// new file, as replacing one that was just written costs more on ext4
+// (gltfpack's runs are set up alike).
+LodbakeRow run_lodbake(const std::string& path, const std::string& out_prefix, int runs) {
   LodbakeRow row;
   std::optional<lodbake::Scene> scene;
   std::string error;
-  row.import_ms = best_ms(runs, [&] {
+  row.import_ms = best_ms(runs, [&](int) {
     lodbake::ImportReport report;
     auto read = lodbake::read_scene_file(path, lodbake::SceneResources(), &report);
     if (!read.is_ok()) {
@@ -138,7 +141,7 @@ LodbakeRow run_lodbake(const std::string& path, const fs::path& out_dir, int run
     return row;
   }
   row.triangles = lodbake::summarize_scene(*scene).triangles;
-  row.export_memory_ms = best_ms(runs, [&] {
+  row.export_memory_ms = best_ms(runs, [&](int) {
     lodbake::SceneWriteReport report;
     auto glb = lodbake::write_scene_glb(*scene, &report);
     if (!glb.is_ok()) {
@@ -152,8 +155,8 @@ LodbakeRow run_lodbake(const std::string& path, const fs::path& out_dir, int run
     row.error = error;
     return row;
   }
-  const std::string output = (out_dir / (fs::path(path).stem().string() + ".lodbake.glb")).string();
-  row.export_file_ms = best_ms(runs, [&] {
+  row.export_file_ms = best_ms(runs, [&](int run) {
+    const std::string output = out_prefix + ".lodbake.r" + std::to_string(run) + ".glb";
     lodbake::SceneWriteReport report;
     auto glb = lodbake::write_scene_glb(*scene, &report);
     FILE* file = glb.is_ok() ? std::fopen(output.c_str(), "wb") : nullptr;
@@ -162,13 +165,14 @@ LodbakeRow run_lodbake(const std::string& path, const fs::path& out_dir, int run
         std::fwrite(glb.value().data(), 1, glb.value().size(), file) == glb.value().size();
     return std::fclose(file) == 0 && written;
   });
-  row.export_atomic_ms = best_ms(runs, [&] {
+  row.export_atomic_ms = best_ms(runs, [&](int run) {
+    const std::string output = out_prefix + ".atomic.r" + std::to_string(run) + ".glb";
     lodbake::SceneWriteReport report;
     lodbake::Status written = lodbake::write_scene_file(output, *scene, &report);
     if (!written.is_ok()) error = "export: " + written.message();
     return written.is_ok();
   });
-  if (row.export_file_ms < 0) row.error = "export: cannot write " + output;
+  if (row.export_file_ms < 0) row.error = "export: cannot write a file in the scratch folder";
   if (row.export_atomic_ms < 0) row.error = error;
   return row;
 }
@@ -233,10 +237,14 @@ void run_gltfpack_library(NodeSetup* setup, std::vector<Row>* rows, const fs::pa
   }
 }
 
-// The best wall milliseconds of `runs` runs of the command; -1 when it fails.
-double best_command_ms(const std::vector<std::string>& argv, const fs::path& log, int runs) {
+// The best wall milliseconds of `runs` runs of the command; -1 when it
+// fails. `output`, the file it writes, is removed before each run (untimed).
+double best_command_ms(const std::vector<std::string>& argv, const fs::path& output,
+                       const fs::path& log, int runs) {
   double best = 1e300;
   for (int i = 0; i < runs; ++i) {
+    std::error_code ignored;
+    fs::remove(output, ignored);
     const lodbake::bench::ToolRun run = lodbake::bench::run_tool(argv, log.string());
     if (run.exit_status != 0) return -1;
     best = std::min(best, 1e3 * run.wall_seconds);
@@ -415,9 +423,12 @@ int main(int argc, char** argv) {
   }
   const fs::path scratch = scratch_name;
 
-  for (Row& row : rows) {
-    row.input_bytes = asset_input_bytes(row.path);
-    row.lodbake = run_lodbake(row.path, scratch, runs);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    // The index keeps Duck.glb's outputs apart from Duck.gltf's.
+    const std::string prefix =
+        (scratch / (std::to_string(i) + "-" + fs::path(rows[i].path).stem().string())).string();
+    rows[i].input_bytes = asset_input_bytes(rows[i].path);
+    rows[i].lodbake = run_lodbake(rows[i].path, prefix, runs);
   }
 
   const fs::path cli_js = fs::path(setup.npm) / "node_modules" / "gltfpack" / "cli.js";
@@ -427,12 +438,13 @@ int main(int argc, char** argv) {
     setup.note = "gltfpack is not installed in " + setup.npm + " (make npm-deps)";
   if (setup.note.empty()) run_gltfpack_library(&setup, &rows, scratch, runs);
   if (setup.note.empty() && cli) {
-    setup.startup_ms = best_command_ms({setup.node, "-e", ""}, scratch / "node.log", runs);
+    setup.startup_ms =
+        best_command_ms({setup.node, "-e", ""}, scratch / "none", scratch / "node.log", runs);
     for (Row& row : rows) {
       if (row.gltfpack.pack_ms < 0) continue;
-      const fs::path output = scratch / (fs::path(row.path).stem().string() + ".cli.glb");
+      const fs::path output = scratch / "gltfpack-cli.glb";
       row.gltfpack.cli_ms = best_command_ms(
-          {setup.node, cli_js.string(), "-i", row.path, "-o", output.string(), "-noq"},
+          {setup.node, cli_js.string(), "-i", row.path, "-o", output.string(), "-noq"}, output,
           scratch / "gltfpack.log", runs);
     }
   }

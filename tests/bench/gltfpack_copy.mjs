@@ -2,7 +2,9 @@
 // process: the library (npm gltfpack's library.js) compiles its wasm once,
 // then each asset is packed --runs times and the best time kept, so neither
 // node's start-up nor the wasm compilation is in the figure. Each pack reads
-// its input and writes its output through the file system, as the CLI does.
+// its input and writes its output through the file system, as the CLI does,
+// each run to a new file (replacing a file just written costs more on ext4;
+// bench_assets's lodbake runs are set up alike).
 //
 //   node gltfpack_copy.mjs --modules NPM_DIR --out DIR [--runs N] FILE...
 //
@@ -47,9 +49,10 @@ const { pack } = await import(pathToFileURL(library).href);
 await pack(['-v'], { read: () => null, write: () => {} }).catch(() => {});
 console.log(`init\t${(performance.now() - start).toFixed(3)}`);
 
-for (const file of files) {
+for (const [index, file] of files.entries()) {
   const input = path.resolve(file);
-  const output = path.join(path.resolve(out), path.basename(file).replace(/\.[^.]*$/, '') + '.gltfpack.glb');
+  const stem = `${index}-${path.basename(file).replace(/\.[^.]*$/, '')}`;
+  const outputOf = (run) => path.join(path.resolve(out), `${stem}.gltfpack.r${run}.glb`);
   let bytesRead = 0;
   const iface = {
     read: (name) => {
@@ -66,7 +69,7 @@ for (const file of files) {
     bytesRead = 0;
     start = performance.now();
     try {
-      await pack(['-i', input, '-o', output, '-noq'], iface);
+      await pack(['-i', input, '-o', outputOf(r), '-noq'], iface);
     } catch (err) {
       // "Error loading <input>: why" names the file; the caller prints it.
       failure = String(err.message).trim().split('\n')[0].replace(`Error loading ${input}: `, '');
@@ -75,9 +78,10 @@ for (const file of files) {
     best = Math.min(best, performance.now() - start);
     // One wasm instance serves every call; a copy that changed between runs
     // would mean state leaking from one pack to the next.
-    const written = fs.readFileSync(output);
+    const written = fs.readFileSync(outputOf(r));
     if (first === null) first = written;
     else if (!first.equals(written)) failure = 'output differs between runs';
+    if (r > 0) fs.unlinkSync(outputOf(r));
   }
   if (failure !== null) console.log(`failed\t${file}\t${failure}`);
   else console.log(`ok\t${file}\t${best.toFixed(3)}\t${first.length}\t${bytesRead}`);
