@@ -46,7 +46,8 @@ deps:
 # `npm ci` from tests/npm's lock, quiet; skipped when the same lock is
 # already installed (the stamp is written only after a complete install).
 npm-deps:
-	@command -v npm > /dev/null || { echo "Error: npm is needed for the gltf tests (Node.js 20 or later)"; exit 1; }
+	@command -v npm > /dev/null || $(MAKE) --no-print-directory deps DEBIAN_PACKAGES="nodejs npm"
+	@command -v npm > /dev/null || { echo "Error: npm is needed for the gltf tests (Debian's nodejs and npm)"; exit 1; }
 	@mkdir -p $(NPM_DIR); \
 	if ! cmp -s tests/npm/package-lock.json $(NPM_DIR)/installed.lock || [ ! -d $(NPM_DIR)/node_modules ]; then \
 	  echo "lodbake: installing the npm test tools into $(NPM_DIR)"; \

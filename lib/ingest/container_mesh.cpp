@@ -5,6 +5,7 @@
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/scne.h"
 #include "formats/sections/vspl.h"
 #include "lib/simplify/pm_replay.h"
 
@@ -22,6 +23,11 @@ Result<ContainerMesh> container_input_mesh(const OpenedContainer& file) {
   try {
     ContainerMesh out;
     out.input = container_meta_input(file);
+    if (const Section* scne = file.find(kScneTag, 0)) {
+      Result<SceneSection> scene = decode_scne(scne->data, scne->size);
+      if (!scene.is_ok()) return scene.status();
+      out.asset_meshes = static_cast<uint32_t>(scene.value().meshes.size());
+    }
     for (uint32_t group = 0; group < file.group_count(); ++group) {
       const Section* base = file.find(kBaseTag, group);
       const Section* vspl = file.find(kVsplTag, group);

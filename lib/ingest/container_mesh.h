@@ -24,6 +24,9 @@ struct ContainerMesh {
   /// The original input as META records it (the mesh file the container
   /// was baked from), when the container has META with an input.
   std::optional<MetaInput> input;
+  /// Set when the container holds an asset (SCNE) of several meshes: the
+  /// structures build on one of them, which the tool must say.
+  uint32_t asset_meshes = 0;
 };
 
 /// The mesh of the first group with BASE + VSPL (fully refined, in the

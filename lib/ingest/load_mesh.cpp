@@ -31,6 +31,11 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
     loaded->original_input = mesh.input;
     loaded->container_source = mesh.source;
     loaded->import.format = "lodbake container (" + mesh.source + ")";
+    if (mesh.asset_meshes > 1)
+      loaded->import.warnings.push_back(
+          "the container holds an asset of " + std::to_string(mesh.asset_meshes) +
+          " meshes; this tool builds on one mesh, group " + std::to_string(mesh.group) +
+          "'s (structures over a whole asset: not yet)");
   } else {
     LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
   }

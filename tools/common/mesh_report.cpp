@@ -156,6 +156,8 @@ int load_input(const Tool& tool, const std::string& path, const LoadOptions& opt
     notes.push_back("dropped " + std::to_string(loaded->dropped_unreferenced) +
                     " unreferenced vertices (no triangle uses them)");
   if (!notes.empty()) tool.info(path, joined(notes, "; "));
+  for (const std::string& warning : loaded->import.warnings)
+    tool.warn(path, warning);
   const MeshCheckReport& check =
       loaded->check_after_repair ? *loaded->check_after_repair : loaded->check;
   for (MeshProblem problem : kAllMeshProblems) {
