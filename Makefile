@@ -147,9 +147,12 @@ HIERARCHY_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply \
 # Strips and the SETS graph: stripifier against meshopt_stripify, SETS sizes,
 # the paper's recovery tests (docs/benchmarks.md).
 STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/data/dragon_vrip.ply
-bench: bench-deps build
+# Whole glTF assets in and out against gltfpack's plain copy (npm gltfpack,
+# from npm-deps): every asset of shared/data/assets (docs/benchmarks.md).
+ASSET_BENCH_FILES := $(sort $(wildcard $(SHARED_DATA)/assets/*/*.gltf $(SHARED_DATA)/assets/*/*.glb))
+bench: bench-deps build npm-deps
 	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy \
-	  bench_dag bench_fan bench_strips bench_pack bench_section_codecs bench_stream
+	  bench_dag bench_fan bench_strips bench_pack bench_section_codecs bench_stream bench_assets
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --height-guard --peers lodbake,meshopt \
@@ -167,6 +170,7 @@ bench: bench-deps build
 	tests/bench/pack_sections.sh $(BUILD)/tools $(PACK_SECTIONS_MESHES)
 	$(BUILD)/tests/bench/bench_stream --runs $(BENCH_RUNS) --clients 16 \
 	  $(SHARED_DATA)/meshes/stanford_bun_zipper.ply
+	$(BUILD)/tests/bench/bench_assets --runs 5 $(ASSET_BENCH_FILES)
 
 bench-heldout: bench-deps build
 	cmake --build $(BUILD) --target bench_simplify
