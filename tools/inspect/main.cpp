@@ -651,10 +651,19 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
        content.value().format == MeshFormat::kObj)) {
     ImportReport scene_report;
     Result<Scene> read = read_scene_bytes(path, bytes, SceneResources{}, &scene_report);
-    if (!read.is_ok()) return tool.fail(path, read.status());
-    for (const std::string& warning : scene_report.warnings)
-      tool.warn(path, warning);
-    scene = summarize_scene(read.value());
+    const bool obj = content.value().format == MeshFormat::kObj;
+    // An OBJ the mesh check can still read gets its report without a scene.
+    if (!read.is_ok() && !obj) return tool.fail(path, read.status());
+    if (read.is_ok()) {
+      // A linter reports what is missing (an image, a material library) as
+      // findings on its one note line, not as warnings about its own run.
+      std::string findings;
+      for (const std::vector<std::string>* lines : {&scene_report.warnings, &scene_report.notes})
+        for (const std::string& line : *lines)
+          findings += (findings.empty() ? "" : "; ") + line;
+      if (!findings.empty()) tool.info(path, findings);
+      scene = summarize_scene(read.value());
+    }
   }
   LoadOptions load;
   load.policy.reset();  // a linter reports every problem instead of refusing
