@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -27,8 +28,10 @@
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/scene/asset_build.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
+#include "tools/common/asset_report.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -70,8 +73,144 @@ struct Input {
   nlohmann::json repairs;       // of a mesh input
 };
 
-int run(const Tool& tool, const Request& request) {
+// What one build made, besides its sections: for the reports.
+struct Built {
+  std::vector<Written> sections;  // BASE first (META is the caller's)
+  HierarchyShape shape;
+  BalancedBuildStats stats;
+  TriangleMesh base;
+  std::vector<std::pair<std::string, double>> build_seconds;  // in build order
+  nlohmann::json dag_report, vtre_report;
+  std::map<std::string, uint64_t> counts;  // META's
+};
+
+// The hierarchy and the sections --sections asks for, from one mesh.
+Result<Built> build_structures(const Request& request, const TriangleMesh& mesh) {
   using Clock = std::chrono::steady_clock;
+  Built out;
+  Clock::time_point start = Clock::now();
+  LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built,
+                           build_balanced_hierarchy(mesh, request.options));
+  out.build_seconds.emplace_back("hierarchy", seconds_since(start));
+  const VertexHierarchy& h = built.hierarchy;
+  out.shape = hierarchy_shape(h);
+  out.stats = built.stats;
+  const HierarchyShape& shape = out.shape;
+  std::vector<Written>& sections = out.sections;
+  if (request.vhie) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(std::vector<NodeRefinement> refinement,
+                             compute_refinement_data(h, mesh));
+    out.build_seconds.emplace_back("refinement", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes vhie, encode_vhie(h));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes rfin, encode_rfin(h, refinement));
+    sections.push_back({kVhieTag, std::move(vhie), "node", shape.nodes});
+    sections.push_back({kRfinTag, std::move(rfin), "split", shape.splits});
+  }
+  // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
+  // share BASE with VHIE (a greedy PM given as input has another base mesh).
+  ProgressiveMesh pm;
+  if (request.dage || request.vtre) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
+    out.build_seconds.emplace_back("progressive_mesh", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
+    sections.push_back({kVsplTag, std::move(vspl), "split", pm.splits.size()});
+  }
+  if (request.dage) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, build_vsplit_dag(pm));
+    out.build_seconds.emplace_back("dag", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes dage, encode_dage(dag));
+    LODBAKE_ASSIGN_OR_RETURN(DageSummary summary, read_dage_summary(dage.data(), dage.size()));
+    out.dag_report = {{"nodes", summary.node_count},
+                      {"edges", summary.edge_count},
+                      {"roots", summary.root_count},
+                      {"leaves", summary.leaf_count}};
+    sections.push_back({kDageTag, std::move(dage), "node", dag.node_count()});
+  }
+  if (request.vtre) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, build_vertex_trees(pm));
+    out.build_seconds.emplace_back("vertex_trees", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes vtre, encode_vtre(trees));
+    const VtreRecordSizes rec = vtre_record_sizes(trees);
+    auto bytes_per = [](uint64_t bits, uint64_t count) {
+      return count == 0 ? nlohmann::json(nullptr)
+                        : nlohmann::json(static_cast<double>(bits) / 8.0 / count);
+    };
+    out.vtre_report = {{"nodes", trees.node_count()},
+                       {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
+                       {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
+                       {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
+    sections.push_back({kVtreTag, std::move(vtre), "node", trees.node_count()});
+  }
+  out.counts = {
+      {"vertices", h.base.vertex_count()},     {"triangles", h.base.triangle_count()},
+      {"hierarchy_nodes", shape.nodes},        {"hierarchy_depth", shape.depth},
+      {"input_vertices", mesh.vertex_count()}, {"input_triangles", mesh.triangle_count()}};
+  if (request.dage || request.vtre) {
+    out.counts["splits"] = pm.splits.size();
+    out.counts["full_vertices"] = pm.full_vertex_count();
+    out.counts["full_triangles"] = full_triangle_count(pm.base.triangle_count(), pm.splits);
+  }
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(h.base, BaseEncodeOptions()));
+  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes), nullptr, 0});
+  out.base = std::move(built.hierarchy.base);
+  return out;
+}
+
+nlohmann::json meta_options(const Request& request) {
+  return {{"sections", request.sections},
+          {"boundary_weight", request.options.boundary_weight},
+          {"max_normal_change_degrees", request.options.max_normal_change_degrees},
+          {"repair", request.repair}};
+}
+
+// An asset (glTF, or a container with SCNE): the hierarchy of every mesh,
+// each in its group, beside the scene.
+int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
+  ImportReport imported;
+  Result<Scene> scene = read_asset(request.input, SceneResources{}, &imported);
+  if (!scene.is_ok()) return tool.fail(request.input, scene.status());
+  for (const std::string& warning : imported.warnings)
+    tool.warn(request.input, warning);
+  print_import_notes(tool, request.input, imported);
+  LoadOptions load;
+  load.repair = request.repair;
+  load.strict = request.strict;
+  MetaSection meta = make_meta("lodbake-hierarchy");
+  meta.options = meta_options(request);
+  meta.input = asset_meta_input(request.input, bytes);
+  Progress progress(tool, "building the hierarchies");
+  Result<AssetBuild> built = build_asset(
+      scene.value(), meta, load, [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+        LODBAKE_ASSIGN_OR_RETURN(Built b, build_structures(request, mesh));
+        MeshSections out;
+        for (Written& w : b.sections)
+          out.sections.emplace_back(w.tag, std::move(w.bytes));
+        out.counts = b.counts;
+        out.report = {{"nodes", b.shape.nodes},
+                      {"splits", b.shape.splits},
+                      {"depth", b.shape.depth},
+                      {"base_triangles", b.base.triangle_count()}};
+        return out;
+      });
+  if (!built.is_ok()) return tool.fail(request.input, built.status());
+  Status written = write_file_atomic(request.output, built.value().file);
+  if (!written.is_ok()) return tool.fail(request.output, written);
+  for (const std::string& warning : built.value().warnings)
+    tool.warn(request.output, warning);
+  tool.warn(request.output, kPositionsOnly);
+  return print_asset_build(tool, kHierarchySchema, request.input, request.output, built.value());
+}
+
+int run(const Tool& tool, const Request& request) {
+  {
+    Result<Bytes> bytes = read_file(request.input);
+    if (bytes.is_ok() && is_asset(request.input, bytes.value()))
+      return run_asset(tool, request, bytes.value());
+  }
   Input in;
   // A container is read as the mesh it stands for (a progressive mesh's
   // greedy collapse order is not balanced: the hierarchy is rebuilt from its
@@ -105,96 +244,22 @@ int run(const Tool& tool, const Request& request) {
   }
 
   Progress progress(tool, "building the hierarchy");
-  // Build time of each structure, in build order (the JSON object sorts).
-  std::vector<std::pair<std::string, double>> build_seconds;
-  Clock::time_point start = Clock::now();
-  Result<BalancedHierarchy> built = build_balanced_hierarchy(in.mesh, request.options);
-  if (!built.is_ok()) return tool.fail(request.input, built.status());
-  build_seconds.emplace_back("hierarchy", seconds_since(start));
-  const VertexHierarchy& h = built.value().hierarchy;
-  const HierarchyShape shape = hierarchy_shape(h);
-
-  std::vector<Written> sections;
-  if (request.vhie) {
-    start = Clock::now();
-    Result<std::vector<NodeRefinement>> refinement = compute_refinement_data(h, in.mesh);
-    if (!refinement.is_ok()) return tool.fail(request.input, refinement.status());
-    build_seconds.emplace_back("refinement", seconds_since(start));
-    Result<Bytes> vhie = encode_vhie(h);
-    if (!vhie.is_ok()) return tool.fail(request.output, vhie.status());
-    Result<Bytes> rfin = encode_rfin(h, refinement.value());
-    if (!rfin.is_ok()) return tool.fail(request.output, rfin.status());
-    sections.push_back({kVhieTag, std::move(vhie).value(), "node", shape.nodes});
-    sections.push_back({kRfinTag, std::move(rfin).value(), "split", shape.splits});
-  }
-  // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
-  // share BASE with VHIE (a greedy PM given as input has another base mesh).
-  ProgressiveMesh pm;
-  nlohmann::json dag_report, vtre_report;
-  if (request.dage || request.vtre) {
-    start = Clock::now();
-    Result<ProgressiveMesh> converted = hierarchy_to_progressive_mesh(h);
-    if (!converted.is_ok()) return tool.fail(request.input, converted.status());
-    pm = std::move(converted).value();
-    build_seconds.emplace_back("progressive_mesh", seconds_since(start));
-    Result<Bytes> vspl = encode_vspl(pm, VsplEncodeOptions());
-    if (!vspl.is_ok()) return tool.fail(request.output, vspl.status());
-    sections.push_back({kVsplTag, std::move(vspl).value(), "split", pm.splits.size()});
-  }
-  if (request.dage) {
-    start = Clock::now();
-    Result<VsplitDag> dag = build_vsplit_dag(pm);
-    if (!dag.is_ok()) return tool.fail(request.input, dag.status());
-    build_seconds.emplace_back("dag", seconds_since(start));
-    Result<Bytes> dage = encode_dage(dag.value());
-    if (!dage.is_ok()) return tool.fail(request.output, dage.status());
-    Result<DageSummary> summary = read_dage_summary(dage.value().data(), dage.value().size());
-    if (!summary.is_ok()) return tool.fail(request.output, summary.status());
-    dag_report = {{"nodes", summary.value().node_count},
-                  {"edges", summary.value().edge_count},
-                  {"roots", summary.value().root_count},
-                  {"leaves", summary.value().leaf_count}};
-    sections.push_back({kDageTag, std::move(dage).value(), "node", dag.value().node_count()});
-  }
-  if (request.vtre) {
-    start = Clock::now();
-    Result<VertexTrees> trees = build_vertex_trees(pm);
-    if (!trees.is_ok()) return tool.fail(request.input, trees.status());
-    build_seconds.emplace_back("vertex_trees", seconds_since(start));
-    Result<Bytes> vtre = encode_vtre(trees.value());
-    if (!vtre.is_ok()) return tool.fail(request.output, vtre.status());
-    const VtreRecordSizes rec = vtre_record_sizes(trees.value());
-    auto bytes_per = [](uint64_t bits, uint64_t count) {
-      return count == 0 ? nlohmann::json(nullptr)
-                        : nlohmann::json(static_cast<double>(bits) / 8.0 / count);
-    };
-    vtre_report = {{"nodes", trees.value().node_count()},
-                   {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
-                   {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
-                   {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
-    sections.push_back({kVtreTag, std::move(vtre).value(), "node", trees.value().node_count()});
-  }
+  Result<Built> made = build_structures(request, in.mesh);
+  if (!made.is_ok()) return tool.fail(request.input, made.status());
+  Built& b = made.value();
+  const HierarchyShape& shape = b.shape;
+  std::vector<Written>& sections = b.sections;
+  const std::vector<std::pair<std::string, double>>& build_seconds = b.build_seconds;
+  const nlohmann::json& dag_report = b.dag_report;
+  const nlohmann::json& vtre_report = b.vtre_report;
+  const TriangleMesh& base = b.base;
 
   MetaSection meta = make_meta("lodbake-hierarchy");
-  meta.options = {{"sections", request.sections},
-                  {"boundary_weight", request.options.boundary_weight},
-                  {"max_normal_change_degrees", request.options.max_normal_change_degrees},
-                  {"repair", request.repair}};
+  meta.options = meta_options(request);
   meta.input = in.meta;
-  meta.counts = {
-      {"vertices", h.base.vertex_count()},        {"triangles", h.base.triangle_count()},
-      {"hierarchy_nodes", shape.nodes},           {"hierarchy_depth", shape.depth},
-      {"input_vertices", in.mesh.vertex_count()}, {"input_triangles", in.mesh.triangle_count()}};
-  if (request.dage || request.vtre) {
-    meta.counts["splits"] = pm.splits.size();
-    meta.counts["full_vertices"] = pm.full_vertex_count();
-    meta.counts["full_triangles"] = full_triangle_count(pm.base.triangle_count(), pm.splits);
-  }
+  meta.counts = b.counts;
   Result<Bytes> meta_bytes = encode_meta(meta);
   if (!meta_bytes.is_ok()) return tool.fail(request.output, meta_bytes.status());
-  Result<Bytes> base_bytes = encode_base(h.base, BaseEncodeOptions());
-  if (!base_bytes.is_ok()) return tool.fail(request.output, base_bytes.status());
-  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes).value(), nullptr, 0});
   sections.insert(sections.begin(), {kMetaTag, std::move(meta_bytes).value(), nullptr, 0});
 
   nlohmann::json section_report = nlohmann::json::object();
@@ -238,14 +303,13 @@ int run(const Tool& tool, const Request& request) {
       {"source", in.source},
       {"input_counts",
        {{"vertices", in.mesh.vertex_count()}, {"triangles", in.mesh.triangle_count()}}},
-      {"base_counts",
-       {{"vertices", h.base.vertex_count()}, {"triangles", h.base.triangle_count()}}},
+      {"base_counts", {{"vertices", base.vertex_count()}, {"triangles", base.triangle_count()}}},
       {"nodes", shape.nodes},
       {"roots", shape.roots},
       {"splits", shape.splits},
       {"depth", shape.depth},
-      {"levels_built", built.value().stats.levels_built},
-      {"vertices_after_level", built.value().stats.vertices_after_level},
+      {"levels_built", b.stats.levels_built},
+      {"vertices_after_level", b.stats.vertices_after_level},
       {"tree_id_bits", shape.tree_bits},
       {"node_id_bits", shape.depth},
       {"id_bits", shape.id_bits},
@@ -267,7 +331,7 @@ int run(const Tool& tool, const Request& request) {
             << shape.splits << " splits, depth " << shape.depth << "\n";
   std::cout << "ids         <tree-id, node-id> = <" << shape.tree_bits << ", " << shape.depth
             << "> = " << shape.id_bits << " bits (" << shape.id_bytes << "-byte ids)\n";
-  std::cout << "base        " << h.base.vertex_count() << " vertices, " << h.base.triangle_count()
+  std::cout << "base        " << base.vertex_count() << " vertices, " << base.triangle_count()
             << " triangles\n";
   if (request.dage) {
     std::cout << "dag         " << dag_report["nodes"] << " nodes, " << dag_report["edges"]
