@@ -35,7 +35,8 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
       loaded->import.warnings.push_back(
           "the container holds an asset of " + std::to_string(mesh.asset_meshes) +
           " meshes; this tool builds on one mesh, group " + std::to_string(mesh.group) +
-          "'s (structures over a whole asset: not yet)");
+          "'s (every mesh: the builders and simplify --pm on the container, simplify -o "
+          "ASSET.glb on the glTF file)");
   } else {
     LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
   }

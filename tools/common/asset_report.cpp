@@ -6,6 +6,7 @@
 #include "formats/sections/open_container.h"
 #include "lib/core/sha256.h"
 #include "lib/ingest/container_mesh.h"
+#include "lib/scene/scene_topology.h"
 #include "tools/common/mesh_report.h"
 
 namespace lodbake::cli {
@@ -42,6 +43,41 @@ int print_asset_build(const Tool& tool, const char* schema, const std::string& i
   }
   std::cout << "wrote       " << output << ": " << built.file.size() << " bytes\n";
   return 0;
+}
+
+int run_asset_build(const Tool& tool, const AssetRun& run, MetaSection meta, const Bytes& bytes,
+                    const MeshBuilder& build) {
+  if (run.repair && run.strict)
+    return tool.usage_error("--strict refuses what --repair would fix: give one of them");
+  ImportReport imported;
+  Result<Scene> scene = read_asset(run.input, SceneResources{}, &imported);
+  if (!scene.is_ok()) return tool.fail(run.input, scene.status());
+  for (const std::string& warning : imported.warnings)
+    tool.warn(run.input, warning);
+  print_import_notes(tool, run.input, imported);
+  if (run.on_scene) run.on_scene(scene.value());
+  LoadOptions load;
+  load.repair = run.repair;
+  load.strict = run.strict;
+  meta.input = asset_meta_input(run.input, bytes);
+  size_t meshes = 0, done = 0;
+  for (const SceneMesh& mesh : scene.value().meshes)
+    meshes += mesh_triangle_count(mesh) != 0;
+  Progress progress(tool, run.progress);
+  Result<AssetBuild> built =
+      build_asset(scene.value(), std::move(meta), load,
+                  [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
+                    Result<MeshSections> sections = build(scene_mesh, mesh);
+                    if (meshes != 0) progress.update(static_cast<double>(++done) / meshes);
+                    return sections;
+                  });
+  if (!built.is_ok()) return tool.fail(run.input, built.status());
+  Status written = write_file_atomic(run.output, built.value().file);
+  if (!written.is_ok()) return tool.fail(run.output, written);
+  for (const std::string& warning : built.value().warnings)
+    tool.warn(run.output, warning);
+  tool.warn(run.output, kPositionsOnly);
+  return print_asset_build(tool, run.schema, run.input, run.output, built.value());
 }
 
 }  // namespace lodbake::cli

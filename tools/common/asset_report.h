@@ -3,6 +3,7 @@
 // about attributes, and the per-group report.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "formats/sections/meta.h"
@@ -25,5 +26,25 @@ MetaInput asset_meta_input(const std::string& path, const Bytes& bytes);
 // The report of a build over an asset, text or JSON; returns 0.
 int print_asset_build(const Tool& tool, const char* schema, const std::string& input,
                       const std::string& output, const AssetBuild& built);
+
+// What differs between the builders' runs over an asset.
+struct AssetRun {
+  std::string input;   // the asset, or its container
+  std::string output;  // the container to write
+  bool repair = false;
+  bool strict = false;
+  const char* schema = "";    // of the JSON report
+  const char* progress = "";  // the progress line's label
+  // Called once the asset is read, before any mesh is built (e.g. to share
+  // a triangle budget among its meshes); may be empty.
+  std::function<void(const Scene&)> on_scene;
+};
+
+// A builder's whole run over an asset (`bytes`: the input's content):
+// reads it, builds every mesh with `build` (build_asset()), writes the
+// container, warns (kPositionsOnly once) and reports. `meta` gives the tool
+// and its options; its input is set here. Returns the exit code.
+int run_asset_build(const Tool& tool, const AssetRun& run, MetaSection meta, const Bytes& bytes,
+                    const MeshBuilder& build);
 
 }  // namespace lodbake::cli

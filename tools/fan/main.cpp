@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "formats/container/container_writer.h"
@@ -22,6 +23,8 @@
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/scene/asset_build.h"
+#include "tools/common/asset_report.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -131,8 +134,35 @@ void print_comparison(const HierarchyFigures& fan, const HierarchyFigures& balan
   std::fflush(stdout);
 }
 
-Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
-                            const FanBuildResult& built, nlohmann::json* sections) {
+// What one fan build made: the sections after META (BASE, the mesh itself,
+// and FANH), META's counts and the report's figures.
+struct FanBuilt {
+  FanBuildResult result;
+  FanhStats stats;
+  double seconds = 0;
+  Bytes base, fanh;
+  std::map<std::string, uint64_t> counts;
+};
+
+// The fan-merge hierarchy of one mesh, for a mesh input and for each mesh of
+// an asset alike.
+Result<FanBuilt> build_fan(const FanBuildOptions& options, const TriangleMesh& mesh) {
+  FanBuilt out;
+  const auto start = std::chrono::steady_clock::now();
+  LODBAKE_ASSIGN_OR_RETURN(out.result, build_fan_hierarchy(mesh, options));
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.stats = fanh_stats(out.result.hierarchy);
+  out.counts = {{"vertices", mesh.vertex_count()},
+                {"triangles", mesh.triangle_count()},
+                {"fan_internal_nodes", out.result.hierarchy.internal_count()},
+                {"coarsest_vertices", out.result.stats.output_vertices},
+                {"coarsest_triangles", out.result.stats.output_triangles}};
+  LODBAKE_ASSIGN_OR_RETURN(out.base, encode_base(mesh, BaseEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(out.fanh, encode_fanh(out.result.hierarchy));
+  return out;
+}
+
+MetaSection fan_meta(const Request& request) {
   const FanBuildOptions& o = request.options;
   MetaSection meta = make_meta("lodbake-fan");
   meta.options = {{"degree_weight", o.degree_weight},
@@ -142,25 +172,55 @@ Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded,
   if (o.target_vertices) meta.options["vertices"] = *o.target_vertices;
   if (o.target_ratio) meta.options["ratio"] = *o.target_ratio;
   if (o.max_error) meta.options["error"] = *o.max_error;
+  return meta;
+}
+
+Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded, const FanBuilt& built,
+                            nlohmann::json* sections) {
+  MetaSection meta = fan_meta(request);
   meta.input = meta_input(request.input, loaded);
-  meta.counts = {{"vertices", loaded.mesh.vertex_count()},
-                 {"triangles", loaded.mesh.triangle_count()},
-                 {"fan_internal_nodes", built.hierarchy.internal_count()},
-                 {"coarsest_vertices", built.stats.output_vertices},
-                 {"coarsest_triangles", built.stats.output_triangles}};
+  meta.counts = built.counts;
   LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(loaded.mesh, BaseEncodeOptions()));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes fanh_bytes, encode_fanh(built.hierarchy));
   *sections = {
-      {"META", meta_bytes.size()}, {"BASE", base_bytes.size()}, {"FANH", fanh_bytes.size()}};
+      {"META", meta_bytes.size()}, {"BASE", built.base.size()}, {"FANH", built.fanh.size()}};
   ContainerWriter writer;
   LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, std::move(base_bytes)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kFanhTag, std::move(fanh_bytes)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, built.base));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kFanhTag, built.fanh));
   return writer.finish();
 }
 
+// An asset (glTF, or a container with SCNE): every mesh's fan hierarchy,
+// each in its group beside the scene.
+int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
+  // The comparison is a table for one mesh; on an asset, compare a mesh
+  // extracted from it.
+  if (request.compare) return tool.usage_error("--compare applies to a single mesh, not an asset");
+  AssetRun run;
+  run.input = request.input;
+  run.output = request.output;
+  run.repair = request.repair;
+  run.strict = request.strict;
+  run.schema = kFanSchema;
+  run.progress = "building the fan hierarchies";
+  return run_asset_build(tool, run, fan_meta(request), bytes,
+                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+                           LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
+                           MeshSections out;
+                           out.sections.emplace_back(kBaseTag, std::move(b.base));
+                           out.sections.emplace_back(kFanhTag, std::move(b.fanh));
+                           out.counts = b.counts;
+                           out.report = b.counts;
+                           return out;
+                         });
+}
+
 int run(const Tool& tool, Request& request) {
+  {
+    Result<Bytes> bytes = read_file(request.input);
+    if (bytes.is_ok() && is_asset(request.input, bytes.value()))
+      return run_asset(tool, request, bytes.value());
+  }
   LoadOptions load;
   load.repair = request.repair;
   load.strict = request.strict;
@@ -170,16 +230,15 @@ int run(const Tool& tool, Request& request) {
 
   Progress progress(tool, "building the fan hierarchy");
   request.options.progress = [&](double fraction) { progress.update(fraction); };
-  const auto start = std::chrono::steady_clock::now();
-  Result<FanBuildResult> built = build_fan_hierarchy(loaded.mesh, request.options);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Result<FanBuilt> built = build_fan(request.options, loaded.mesh);
   if (!built.is_ok()) return tool.fail(request.input, built.status());
-  const FanBuildResult& result = built.value();
-  const FanhStats stats = fanh_stats(result.hierarchy);
+  const FanBuilt& made = built.value();
+  const FanBuildResult& result = made.result;
+  const FanhStats& stats = made.stats;
+  const double seconds = made.seconds;
 
   nlohmann::json sections;
-  Result<Bytes> container = fan_container(request, loaded, result, &sections);
+  Result<Bytes> container = fan_container(request, loaded, made, &sections);
   if (!container.is_ok()) return tool.fail(request.output, container.status());
 
   // Built before writing, so a mesh the balanced build refuses leaves no
@@ -281,7 +340,8 @@ int main(int argc, char** argv) {
             "--vertices and --ratio reached, or when no legal fan-merge is left;\n"
             "--error skips fans over the limit. --compare also builds the balanced vertex\n"
             "hierarchy of the same mesh (as lodbake-hierarchy) and reports both side by side.\n"
-            "MESH may also be a lodbake container (.lbk), read as the mesh it stands for.");
+            "MESH may also be a lodbake container (.lbk), read as the mesh it stands for; a\n"
+            "glTF asset, or its container, gets every mesh built in its own group.");
   Request request;
   double ratio = 0, error = 0;
   uint64_t vertices = 0;

@@ -170,39 +170,28 @@ nlohmann::json meta_options(const Request& request) {
 // An asset (glTF, or a container with SCNE): the hierarchy of every mesh,
 // each in its group, beside the scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  ImportReport imported;
-  Result<Scene> scene = read_asset(request.input, SceneResources{}, &imported);
-  if (!scene.is_ok()) return tool.fail(request.input, scene.status());
-  for (const std::string& warning : imported.warnings)
-    tool.warn(request.input, warning);
-  print_import_notes(tool, request.input, imported);
-  LoadOptions load;
-  load.repair = request.repair;
-  load.strict = request.strict;
+  AssetRun run;
+  run.input = request.input;
+  run.output = request.output;
+  run.repair = request.repair;
+  run.strict = request.strict;
+  run.schema = kHierarchySchema;
+  run.progress = "building the hierarchies";
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = meta_options(request);
-  meta.input = asset_meta_input(request.input, bytes);
-  Progress progress(tool, "building the hierarchies");
-  Result<AssetBuild> built = build_asset(
-      scene.value(), meta, load, [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-        LODBAKE_ASSIGN_OR_RETURN(Built b, build_structures(request, mesh));
-        MeshSections out;
-        for (Written& w : b.sections)
-          out.sections.emplace_back(w.tag, std::move(w.bytes));
-        out.counts = b.counts;
-        out.report = {{"nodes", b.shape.nodes},
-                      {"splits", b.shape.splits},
-                      {"depth", b.shape.depth},
-                      {"base_triangles", b.base.triangle_count()}};
-        return out;
-      });
-  if (!built.is_ok()) return tool.fail(request.input, built.status());
-  Status written = write_file_atomic(request.output, built.value().file);
-  if (!written.is_ok()) return tool.fail(request.output, written);
-  for (const std::string& warning : built.value().warnings)
-    tool.warn(request.output, warning);
-  tool.warn(request.output, kPositionsOnly);
-  return print_asset_build(tool, kHierarchySchema, request.input, request.output, built.value());
+  return run_asset_build(tool, run, std::move(meta), bytes,
+                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+                           LODBAKE_ASSIGN_OR_RETURN(Built b, build_structures(request, mesh));
+                           MeshSections out;
+                           for (Written& w : b.sections)
+                             out.sections.emplace_back(w.tag, std::move(w.bytes));
+                           out.counts = b.counts;
+                           out.report = {{"nodes", b.shape.nodes},
+                                         {"splits", b.shape.splits},
+                                         {"depth", b.shape.depth},
+                                         {"base_triangles", b.base.triangle_count()}};
+                           return out;
+                         });
 }
 
 int run(const Tool& tool, const Request& request) {

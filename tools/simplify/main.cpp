@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <utility>
@@ -21,11 +22,13 @@
 #include "lib/meshio/mesh_import.h"
 #include "lib/meshio/mesh_writers.h"
 #include "lib/metrics/surface_distance.h"
+#include "lib/scene/asset_build.h"
 #include "lib/scene/scene_io.h"
 #include "lib/scene/scene_lods.h"
 #include "lib/scene/scene_summary.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/simplify.h"
+#include "tools/common/asset_report.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -131,10 +134,8 @@ Status stage_mesh(StagedOutputs* outputs, const std::string& path, const Triangl
   return outputs->stage(path, bytes);
 }
 
-Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
-                           const ProgressiveMesh& pm, nlohmann::json* report) {
-  MetaSection meta = make_meta("lodbake-simplify");
-  meta.options = {
+nlohmann::json pm_meta_options(const Request& request) {
+  nlohmann::json options = {
       {"placement", request.placement},
       {"boundary_weight", request.options.boundary_weight},
       {"lock_border", request.options.lock_border},
@@ -145,37 +146,97 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
                                                    : nlohmann::json(request.quantize_bits)}};
   // Only when on (the factor only when not the default), so that files made
   // without them keep their bytes.
-  if (request.options.height_guard) meta.options["height_guard"] = true;
+  if (request.options.height_guard) options["height_guard"] = true;
   if (request.options.height_guard &&
       request.options.height_guard_factor != kDefaultHeightGuardFactor)
-    meta.options["height_guard_factor"] = request.options.height_guard_factor;
-  if (request.options.target_ratio) meta.options["ratio"] = *request.options.target_ratio;
-  if (request.options.target_triangles)
-    meta.options["triangles"] = *request.options.target_triangles;
-  if (request.options.max_error) meta.options["error"] = *request.options.max_error;
-  meta.input = meta_input(request.input, loaded);
-  meta.counts = {{"vertices", pm.base.vertex_count()},
-                 {"triangles", pm.base.triangle_count()},
-                 {"splits", pm.splits.size()},
-                 {"full_vertices", pm.full_vertex_count()},
-                 {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)}};
-  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+    options["height_guard_factor"] = request.options.height_guard_factor;
+  if (request.options.target_ratio) options["ratio"] = *request.options.target_ratio;
+  if (request.options.target_triangles) options["triangles"] = *request.options.target_triangles;
+  if (request.options.max_error) options["error"] = *request.options.max_error;
+  return options;
+}
+
+// A progressive mesh's sections (BASE + VSPL, quantized with --quantize)
+// and META's counts, for a mesh input and for each mesh of an asset alike.
+struct PmSections {
+  Bytes base, vspl;
+  std::map<std::string, uint64_t> counts;
+};
+
+Result<PmSections> pm_sections(const Request& request, const ProgressiveMesh& pm) {
+  PmSections out;
+  out.counts = {{"vertices", pm.base.vertex_count()},
+                {"triangles", pm.base.triangle_count()},
+                {"splits", pm.splits.size()},
+                {"full_vertices", pm.full_vertex_count()},
+                {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)}};
   BaseEncodeOptions base_encoding;
   VsplEncodeOptions vspl_encoding;
   base_encoding.quantize = vspl_encoding.quantize = request.quantize_bits != 0;
   if (request.quantize_bits != 0) base_encoding.bits = vspl_encoding.bits = request.quantize_bits;
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(pm.base, base_encoding));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl_bytes, encode_vspl(pm, vspl_encoding));
-  (*report)["pm"] = {
-      {"file", request.pm_output},
-      {"splits", pm.splits.size()},
-      {"sections",
-       {{"META", meta_bytes.size()}, {"BASE", base_bytes.size()}, {"VSPL", vspl_bytes.size()}}}};
+  LODBAKE_ASSIGN_OR_RETURN(out.base, encode_base(pm.base, base_encoding));
+  LODBAKE_ASSIGN_OR_RETURN(out.vspl, encode_vspl(pm, vspl_encoding));
+  return out;
+}
+
+Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
+                           const ProgressiveMesh& pm, nlohmann::json* report) {
+  MetaSection meta = make_meta("lodbake-simplify");
+  meta.options = pm_meta_options(request);
+  meta.input = meta_input(request.input, loaded);
+  LODBAKE_ASSIGN_OR_RETURN(PmSections sections, pm_sections(request, pm));
+  meta.counts = sections.counts;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+  (*report)["pm"] = {{"file", request.pm_output},
+                     {"splits", pm.splits.size()},
+                     {"sections",
+                      {{"META", meta_bytes.size()},
+                       {"BASE", sections.base.size()},
+                       {"VSPL", sections.vspl.size()}}}};
   ContainerWriter writer;
   LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, std::move(base_bytes)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kVsplTag, std::move(vspl_bytes)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, std::move(sections.base)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kVsplTag, std::move(sections.vspl)));
   return writer.finish();
+}
+
+// --pm on an asset (glTF, or a container with SCNE): every mesh's
+// progressive mesh, each in its group beside the scene.
+int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
+  request.options.record_pm = true;
+  MetaSection meta = make_meta("lodbake-simplify");
+  meta.options = pm_meta_options(request);
+  AssetRun run;
+  run.input = request.input;
+  run.output = request.pm_output;
+  run.repair = request.repair;
+  run.strict = request.strict;
+  run.schema = kSimplifySchema;
+  run.progress = "simplifying";
+  // --triangles is the asset's budget, shared by its meshes in proportion
+  // to their size (as -o ASSET.glb shares it).
+  run.on_scene = [&](const Scene& scene) {
+    const uint64_t triangles = summarize_scene(scene).triangles;
+    if (request.options.target_triangles && triangles > 0) {
+      const double ratio = std::min(1.0, static_cast<double>(*request.options.target_triangles) /
+                                             static_cast<double>(triangles));
+      if (!request.options.target_ratio || ratio < *request.options.target_ratio)
+        request.options.target_ratio = ratio;
+    }
+    request.options.target_triangles.reset();
+  };
+  return run_asset_build(
+      tool, run, std::move(meta), bytes,
+      [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+        LODBAKE_ASSIGN_OR_RETURN(SimplifyResult simplified, simplify(mesh, request.options));
+        LODBAKE_ASSIGN_OR_RETURN(PmSections pm, pm_sections(request, *simplified.pm));
+        MeshSections out;
+        out.sections.emplace_back(kBaseTag, std::move(pm.base));
+        out.sections.emplace_back(kVsplTag, std::move(pm.vspl));
+        out.counts = pm.counts;
+        out.report = pm.counts;
+        return out;
+      });
 }
 
 // A glTF or GLB input written as .glb or .gltf is simplified as an asset.
@@ -273,6 +334,13 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
 int run(const Tool& tool, Request& request) {
   {
     Result<Bytes> bytes = read_file(request.input);
+    if (bytes.is_ok() && !request.pm_output.empty() && is_asset(request.input, bytes.value())) {
+      // Each is a run of its own: -o ASSET.glb keeps the asset's
+      // attributes, --pm holds positions only.
+      if (!request.output.empty())
+        return tool.usage_error("on an asset, -o and --pm are separate runs: give one of them");
+      return run_asset_pm(tool, request, bytes.value());
+    }
     if (bytes.is_ok() && is_asset_run(request, bytes.value())) {
       if (request.options.placement != Placement::kHalf)
         return tool.usage_error(
@@ -414,7 +482,8 @@ int main(int argc, char** argv) {
             "level of detail from). Stops at the first of --ratio, --triangles and --error\n"
             "reached, or when no collapse is legal. MESH may also be a lodbake container\n"
             "(.lbk), read as the mesh it stands for (a progressive mesh's full mesh, or a\n"
-            "BASE that is the input).");
+            "BASE that is the input). On a glTF asset, -o OUT.glb simplifies every mesh in\n"
+            "the asset, and --pm (alone) writes every mesh's progressive mesh in its group.");
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;

@@ -3,7 +3,9 @@
 // (lib/strips/sets_build.h), written as a container. Thin: the algorithms
 // live in lib/strips and lib/simplify, the codecs in formats/sections.
 #include <chrono>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "formats/container/container_writer.h"
@@ -18,10 +20,12 @@
 #include "lib/core/sha256.h"
 #include "lib/ingest/container_mesh.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/scene/asset_build.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
 #include "lib/strips/sets_build.h"
 #include "lib/strips/stripify.h"
+#include "tools/common/asset_report.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -89,6 +93,17 @@ int load_container_input(const Tool& tool, const Request& request, Input* in) {
   return 0;
 }
 
+// The progressive mesh the strips' graph follows: QEM half-edge collapses
+// as far as legal.
+Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress) {
+  SimplifyOptions options;
+  options.record_pm = true;
+  options.placement = Placement::kHalf;
+  options.progress = std::move(progress);
+  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult simplified, simplify(mesh, options));
+  return std::move(*simplified.pm);
+}
+
 int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
   LoadOptions load;
   load.repair = request.repair;
@@ -105,15 +120,12 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
     return 0;
   }
   Progress progress(tool, "simplifying");
-  SimplifyOptions options;
-  options.record_pm = true;
-  options.placement = Placement::kHalf;
-  options.progress = [&](double fraction) { progress.update(fraction); };
   const auto start = std::chrono::steady_clock::now();
-  Result<SimplifyResult> simplified = simplify(loaded.mesh, options);
-  if (!simplified.is_ok()) return tool.fail(request.input, simplified.status());
+  Result<ProgressiveMesh> pm =
+      record_pm(loaded.mesh, [&](double fraction) { progress.update(fraction); });
+  if (!pm.is_ok()) return tool.fail(request.input, pm.status());
   in->report["simplify_seconds"] = seconds_since(start);
-  in->pm = std::move(*simplified.value().pm);
+  in->pm = std::move(pm).value();
   return 0;
 }
 
@@ -126,24 +138,133 @@ nlohmann::json strip_stats_json(const StripifyStats& s) {
           {"indices_per_triangle", s.indices_per_triangle()}};
 }
 
-Result<Bytes> finish_container(const Request& request, const Input& in, const Bytes* base,
-                               const Bytes* vspl, const Bytes* strp, const Bytes* sets,
-                               const nlohmann::json& counts) {
+// What one build made: the sections after META, META's counts, and the
+// report's "strips", "sets" and "sections".
+struct StripsBuilt {
+  std::vector<std::pair<std::string, Bytes>> sections;
+  std::map<std::string, uint64_t> counts;
+  nlohmann::json report = nlohmann::json::object();
+  StripifyStats strip_stats;
+  uint64_t stripped_vertices = 0, stripped_triangles = 0;
+};
+
+// The strips (and without --strips-only the SETS graph) of one input, for a
+// mesh or container input and for each mesh of an asset alike.
+Result<StripsBuilt> build_strips(const Request& request, const Input& in) {
+  StripsBuilt out;
+  const TriangleMesh* stripped = &in.mesh;
+  TriangleMesh full;
+  if (in.pm) {
+    LODBAKE_ASSIGN_OR_RETURN(full, mesh_at_lod(*in.pm, in.pm->full_vertex_count()));
+    stripped = &full;
+  }
+  out.stripped_vertices = stripped->vertex_count();
+  out.stripped_triangles = stripped->triangle_count();
+  StripifyStats& strip_stats = out.strip_stats;
+  auto start = std::chrono::steady_clock::now();
+  LODBAKE_ASSIGN_OR_RETURN(TriangleStrips strips, stripify(*stripped, &strip_stats));
+  out.report["strips"] = strip_stats_json(strip_stats);
+  out.report["strips"]["seconds"] = seconds_since(start);
+
+  if (request.strips_only) {
+    LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(in.mesh, BaseEncodeOptions()));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes strp, encode_strp(strips));
+    out.report["sections"] = {{"BASE", base.size()}, {"STRP", strp.size()}};
+    out.sections.emplace_back(kBaseTag, std::move(base));
+    out.sections.emplace_back(kStrpTag, std::move(strp));
+    out.counts = {{"vertices", in.mesh.vertex_count()},
+                  {"triangles", in.mesh.triangle_count()},
+                  {"strips", strip_stats.strips},
+                  {"strip_indices", strip_stats.indices}};
+    return out;
+  }
+  const ProgressiveMesh& pm = *in.pm;
+  SetsBuildStats sets_stats;
+  start = std::chrono::steady_clock::now();
+  LODBAKE_ASSIGN_OR_RETURN(SetsGraph g, build_sets(strips, pm, &sets_stats));
+  const double build_seconds = seconds_since(start);
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes sets, encode_sets(g));
+  out.report["sets"] = {{"lods", g.lod_count},
+                        {"nodes", g.node_count()},
+                        {"arcs", g.arc_count()},
+                        {"successors", g.successors.size()},
+                        {"beginnings", g.beginning_lod.size()},
+                        {"strip_updates", sets_stats.strip_updates},
+                        {"removed_indices", sets_stats.removed_indices},
+                        {"emptied_strips", sets_stats.emptied_strips},
+                        {"seconds", build_seconds},
+                        {"bytes", sets.size()}};
+  nlohmann::json paper = nlohmann::json::array();
+  for (const PaperFigure& f : kPaperFigures)
+    paper.push_back({{"model", f.model}, {"triangles", f.triangles}, {"megabytes", f.megabytes}});
+  out.report["sets"]["paper_in_memory"] = paper;
+  out.report["sections"] = {{"BASE", base.size()}, {"VSPL", vspl.size()}, {"SETS", sets.size()}};
+  out.sections.emplace_back(kBaseTag, std::move(base));
+  out.sections.emplace_back(kVsplTag, std::move(vspl));
+  out.sections.emplace_back(kSetsTag, std::move(sets));
+  out.counts = {{"vertices", pm.base.vertex_count()},
+                {"triangles", pm.base.triangle_count()},
+                {"splits", pm.splits.size()},
+                {"full_vertices", pm.full_vertex_count()},
+                {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)},
+                {"strips", strip_stats.strips},
+                {"lods", g.lod_count}};
+  return out;
+}
+
+MetaSection strips_meta(const Request& request) {
   MetaSection meta = make_meta("lodbake-strips");
   meta.options = {{"strips_only", request.strips_only}, {"repair", request.repair}};
+  return meta;
+}
+
+Result<Bytes> finish_container(const Request& request, const Input& in, StripsBuilt built) {
+  MetaSection meta = strips_meta(request);
   meta.input = in.meta;
-  meta.counts = counts;
+  meta.counts = built.counts;
   LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
   ContainerWriter writer;
   LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, *base));
-  if (vspl != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kVsplTag, *vspl));
-  if (strp != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kStrpTag, *strp));
-  if (sets != nullptr) LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kSetsTag, *sets));
+  for (auto& [tag, bytes] : built.sections)
+    LODBAKE_RETURN_IF_ERROR(writer.add_known_section(tag, std::move(bytes)));
   return writer.finish();
 }
 
+// An asset (glTF, or a container with SCNE): every mesh's strips (and
+// graph over its own progressive mesh), each in its group beside the scene.
+int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
+  AssetRun run;
+  run.input = request.input;
+  run.output = request.output;
+  run.repair = request.repair;
+  run.strict = request.strict;
+  run.schema = kStripsSchema;
+  run.progress = "building the strips";
+  return run_asset_build(tool, run, strips_meta(request), bytes,
+                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+                           Input in;
+                           if (request.strips_only) {
+                             in.mesh = mesh;
+                           } else {
+                             LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(mesh, nullptr));
+                           }
+                           LODBAKE_ASSIGN_OR_RETURN(StripsBuilt b, build_strips(request, in));
+                           MeshSections out;
+                           out.sections = std::move(b.sections);
+                           out.counts = b.counts;
+                           out.report = b.counts;
+                           return out;
+                         });
+}
+
 int run(const Tool& tool, const Request& request) {
+  {
+    Result<Bytes> bytes = read_file(request.input);
+    if (bytes.is_ok() && is_asset(request.input, bytes.value()))
+      return run_asset(tool, request, bytes.value());
+  }
   Input in;
   if (is_container_input(request.input) && (request.repair || request.strict))
     return tool.usage_error(std::string(request.repair ? "--repair" : "--strict") +
@@ -155,74 +276,13 @@ int run(const Tool& tool, const Request& request) {
                            {"input", request.input},
                            {"output", request.output},
                            {"source", in.report}};
-  const TriangleMesh* stripped = &in.mesh;
-  TriangleMesh full;
-  if (in.pm) {
-    Result<TriangleMesh> refined = mesh_at_lod(*in.pm, in.pm->full_vertex_count());
-    if (!refined.is_ok()) return tool.fail(request.input, refined.status());
-    full = std::move(refined).value();
-    stripped = &full;
-  }
-  StripifyStats strip_stats;
-  auto start = std::chrono::steady_clock::now();
-  Result<TriangleStrips> strips = stripify(*stripped, &strip_stats);
-  if (!strips.is_ok()) return tool.fail(request.input, strips.status());
-  report["strips"] = strip_stats_json(strip_stats);
-  report["strips"]["seconds"] = seconds_since(start);
-
-  Result<Bytes> container = runtime_error("no container built");
-  if (request.strips_only) {
-    Result<Bytes> base = encode_base(in.mesh, BaseEncodeOptions());
-    if (!base.is_ok()) return tool.fail(request.input, base.status());
-    Result<Bytes> strp = encode_strp(strips.value());
-    if (!strp.is_ok()) return tool.fail(request.input, strp.status());
-    report["sections"] = {{"BASE", base.value().size()}, {"STRP", strp.value().size()}};
-    container = finish_container(request, in, &base.value(), nullptr, &strp.value(), nullptr,
-                                 {{"vertices", in.mesh.vertex_count()},
-                                  {"triangles", in.mesh.triangle_count()},
-                                  {"strips", strip_stats.strips},
-                                  {"strip_indices", strip_stats.indices}});
-  } else {
-    const ProgressiveMesh& pm = *in.pm;
-    SetsBuildStats sets_stats;
-    start = std::chrono::steady_clock::now();
-    Result<SetsGraph> graph = build_sets(strips.value(), pm, &sets_stats);
-    if (!graph.is_ok()) return tool.fail(request.input, graph.status());
-    const double build_seconds = seconds_since(start);
-    Result<Bytes> base = encode_base(pm.base, BaseEncodeOptions());
-    if (!base.is_ok()) return tool.fail(request.input, base.status());
-    Result<Bytes> vspl = encode_vspl(pm, VsplEncodeOptions());
-    if (!vspl.is_ok()) return tool.fail(request.input, vspl.status());
-    Result<Bytes> sets = encode_sets(graph.value());
-    if (!sets.is_ok()) return tool.fail(request.input, sets.status());
-    const SetsGraph& g = graph.value();
-    report["sets"] = {{"lods", g.lod_count},
-                      {"nodes", g.node_count()},
-                      {"arcs", g.arc_count()},
-                      {"successors", g.successors.size()},
-                      {"beginnings", g.beginning_lod.size()},
-                      {"strip_updates", sets_stats.strip_updates},
-                      {"removed_indices", sets_stats.removed_indices},
-                      {"emptied_strips", sets_stats.emptied_strips},
-                      {"seconds", build_seconds},
-                      {"bytes", sets.value().size()}};
-    nlohmann::json paper = nlohmann::json::array();
-    for (const PaperFigure& f : kPaperFigures)
-      paper.push_back({{"model", f.model}, {"triangles", f.triangles}, {"megabytes", f.megabytes}});
-    report["sets"]["paper_in_memory"] = paper;
-    report["sections"] = {{"BASE", base.value().size()},
-                          {"VSPL", vspl.value().size()},
-                          {"SETS", sets.value().size()}};
-    container = finish_container(
-        request, in, &base.value(), &vspl.value(), nullptr, &sets.value(),
-        {{"vertices", pm.base.vertex_count()},
-         {"triangles", pm.base.triangle_count()},
-         {"splits", pm.splits.size()},
-         {"full_vertices", pm.full_vertex_count()},
-         {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)},
-         {"strips", strip_stats.strips},
-         {"lods", g.lod_count}});
-  }
+  Result<StripsBuilt> built = build_strips(request, in);
+  if (!built.is_ok()) return tool.fail(request.input, built.status());
+  const StripifyStats strip_stats = built.value().strip_stats;
+  const uint64_t stripped_vertices = built.value().stripped_vertices;
+  const uint64_t stripped_triangles = built.value().stripped_triangles;
+  report.update(built.value().report);
+  Result<Bytes> container = finish_container(request, in, std::move(built).value());
   if (!container.is_ok()) return tool.fail(request.output, container.status());
   Status written = write_file_atomic(request.output, container.value());
   if (!written.is_ok()) return tool.fail(request.output, written);
@@ -232,8 +292,8 @@ int run(const Tool& tool, const Request& request) {
     tool.print_json(report);
     return 0;
   }
-  std::cout << "input         " << request.input << ": " << stripped->vertex_count()
-            << " vertices, " << stripped->triangle_count() << " triangles\n";
+  std::cout << "input         " << request.input << ": " << stripped_vertices << " vertices, "
+            << stripped_triangles << " triangles\n";
   std::cout << "strips        " << strip_stats.strips << " strips, " << strip_stats.indices
             << " indices, " << strip_stats.swaps << " swaps, " << strip_stats.indices_per_triangle()
             << " indices per triangle\n";
@@ -263,7 +323,8 @@ int main(int argc, char** argv) {
             "multiresolution strip graph (Belmonte et al. 2006) over a progressive mesh's\n"
             "contractions. IN is a mesh (simplified here by QEM half-edge collapses as far as\n"
             "legal) or a .lbk holding BASE + VSPL. Writes META + BASE + VSPL + SETS, or with\n"
-            "--strips-only META + BASE + STRP (the strips over the full mesh).");
+            "--strips-only META + BASE + STRP (the strips over the full mesh). A glTF asset,\n"
+            "or its container, gets every mesh built in its own group.");
   Request request;
   tool.options().add_options()(
       "output,o", po::value<std::string>(&request.output)->value_name("OUT.lbk"),
