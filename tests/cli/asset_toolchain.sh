@@ -2,6 +2,7 @@
 # An asset through the toolchain, as a user runs it:
 #   inspect ASSET -> pack -> inspect --validate --extract (.glb and .gltf)
 #   -> simplify --lods 0.5,0.25 (.glb)
+#   -> hierarchy (from the asset and from its container) -> replay --validate
 # Every output keeps the asset: lodbake's own scene report of each equals
 # the input's (every count for the copies; for the levels all but triangle,
 # vertex, point and seam counts), Khronos's validator finds no error the
@@ -52,6 +53,16 @@ scene_of "$work/input.json" level > "$work/input.level"
   || fail "extract .gltf"
 "$tools/lodbake-simplify" "$asset" --lods 0.5,0.25 -o "$work/lod_%d.glb" -q > /dev/null \
   || fail "simplify --lods"
+
+# Structures over the asset: each mesh's hierarchy in its group, the same
+# from the asset and from its container, valid, and replayed.
+"$tools/lodbake-hierarchy" "$asset" -o "$work/h.lbk" -q > /dev/null || fail "hierarchy"
+"$tools/lodbake-hierarchy" "$work/asset.lbk" -o "$work/h2.lbk" -q > /dev/null \
+  || fail "hierarchy from the container"
+cmp -s "$work/h.lbk" "$work/h2.lbk" || fail "the hierarchy from the container differs"
+"$tools/lodbake-inspect" "$work/h.lbk" --validate -q > /dev/null || fail "inspect --validate h.lbk"
+"$tools/lodbake-replay" "$work/h.lbk" --mode vhier --path orbit --validate -q > /dev/null \
+  || fail "replay --mode vhier"
 
 scene_of "$work/container.json" copy > "$work/container.copy"
 cmp -s "$work/input.copy" "$work/container.copy" || fail "the container's scene differs from the input's"
