@@ -13,6 +13,7 @@
 #include "formats/sections/open_container.h"
 #include "formats/sections/scne.h"
 #include "lib/meshio/mesh_import.h"
+#include "lib/scene/asset_build.h"
 #include "lib/scene/scene_compare.h"
 #include "lib/scene/scene_container.h"
 #include "lib/scene/scene_from_mesh.h"
@@ -186,6 +187,45 @@ TEST(SimplifyScene, RefusesOptimalPlacement) {
   Result<SceneLods> lods = simplify_scene(two_material_elephant(), options);
   ASSERT_FALSE(lods.is_ok());
   EXPECT_EQ(lods.status().kind(), ErrorKind::kUsage);
+}
+
+TEST(AssetBuild, OneGroupPerMeshBesideTheScene) {
+  const Scene truck = read_asset(kAssets + "CesiumMilkTruck/CesiumMilkTruck.gltf");
+  std::vector<uint32_t> meshes_built;
+  const MeshBuilder base_only = [&](uint32_t mesh, const TriangleMesh& m) -> Result<MeshSections> {
+    meshes_built.push_back(mesh);
+    MeshSections out;
+    LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(m, BaseEncodeOptions{}));
+    out.sections.emplace_back(kBaseTag, std::move(base));
+    out.counts = {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()}};
+    return out;
+  };
+  Result<AssetBuild> built = build_asset(truck, make_meta("test"), LoadOptions{}, base_only);
+  ASSERT_TRUE(built.is_ok()) << built.status().message();
+  // The wheels' mesh is used by two nodes and built once.
+  EXPECT_EQ(meshes_built, (std::vector<uint32_t>{0, 1}));
+  ASSERT_EQ(built.value().groups.size(), 2u);
+  EXPECT_TRUE(built.value().groups[0]["repaired"].get<bool>());  // two split fans
+  Result<OpenedContainer> opened = open_container(built.value().file);
+  ASSERT_TRUE(opened.is_ok()) << opened.status().message();
+  EXPECT_EQ(opened.value().group_count(), 2u);
+  Result<Scene> back = scene_of_container(opened.value().decoded());
+  ASSERT_TRUE(back.is_ok());
+  EXPECT_EQ(first_scene_difference(truck, back.value()), "");
+  // A builder's failure names the mesh.
+  const MeshBuilder failing = [](uint32_t, const TriangleMesh&) -> Result<MeshSections> {
+    return runtime_error("no memory left");
+  };
+  Result<AssetBuild> failed = build_asset(truck, make_meta("test"), LoadOptions{}, failing);
+  ASSERT_FALSE(failed.is_ok());
+  EXPECT_EQ(failed.status().message(), "mesh 0: no memory left");
+  // --strict refuses the mesh the default repair would have fixed.
+  LoadOptions strict;
+  strict.strict = true;
+  Result<AssetBuild> refused = build_asset(truck, make_meta("test"), strict, base_only);
+  ASSERT_FALSE(refused.is_ok());
+  EXPECT_NE(refused.status().message().find("mesh 0: --strict"), std::string::npos)
+      << refused.status().message();
 }
 
 }  // namespace
