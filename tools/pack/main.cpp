@@ -20,12 +20,12 @@
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "formats/support/quantization.h"
-#include "lib/core/sha256.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/mesh_import.h"
 #include "lib/pack/pack_containers.h"
 #include "lib/scene/scene_io.h"
 #include "lib/scene/scene_pack.h"
+#include "tools/common/asset_report.h"
 #include "tools/common/cli.h"
 #include "tools/common/mesh_report.h"
 
@@ -268,10 +268,7 @@ int pack_asset(const Tool& tool, const std::string& input, const Bytes& bytes,
       {"repair", false},
       {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
                                                    : nlohmann::json(options.quantize_bits)}};
-  const size_t slash = input.find_last_of('/');
-  meta.input =
-      MetaInput{to_valid_utf8(slash == std::string::npos ? input : input.substr(slash + 1)),
-                sha256_hex(bytes.data(), bytes.size()), bytes.size()};
+  meta.input = asset_meta_input(input, bytes);
   BaseEncodeOptions encoding;
   encoding.quantize = options.quantize_bits != 0;
   if (encoding.quantize) encoding.bits = options.quantize_bits;
