@@ -13,8 +13,9 @@
 namespace lodbake {
 bool is_asset(const std::string& path, const Bytes& bytes) {
   if (starts_with_container_magic(bytes.data(), bytes.size())) {
-    Result<OpenedContainer> opened = open_container(bytes);
-    return opened.is_ok() && has_scene(opened.value().decoded());
+    // The section table says it; no section needs decoding to know.
+    Result<Container> container = read_container(bytes.data(), bytes.size());
+    return container.is_ok() && has_scene(container.value());
   }
   ImportReport ignored;
   Result<MeshContent> content = prepare_mesh_content(path, bytes, &ignored);
@@ -22,11 +23,10 @@ bool is_asset(const std::string& path, const Bytes& bytes) {
                              content.value().format == MeshFormat::kGlb);
 }
 
-Result<Scene> read_asset(const std::string& path, const SceneResources& resources,
-                         ImportReport* report) {
-  LODBAKE_ASSIGN_OR_RETURN(Bytes bytes, read_file(path));
+Result<Scene> read_asset(const std::string& path, const Bytes& bytes,
+                         const SceneResources& resources, ImportReport* report) {
   if (starts_with_container_magic(bytes.data(), bytes.size())) {
-    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(std::move(bytes)));
+    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(bytes));
     report->format = "lodbake container (asset)";
     return scene_of_container(opened.decoded(), nullptr, report);
   }

@@ -48,10 +48,10 @@ struct AssetBuild {
   std::vector<std::string> warnings;  // one line each
 };
 
-// The asset a tool was given: a glTF asset file, or a container holding an
-// asset (SCNE). Fails with what the reader says.
-Result<Scene> read_asset(const std::string& path, const SceneResources& resources,
-                         ImportReport* report);
+// The asset a tool was given (`bytes`, read from `path`): a glTF asset, or
+// a container holding an asset (SCNE). Fails with what the reader says.
+Result<Scene> read_asset(const std::string& path, const Bytes& bytes,
+                         const SceneResources& resources, ImportReport* report);
 
 // True when `path` (already read into `bytes`) is a glTF asset, or a
 // container with a SCNE section.

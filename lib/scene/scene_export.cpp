@@ -1,25 +1,11 @@
 // write_scene_file(): a scene to a .glb, or to a .gltf with the files it
 // refers to, all or none.
-#include <algorithm>
-#include <cctype>
 #include <string>
 
+#include "lib/meshio/file_name.h"
 #include "lib/scene/scene_io.h"
 
 namespace lodbake {
-namespace {
-
-std::string lower_extension(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-}  // namespace
 
 bool is_scene_output(const std::string& path) {
   const std::string ext = lower_extension(path);

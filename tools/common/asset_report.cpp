@@ -50,7 +50,7 @@ int run_asset_build(const Tool& tool, const AssetRun& run, MetaSection meta, con
   if (run.repair && run.strict)
     return tool.usage_error("--strict refuses what --repair would fix: give one of them");
   ImportReport imported;
-  Result<Scene> scene = read_asset(run.input, SceneResources{}, &imported);
+  Result<Scene> scene = read_asset(run.input, bytes, SceneResources{}, &imported);
   if (!scene.is_ok()) return tool.fail(run.input, scene.status());
   for (const std::string& warning : imported.warnings)
     tool.warn(run.input, warning);

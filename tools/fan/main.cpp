@@ -196,13 +196,13 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   // The comparison is a table for one mesh; on an asset, compare a mesh
   // extracted from it.
   if (request.compare) return tool.usage_error("--compare applies to a single mesh, not an asset");
-  AssetRun run;
-  run.input = request.input;
-  run.output = request.output;
-  run.repair = request.repair;
-  run.strict = request.strict;
-  run.schema = kFanSchema;
-  run.progress = "building the fan hierarchies";
+  AssetRun run{request.input,
+               request.output,
+               request.repair,
+               request.strict,
+               kFanSchema,
+               "building the fan hierarchies",
+               {}};
   return run_asset_build(tool, run, fan_meta(request), bytes,
                          [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
                            LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));

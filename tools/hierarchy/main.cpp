@@ -170,13 +170,13 @@ nlohmann::json meta_options(const Request& request) {
 // An asset (glTF, or a container with SCNE): the hierarchy of every mesh,
 // each in its group, beside the scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  AssetRun run;
-  run.input = request.input;
-  run.output = request.output;
-  run.repair = request.repair;
-  run.strict = request.strict;
-  run.schema = kHierarchySchema;
-  run.progress = "building the hierarchies";
+  AssetRun run{request.input,
+               request.output,
+               request.repair,
+               request.strict,
+               kHierarchySchema,
+               "building the hierarchies",
+               {}};
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = meta_options(request);
   return run_asset_build(tool, run, std::move(meta), bytes,

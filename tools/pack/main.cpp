@@ -21,7 +21,6 @@
 #include "formats/support/file_io.h"
 #include "formats/support/quantization.h"
 #include "lib/ingest/load_mesh.h"
-#include "lib/meshio/mesh_import.h"
 #include "lib/pack/pack_containers.h"
 #include "lib/scene/scene_io.h"
 #include "lib/scene/scene_pack.h"
@@ -52,14 +51,6 @@ struct PackOptions {
   std::string keep;
   bool allow_outside = false;
 };
-
-// A glTF or GLB input is an asset: packed as a scene (SCNE + a BASE per mesh).
-bool is_asset_input(const std::string& path, const Bytes& bytes) {
-  ImportReport ignored;
-  Result<MeshContent> content = prepare_mesh_content(path, bytes, &ignored);
-  return content.is_ok() && (content.value().format == MeshFormat::kGltf ||
-                             content.value().format == MeshFormat::kGlb);
-}
 
 // "A,B" -> {"A", "B"}; every tag must be 4 printable characters.
 bool parse_tags(const std::string& text, std::vector<std::string>* tags, std::string* bad) {
@@ -415,7 +406,7 @@ int main(int argc, char** argv) {
     if (std::optional<int> code = tool.check_outputs({options.output})) return *code;
     return tool.run([&] {
       Result<Bytes> bytes = read_file(inputs.front());
-      if (bytes.is_ok() && is_asset_input(inputs.front(), bytes.value())) {
+      if (bytes.is_ok() && is_asset(inputs.front(), bytes.value())) {
         if (options.repair || options.strict)
           return tool.usage_error(
               "--repair and --strict apply to a mesh; an asset's meshes are stored as the "

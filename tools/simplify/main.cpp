@@ -206,13 +206,13 @@ int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
   request.options.record_pm = true;
   MetaSection meta = make_meta("lodbake-simplify");
   meta.options = pm_meta_options(request);
-  AssetRun run;
-  run.input = request.input;
-  run.output = request.pm_output;
-  run.repair = request.repair;
-  run.strict = request.strict;
-  run.schema = kSimplifySchema;
-  run.progress = "simplifying";
+  AssetRun run{request.input,
+               request.pm_output,
+               request.repair,
+               request.strict,
+               kSimplifySchema,
+               "simplifying",
+               {}};
   // --triangles is the asset's budget, shared by its meshes in proportion
   // to their size (as -o ASSET.glb shares it).
   run.on_scene = [&](const Scene& scene) {
