@@ -53,9 +53,22 @@ struct AssetBuild {
 Result<Scene> read_asset(const std::string& path, const Bytes& bytes,
                          const SceneResources& resources, ImportReport* report);
 
-// True when `path` (already read into `bytes`) is a glTF asset, or a
-// container with a SCNE section.
+// True when `path` (already read into `bytes`) is an asset, which every
+// tool takes as it takes glTF (docs/import.md "Meshes as scenes"): a glTF
+// asset; a container with a SCNE section; an OBJ with materials, i.e. whose
+// faces fall into two or more material groups (the faces before any
+// 'usemtl' form one) or use a material while a 'mtllib' names a file that
+// exists (outside the OBJ's folder too: reading it is then refused, as a
+// glTF URI is); a PLY with vertex colours. Any other file is a mesh: OFF,
+// STL, .drc, an OBJ without materials (texture coordinates and normals
+// alone stay in the mesh, per vertex), a PLY without colours.
 bool is_asset(const std::string& path, const Bytes& bytes);
+
+// True when a run that writes a glTF asset (lodbake-simplify -o OUT.glb)
+// reads `path` as a scene: an asset file (not a container), or an OBJ with
+// texture coordinates, whose seams the scene keeps per corner where the
+// mesh would split its vertices.
+bool is_scene_source(const std::string& path, const Bytes& bytes);
 
 // `meta` gives tool, options and input; counts come from group 0's
 // builder, "scene" from the asset. Deterministic.

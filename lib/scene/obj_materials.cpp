@@ -18,6 +18,9 @@
 // Images are referenced by their path relative to the OBJ's folder (the
 // map's name taken relative to its library's folder); one image and one
 // texture per distinct path, in order of first use.
+// A library or image that is missing is a warning; one that the folder
+// confinement refuses (outside the folder, a scheme) fails the read, as a
+// glTF URI does, unless the OBJ is read from memory.
 #include "lib/scene/obj_materials.h"
 
 #include <algorithm>
@@ -49,6 +52,12 @@ float unit(float f) {
 std::string folder_of(const std::string& path) {
   size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+// Whether a failed read of a library or image is only missing (a warning)
+// rather than refused (the read fails).
+bool only_missing(const Status& status, const SceneResources& resources) {
+  return status.kind() == ErrorKind::kIo || resources.folder.empty();
 }
 
 std::string mime_of(const std::string& path) {
@@ -91,6 +100,9 @@ class MaterialBuilder {
     return out;
   }
 
+  // The first refusal of an image's read, or OK.
+  const Status& status() const { return status_; }
+
   ObjSceneMaterials finish(SceneJson materials) {
     ObjSceneMaterials out;
     out.materials = std::move(materials);
@@ -118,6 +130,10 @@ class MaterialBuilder {
     Result<Bytes> bytes = read_resource(resources_, path);
     if (bytes.is_ok()) {
       image.bytes = std::move(bytes).value();
+    } else if (!only_missing(bytes.status(), resources_)) {
+      if (status_.is_ok())
+        status_ = Status(bytes.status().kind(), "texture '" + path.substr(0, 200) +
+                                                    "': " + bytes.status().message());
     } else {
       image.missing = true;
       report_->warnings.push_back("texture '" + path +
@@ -135,6 +151,7 @@ class MaterialBuilder {
   std::vector<SceneImage> images_;
   SceneJson textures_ = SceneJson::array();
   std::map<std::string, size_t> texture_of_path_;
+  Status status_;
 };
 
 }  // namespace
@@ -149,6 +166,9 @@ Result<ObjSceneMaterials> obj_materials(const std::vector<std::string>& names,
     for (const std::string& library : libraries) {
       Result<Bytes> bytes = read_resource(resources, library);
       if (!bytes.is_ok()) {
+        if (!only_missing(bytes.status(), resources))
+          return Status(bytes.status().kind(), "material library '" + library.substr(0, 200) +
+                                                   "': " + bytes.status().message());
         every_library_read = false;
         report->warnings.push_back("material library '" + library +
                                    "' cannot be read: " + bytes.status().message());
@@ -181,6 +201,7 @@ Result<ObjSceneMaterials> obj_materials(const std::vector<std::string>& names,
       undefined.name = name;
       materials.push_back(builder.material(undefined, ""));
     }
+    LODBAKE_RETURN_IF_ERROR(builder.status());
     return builder.finish(std::move(materials));
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while reading the materials");

@@ -23,7 +23,10 @@ struct ObjSceneMaterials {
 /// library that cannot be read and a map whose image cannot be read are one
 /// warning each in `report`; a name no library defines gets a material with
 /// only that name and the defaults (a note, or a warning when every library
-/// was read). Fails only when memory runs out. Mapping: obj_materials.cpp.
+/// was read). Fails (kUnsupported) on a library or image that read_resource()
+/// refuses rather than misses (outside the folder, a scheme), unless
+/// `resources` has no folder, and when memory runs out. Mapping:
+/// obj_materials.cpp.
 Result<ObjSceneMaterials> obj_materials(const std::vector<std::string>& names,
                                         const std::vector<std::string>& libraries,
                                         const SceneResources& resources, ImportReport* report);

@@ -1,5 +1,6 @@
 // write_scene_file(): a scene to a .glb, or to a .gltf with the files it
 // refers to, all or none.
+#include <filesystem>
 #include <string>
 
 #include "lib/meshio/file_name.h"
@@ -26,8 +27,20 @@ Status stage_scene_file(StagedOutputs* staged, const std::string& path, const Sc
   const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
   LODBAKE_ASSIGN_OR_RETURN(std::vector<SceneOutputFile> files,
                            write_scene_gltf(scene, name, report));
-  for (const SceneOutputFile& file : files)
+  for (const SceneOutputFile& file : files) {
+    // An image keeps its input's subfolder ("tex/a.png", as an OBJ's
+    // library names it): the folder must exist before the file is staged in
+    // it. A run that fails later leaves it behind, empty.
+    const size_t sub = file.name.find_last_of('/');
+    if (sub != std::string::npos) {
+      std::error_code error;
+      std::filesystem::create_directories(folder + file.name.substr(0, sub), error);
+      if (error)
+        return io_error("cannot create the folder '" + folder + file.name.substr(0, sub) +
+                        "': " + error.message());
+    }
     LODBAKE_RETURN_IF_ERROR(staged->stage(folder + file.name, file.bytes));
+  }
   return Status::ok();
 }
 

@@ -341,7 +341,8 @@ int main(int argc, char** argv) {
             "--error skips fans over the limit. --compare also builds the balanced vertex\n"
             "hierarchy of the same mesh (as lodbake-hierarchy) and reports both side by side.\n"
             "MESH may also be a lodbake container (.lbk), read as the mesh it stands for; a\n"
-            "glTF asset, or its container, gets every mesh built in its own group.");
+            "glTF asset (or an OBJ with materials, a PLY with colours: docs/import.md), or\n"
+            "its container, gets every mesh built in its own group.");
   Request request;
   double ratio = 0, error = 0;
   uint64_t vertices = 0;

@@ -167,8 +167,9 @@ nlohmann::json meta_options(const Request& request) {
           {"repair", request.repair}};
 }
 
-// An asset (glTF, or a container with SCNE): the hierarchy of every mesh,
-// each in its group, beside the scene.
+// An asset (is_asset(): glTF, an OBJ with materials, a container with
+// SCNE, ...): the hierarchy of every mesh, each in its group, beside the
+// scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   AssetRun run{request.input,
                request.output,

@@ -644,6 +644,7 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
     return tool.usage_error("--extract needs a .lbk container; '" + path + "' is a mesh file");
   // Assets (glTF, GLB, OBJ with its materials) are also reported as scenes.
   std::optional<SceneSummary> scene;
+  std::string not_an_asset;  // why an OBJ the mesh check reads is no scene
   ImportReport probe;
   Result<MeshContent> content = prepare_mesh_content(path, bytes, &probe);
   if (content.is_ok() &&
@@ -654,6 +655,7 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
     const bool obj = content.value().format == MeshFormat::kObj;
     // An OBJ the mesh check can still read gets its report without a scene.
     if (!read.is_ok() && !obj) return tool.fail(path, read.status());
+    if (!read.is_ok()) not_an_asset = read.status().message();
     if (read.is_ok()) {
       // A linter reports what is missing (an image, a material library) as
       // findings on its one note line, not as warnings about its own run.
@@ -670,6 +672,8 @@ int inspect_mesh(const Tool& tool, const std::string& path, Bytes bytes,
   LoadedMesh loaded;
   Status status = load_mesh_bytes(path, std::move(bytes), load, &loaded);
   if (!status.is_ok()) return tool.fail(path, status);
+  // E.g. a material library outside the folder, which the other tools refuse.
+  if (!not_an_asset.empty()) tool.info(path, "not read as an asset: " + not_an_asset);
   // An asset's report says what it holds; the notes of the merged mesh the
   // check runs on ("ignored 4 materials") would only contradict it.
   if (!scene) print_import_notes(tool, path, loaded.import);

@@ -308,13 +308,15 @@ int main(int argc, char** argv) {
   using namespace lodbake::cli;
   Tool tool("lodbake-pack",
             "MESH -o OUT.lbk [options]\n       lodbake-pack A.lbk [B.lbk ...] -o OUT.lbk [options]",
-            "With a glTF asset (.gltf with its .bin and images beside it, or .glb): writes\n"
+            "With an asset (.gltf with its .bin and images beside it, or .glb; an OBJ with\n"
+            "materials, read with its .mtl and images; a PLY with vertex colours): writes\n"
             "the whole asset (every node, mesh, primitive, material, texture, image, skin,\n"
             "animation and extension, in a SCNE section, which `lodbake-inspect --extract\n"
             "OUT.glb` gives back) and, in one group per mesh, a BASE section with that mesh's\n"
             "welded topology (its primitives share the positions along their borders).\n"
             "\n"
-            "With a mesh (.obj .ply .off .stl .drc, optionally .gz): imports it,\n"
+            "With a mesh (.obj .ply .off .stl .drc, optionally .gz; see docs/import.md for\n"
+            "which OBJ and PLY files are assets): imports it,\n"
             "checks it, repairs it where needed, and writes a lodbake container with a META\n"
             "section (tool, options, input name and SHA-256, counts) and a BASE section.\n"
             "The stored mesh is what lodbake-simplify, -hierarchy, -fan and -strips take:\n"
@@ -362,7 +364,8 @@ int main(int argc, char** argv) {
       "keep", po::value<std::string>(&options.keep)->value_name("TAG,..."),
       "containers: write only these sections (and META)")(
       "allow-outside", po::bool_switch(&options.allow_outside),
-      "glTF asset: let its URIs name files outside the asset's folder (refused by default)");
+      "asset: let its URIs (glTF) or material libraries and maps (OBJ) name files outside "
+      "its folder (refused by default)");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   const std::vector<std::string> inputs = tool.positionals("input");
@@ -413,7 +416,8 @@ int main(int argc, char** argv) {
               "file has them (a builder repairs what it must when it reads them)");
         return pack_asset(tool, inputs.front(), bytes.value(), options);
       }
-      if (options.allow_outside) return tool.usage_error("--allow-outside applies to a glTF asset");
+      if (options.allow_outside) return tool.usage_error(
+            "--allow-outside applies to a glTF asset or an OBJ with materials");
       return pack(tool, inputs.front(), options);
     });
   }

@@ -19,7 +19,6 @@
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
-#include "lib/meshio/mesh_import.h"
 #include "lib/meshio/mesh_writers.h"
 #include "lib/metrics/surface_distance.h"
 #include "lib/scene/asset_build.h"
@@ -239,13 +238,11 @@ int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
       });
 }
 
-// A glTF or GLB input written as .glb or .gltf is simplified as an asset.
+// An asset file (or an OBJ with texture coordinates) written as .glb or
+// .gltf is simplified as an asset.
 bool is_asset_run(const Request& request, const Bytes& bytes) {
-  if (!request.pm_output.empty() || !is_scene_output(request.output)) return false;
-  ImportReport ignored;
-  Result<MeshContent> content = prepare_mesh_content(request.input, bytes, &ignored);
-  return content.is_ok() && (content.value().format == MeshFormat::kGltf ||
-                             content.value().format == MeshFormat::kGlb);
+  return request.pm_output.empty() && is_scene_output(request.output) &&
+         is_scene_source(request.input, bytes);
 }
 
 int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
@@ -482,8 +479,10 @@ int main(int argc, char** argv) {
             "level of detail from). Stops at the first of --ratio, --triangles and --error\n"
             "reached, or when no collapse is legal. MESH may also be a lodbake container\n"
             "(.lbk), read as the mesh it stands for (a progressive mesh's full mesh, or a\n"
-            "BASE that is the input). On a glTF asset, -o OUT.glb simplifies every mesh in\n"
-            "the asset, and --pm (alone) writes every mesh's progressive mesh in its group.");
+            "BASE that is the input). On an asset (glTF, an OBJ with materials or texture\n"
+            "coordinates, a PLY with colours: docs/import.md), -o OUT.glb simplifies every\n"
+            "mesh in the asset, and --pm (alone) writes every mesh's progressive mesh in its\n"
+            "group (an OBJ with texture coordinates only: the mesh's, as for any mesh).");
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;

@@ -323,8 +323,9 @@ int main(int argc, char** argv) {
             "multiresolution strip graph (Belmonte et al. 2006) over a progressive mesh's\n"
             "contractions. IN is a mesh (simplified here by QEM half-edge collapses as far as\n"
             "legal) or a .lbk holding BASE + VSPL. Writes META + BASE + VSPL + SETS, or with\n"
-            "--strips-only META + BASE + STRP (the strips over the full mesh). A glTF asset,\n"
-            "or its container, gets every mesh built in its own group.");
+            "--strips-only META + BASE + STRP (the strips over the full mesh). A glTF asset\n"
+            "(or an OBJ with materials, a PLY with colours: docs/import.md), or its\n"
+            "container, gets every mesh built in its own group.");
   Request request;
   tool.options().add_options()(
       "output,o", po::value<std::string>(&request.output)->value_name("OUT.lbk"),
