@@ -46,8 +46,8 @@ bool mentions(const Bytes& bytes, const std::string& word) {
 }
 
 bool utf16(const Bytes& bytes) {
-  return bytes.size() >= 2 && ((bytes[0] == 0xff && bytes[1] == 0xfe) ||
-                               (bytes[0] == 0xfe && bytes[1] == 0xff));
+  return bytes.size() >= 2 &&
+         ((bytes[0] == 0xff && bytes[1] == 0xfe) || (bytes[0] == 0xfe && bytes[1] == 0xff));
 }
 
 FileTraits obj_traits(const std::string& path, const Bytes& bytes, bool want_texcoords) {
@@ -76,8 +76,7 @@ bool ply_has_colours(const Bytes& bytes) {
   return plan.is_ok() && plan.value().colour_components != 0;
 }
 
-FileTraits mesh_file_traits(const std::string& path, const Bytes& file_bytes,
-                            bool want_texcoords) {
+FileTraits mesh_file_traits(const std::string& path, const Bytes& file_bytes, bool want_texcoords) {
   ImportReport ignored;
   Result<MeshContent> content = prepare_mesh_content(path, file_bytes, &ignored);
   if (!content.is_ok()) return {};

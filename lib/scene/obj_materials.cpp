@@ -132,8 +132,8 @@ class MaterialBuilder {
       image.bytes = std::move(bytes).value();
     } else if (!only_missing(bytes.status(), resources_)) {
       if (status_.is_ok())
-        status_ = Status(bytes.status().kind(), "texture '" + path.substr(0, 200) +
-                                                    "': " + bytes.status().message());
+        status_ = Status(bytes.status().kind(),
+                         "texture '" + path.substr(0, 200) + "': " + bytes.status().message());
     } else {
       image.missing = true;
       report_->warnings.push_back("texture '" + path +

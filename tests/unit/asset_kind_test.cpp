@@ -21,8 +21,7 @@
 namespace lodbake {
 namespace {
 
-constexpr char kTriangles[] =
-    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n";
+constexpr char kTriangles[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n";
 
 class AssetKind : public ::testing::Test {
  protected:
@@ -58,7 +57,8 @@ TEST_F(AssetKind, ObjWithoutMaterialsOrTextureCoordinatesIsAMesh) {
   EXPECT_FALSE(scene_source(path));
   // A library that exists but no material in use: still a mesh.
   write("m.mtl", "newmtl paint\nKd 1 0 0\n");
-  const std::string unused = write("unused.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string unused =
+      write("unused.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_FALSE(asset(unused));
 }
 
@@ -93,8 +93,8 @@ TEST_F(AssetKind, TwoMaterialGroupsMakeAnAssetWithoutALibrary) {
       write("before.obj", std::string(kTriangles) + "f 1 2 3\nusemtl b\nf 1 3 4\n");
   EXPECT_TRUE(asset(before));
   // One name used twice is one group.
-  const std::string same = write("same.obj", std::string(kTriangles) +
-                                                 "usemtl a\nf 1 2 3\ng x\nusemtl a\nf 1 3 4\n");
+  const std::string same =
+      write("same.obj", std::string(kTriangles) + "usemtl a\nf 1 2 3\ng x\nusemtl a\nf 1 3 4\n");
   EXPECT_FALSE(asset(same));
 
   // Read as an asset: the missing library is one warning, the file reads.
@@ -108,8 +108,8 @@ TEST_F(AssetKind, TwoMaterialGroupsMakeAnAssetWithoutALibrary) {
 
 TEST_F(AssetKind, LibraryOutsideTheFolderIsAnAssetThatReadsOnlyWhenAllowed) {
   std::ofstream(root_ + "/outside.mtl") << "newmtl paint\nKd 1 0 0\n";
-  const std::string path = write("out.obj", std::string("mtllib ../outside.mtl\n") + kTriangles +
-                                                "usemtl paint\nf 1 2 3\n");
+  const std::string path = write(
+      "out.obj", std::string("mtllib ../outside.mtl\n") + kTriangles + "usemtl paint\nf 1 2 3\n");
   EXPECT_TRUE(asset(path));
   ImportReport report;
   Result<Scene> refused = read_scene_file(path, SceneResources(), &report);
@@ -160,9 +160,8 @@ TEST_F(AssetKind, PlyWithColoursIsAnAssetWithoutIsAMesh) {
                          faces + "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
   EXPECT_TRUE(asset(coloured));
   EXPECT_TRUE(scene_source(coloured));
-  const std::string plain =
-      write("p.ply", header + "property float u\nproperty float v\n" + faces +
-                         "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n");
+  const std::string plain = write("p.ply", header + "property float u\nproperty float v\n" + faces +
+                                               "0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n");
   EXPECT_FALSE(asset(plain));
   EXPECT_FALSE(scene_source(plain));
 }

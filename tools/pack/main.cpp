@@ -416,8 +416,8 @@ int main(int argc, char** argv) {
               "file has them (a builder repairs what it must when it reads them)");
         return pack_asset(tool, inputs.front(), bytes.value(), options);
       }
-      if (options.allow_outside) return tool.usage_error(
-            "--allow-outside applies to a glTF asset or an OBJ with materials");
+      if (options.allow_outside)
+        return tool.usage_error("--allow-outside applies to a glTF asset or an OBJ with materials");
       return pack(tool, inputs.front(), options);
     });
   }
