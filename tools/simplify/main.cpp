@@ -530,7 +530,10 @@ int main(int argc, char** argv) {
             "reached, or when no collapse is legal. MESH may also be a lodbake container\n"
             "(.lbk), read as the mesh it stands for (a progressive mesh's full mesh, or a\n"
             "BASE that is the input). On a glTF asset, -o OUT.glb simplifies every mesh in\n"
-            "the asset, and --pm (alone) writes every mesh's progressive mesh in its group.");
+            "the asset with its attributes in the error and its seams kept (--permissive\n"
+            "lets them move), and --pm (alone) writes every mesh's progressive mesh in its\n"
+            "group. A mesh left above its target because no collapse is legal is one\n"
+            "warning line and still exit 0 (JSON: target_reached false, and why).");
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;
