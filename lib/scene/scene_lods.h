@@ -8,7 +8,7 @@
 // normals, texture coordinates, colours and tangents a collapse distorts
 // (weights below), texture seams and material borders move only along
 // themselves, and a corner always keeps the values of a vertex of its own
-// primitive. docs/simplify.md, "Attributes and seams".
+// primitive. docs/simplify.md, "Assets (glTF scenes)".
 #pragma once
 
 #include <cstdint>

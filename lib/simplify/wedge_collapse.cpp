@@ -1,5 +1,5 @@
-// Choices the papers leave open, stated in docs/simplify.md ("Attributes and
-// seams"):
+// Choices the papers leave open, stated in docs/simplify.md ("Assets (glTF
+// scenes)"):
 // - points are scaled to a unit bounding-box diagonal, so a geometric error
 //   and an attribute difference of the same number cost the same;
 // - the priority is the quadric error over the summed weights (areas and

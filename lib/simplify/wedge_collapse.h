@@ -5,7 +5,7 @@
 // error (Garland & Heckbert 1997) plus the appearance quadrics of the wedges
 // it moves (attribute_quadric.h), so a texture seam or a material border
 // costs what it distorts. How seams behave, and what --permissive changes:
-// docs/simplify.md, "Attributes and seams".
+// docs/simplify.md, "Assets (glTF scenes)".
 //
 // A seam edge is an interior edge whose two faces give one of its ends
 // different wedges, or an edge between two materials; a border edge has one

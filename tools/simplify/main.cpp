@@ -48,6 +48,8 @@ struct Request {
   int quantize_bits = 0;
   bool metrics = true;
   SimplifyOptions options;
+  AttributeWeights weights;   // assets only
+  std::string weight_option;  // the first weight option given, for the usage error
 };
 
 Result<std::vector<double>> parse_ratios(const std::string& text) {
@@ -281,6 +283,7 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
   options.simplify = request.options;
   options.load.repair = request.repair;
   options.load.strict = request.strict;
+  options.weights = request.weights;
   if (!request.ratios.empty()) {
     options.ratios = request.ratios;
   } else if (request.options.target_ratio) {
@@ -386,6 +389,10 @@ int run(const Tool& tool, Request& request) {
       return run_asset(tool, request, bytes.value());
     }
   }
+  if (!request.weight_option.empty())
+    return tool.usage_error(request.weight_option +
+                            " applies to an asset written as .glb or .gltf (a mesh is "
+                            "simplified by its geometry)");
   LoadOptions load;
   load.repair = request.repair;
   load.strict = request.strict;
@@ -521,8 +528,11 @@ int main(int argc, char** argv) {
             "(.lbk), read as the mesh it stands for (a progressive mesh's full mesh, or a\n"
             "BASE that is the input). On an asset (glTF, an OBJ with materials or texture\n"
             "coordinates, a PLY with colours: docs/import.md), -o OUT.glb simplifies every\n"
-            "mesh in the asset, and --pm (alone) writes every mesh's progressive mesh in its\n"
-            "group (an OBJ with texture coordinates only: the mesh's, as for any mesh).");
+            "mesh in the asset with its attributes in the error and its seams kept\n"
+            "(--permissive lets them move), and --pm (alone) writes every mesh's progressive\n"
+            "mesh in its group (an OBJ with texture coordinates only: the mesh's, as for any\n"
+            "mesh). A mesh left above its target because no collapse is legal is one\n"
+            "warning line and still exit 0 (JSON: target_reached false, and why).");
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;
@@ -550,7 +560,17 @@ int main(int argc, char** argv) {
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
       "permissive", po::bool_switch(&request.options.permissive),
-      "allow collapses across texture seams")(
+      "let texture seams and material borders move: seam corners may go, and a wedge "
+      "without a partner keeps its values at the survivor, the attribute error counted")(
+      "normal-weight", po::value<double>(&request.weights.normal)->value_name("W"),
+      "(assets) the cost of a normal difference of 1 next to a distance of one "
+      "bounding-box diagonal (default 0.5; 0 leaves normals out)")(
+      "uv-weight", po::value<double>(&request.weights.texcoord)->value_name("W"),
+      "(assets) the same for texture coordinates (default 1)")(
+      "color-weight", po::value<double>(&request.weights.color)->value_name("W"),
+      "(assets) the same for vertex colours (default 0.5)")(
+      "tangent-weight", po::value<double>(&request.weights.tangent)->value_name("W"),
+      "(assets) the same for tangents (default 0.25)")(
       "height-guard", po::bool_switch(&request.options.height_guard),
       "(half placement only) also refuse collapses that leave the removed vertex far from "
       "the plane of a face they move: a lower Hausdorff error for 1.1 to 1.5 times the time")(
@@ -617,6 +637,15 @@ int main(int argc, char** argv) {
   // usage errors, not errors about the input.
   if (!(request.options.boundary_weight >= 0 && std::isfinite(request.options.boundary_weight)))
     return tool.usage_error("--boundary-weight takes a finite value >= 0");
+  for (const auto& [name, weight] : {std::make_pair("normal-weight", request.weights.normal),
+                                     std::make_pair("uv-weight", request.weights.texcoord),
+                                     std::make_pair("color-weight", request.weights.color),
+                                     std::make_pair("tangent-weight", request.weights.tangent)}) {
+    if (!tool.has(name)) continue;
+    if (!(weight >= 0 && std::isfinite(weight)))
+      return tool.usage_error(std::string("--") + name + " takes a finite value >= 0");
+    if (request.weight_option.empty()) request.weight_option = std::string("--") + name;
+  }
   if (!(request.options.max_normal_change_degrees >= 0 &&
         request.options.max_normal_change_degrees <= 180))
     return tool.usage_error("--max-normal-change takes degrees in [0, 180]");
