@@ -18,9 +18,9 @@
 //   area; a primitive that received none is represented by its vertices.
 // - The closest point is sought among the output triangles whose material
 //   JSON equals the sample's (a texture coordinate only means something on
-//   its own material), all output triangles when no output material
-//   equals it. Where several output triangles are equally near (within
-//   1e-6 of the diagonal: a seam, a hard edge, a shared vertex, coincident
+//   its own material; numbers compared as the 32-bit floats they stand
+//   for), all output triangles when no output material equals it. Where several output triangles
+//   are equally near (within 1e-6 of the diagonal: a seam, a hard edge, a shared vertex, coincident
 //   faces), the attribute deviation is the smallest among them, so a point
 //   that carries two values on the output is compared with the nearer.
 // - The Hausdorff distance ignores materials: input samples against all the
@@ -594,11 +594,34 @@ double diagonal_of(const WorldScene& world) {
   return std::sqrt(dot(d, d));
 }
 
+// JSON equality with numbers compared as 32-bit floats: writers print a
+// material's factors at different lengths (gltfpack writes 0.0405062996
+// for an input's 0.04050629958510399, the same float).
+bool same_json(const SceneJson& a, const SceneJson& b) {
+  if (a.is_number() && b.is_number())
+    return static_cast<float>(a.get<double>()) == static_cast<float>(b.get<double>());
+  if (a.is_array() && b.is_array()) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+      if (!same_json(a[i], b[i])) return false;
+    return true;
+  }
+  if (a.is_object() && b.is_object()) {
+    if (a.size() != b.size()) return false;
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      const auto other = b.find(it.key());
+      if (other == b.end() || !same_json(it.value(), *other)) return false;
+    }
+    return true;
+  }
+  return a == b;
+}
+
 bool same_material(const Scene& a, int32_t ma, const Scene& b, int32_t mb) {
   static const SceneJson kNone;
   const SceneJson& ja = ma < 0 ? kNone : a.materials[static_cast<size_t>(ma)];
   const SceneJson& jb = mb < 0 ? kNone : b.materials[static_cast<size_t>(mb)];
-  return ja == jb;
+  return same_json(ja, jb);
 }
 
 Result<SceneDeviation> measure(const Scene& input, const Scene& output,
