@@ -64,7 +64,8 @@ struct SceneDeviation {
 // the nodes' transforms applied (a mesh no node uses: its own frame). A
 // sample of an input primitive is compared with the closest point among
 // the output triangles whose material equals its own (the same JSON object,
-// its name included), and among all output triangles when none does.
+// its name included, numbers equal as 32-bit floats), and among all output
+// triangles when none does.
 // \pre nothing: a non-finite position or an index out of range gives
 //      kInvalidInput; an output without triangles gives kInvalidInput.
 // Deterministic: same scenes and options, bit-identical result.

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "formats/mesh/progressive_mesh.h"
@@ -34,6 +35,14 @@ class PmRefiner {
   /// wings missing, repeated vertices, a wing not adjacent to vs, or a fan
   /// around vs that does not lead from vr to vl.
   Status split_next();
+  /// The faces the last applied split moved from vs to vt, in the order
+  /// its walk met them (what PmWedges::moved follows). Empty when no split
+  /// is applied.
+  std::pair<const uint32_t*, const uint32_t*> last_moved_faces() const {
+    if (undo_.empty()) return {nullptr, nullptr};
+    return {moved_faces_.data() + undo_.back().moved_begin,
+            moved_faces_.data() + moved_faces_.size()};
+  }
   /// Undoes the last applied split (the edge collapse of vt into vs). Fails
   /// when no split has been applied.
   Status collapse_last();

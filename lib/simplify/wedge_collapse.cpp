@@ -139,6 +139,7 @@ class WedgeCollapser {
         push(top.point);
         continue;
       }
+      if (options_.record) record(top.point, top.target, cost, &result);
       collapse(top.point, top.target, moves);
       ++result.collapses;
       result.max_collapse_error = std::max(result.max_collapse_error, std::sqrt(cost));
@@ -473,6 +474,33 @@ class WedgeCollapser {
     return false;
   }
 
+  void record(uint32_t vt, uint32_t vs, double cost, WedgeCollapseResult* result) const {
+    WedgeCollapseRecord r;
+    r.vt = vt;
+    r.vs = vs;
+    r.error = static_cast<float>(std::sqrt(cost));
+    r.moved_begin = static_cast<uint32_t>(result->moved_faces.size());
+    for (uint32_t f : faces_[vt]) {
+      const Triangle& t = triangles_[f];
+      const int k = corner_of(t, vt);
+      const std::array<uint32_t, 3>& w = corner_wedge_[f];
+      if (t[(k + 2) % 3] == vs) {  // (vs, vt, vl)
+        r.vl = t[(k + 1) % 3];
+        r.left = {w[(k + 2) % 3], w[k], w[(k + 1) % 3]};
+        r.left_face = f;
+      } else if (t[(k + 1) % 3] == vs) {  // (vt, vs, vr)
+        r.vr = t[(k + 2) % 3];
+        r.right = {w[k], w[(k + 1) % 3], w[(k + 2) % 3]};
+        r.right_face = f;
+      } else {
+        result->moved_faces.push_back(f);
+        result->moved_wedges.push_back(w[k]);
+      }
+    }
+    r.moved_end = static_cast<uint32_t>(result->moved_faces.size());
+    result->log.push_back(r);
+  }
+
   void collapse(uint32_t vt, uint32_t vs, const std::vector<WedgeMove>& moves) {
     const std::vector<uint32_t> faces = faces_[vt];
     for (uint32_t f : faces) {
@@ -516,6 +544,7 @@ class WedgeCollapser {
     for (uint32_t f = 0; f < triangles_.size(); ++f) {
       if (!triangle_alive_[f]) continue;
       out.triangles.push_back(triangles_[f]);
+      out.faces.push_back(f);
       out.corner_wedge.push_back(corner_wedge_[f]);
     }
     out.wedge_point = wedge_point_;

@@ -24,6 +24,7 @@
 #include <optional>
 #include <vector>
 
+#include "formats/mesh/progressive_mesh.h"
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
 #include "lib/simplify/quadric.h"
@@ -58,7 +59,27 @@ struct WedgeCollapseOptions {
   bool lock_border = false;
   bool permissive = false;
   double max_normal_change_degrees = 150.0;
+  // Also keep the log of every collapse (what a progressive mesh with
+  // wedges is recorded from, lib/simplify/wedge_pm.h).
+  bool record = false;
   std::function<void(double)> progress;
+};
+
+// One applied collapse: point vt merged into vs, the faces (vs, vt, vl) and
+// (vt, vs, vr) removed (a missing one: kNoVertex), with their corner wedges
+// in that order, and the wedge each moved face had at vt.
+struct WedgeCollapseRecord {
+  uint32_t vt = 0;
+  uint32_t vs = 0;
+  uint32_t vl = kNoVertex;
+  uint32_t vr = kNoVertex;
+  std::array<uint32_t, 3> left{};   // wedges of (vs, vt, vl)
+  std::array<uint32_t, 3> right{};  // wedges of (vt, vs, vr)
+  uint32_t left_face = kNoVertex;   // the removed faces' indices in the input
+  uint32_t right_face = kNoVertex;
+  uint32_t moved_begin = 0;  // into WedgeCollapseResult::moved_faces / moved_wedges
+  uint32_t moved_end = 0;
+  float error = 0;  // the collapse's error, relative to the diagonal
 };
 
 // Why a point could not be removed when the collapses stopped.
@@ -78,6 +99,7 @@ struct CollapseBlocks {
 // the survivor's point).
 struct WedgeLevel {
   std::vector<Triangle> triangles;
+  std::vector<uint32_t> faces;  // the input index of each triangle
   std::vector<std::array<uint32_t, 3>> corner_wedge;
   std::vector<uint32_t> wedge_point;
 };
@@ -93,6 +115,11 @@ struct WedgeCollapseResult {
   // remaining points (each counted once, by the reason its first collapse
   // was refused).
   std::optional<CollapseBlocks> blocked;
+  // With `record`: the collapses in order, and per collapse the faces it
+  // moved from vt to vs with their wedge at vt before it.
+  std::vector<WedgeCollapseRecord> log;
+  std::vector<uint32_t> moved_faces;
+  std::vector<uint32_t> moved_wedges;
 };
 
 /// Collapses `mesh` down to each target in turn.

@@ -29,6 +29,7 @@
 #include "lib/simplify/simplify.h"
 #include "tools/common/asset_report.h"
 #include "tools/common/cli.h"
+#include "tools/common/deviation_report.h"
 #include "tools/common/mesh_report.h"
 
 namespace lodbake::cli {
@@ -107,13 +108,15 @@ Result<nlohmann::json> measure(const Request& request, const TriangleMesh& input
                   "cannot measure the distance to the input (--no-metrics skips it): " + message);
   }
   const SurfaceDistance& d = measured.value();
-  return nlohmann::json{{"hausdorff_relative", d.hausdorff_relative},
-                        {"mean_relative", d.mean_relative},
-                        {"hausdorff", d.hausdorff},
-                        {"mean", d.mean},
-                        {"diagonal", d.diagonal},
-                        {"samples", d.a_to_b.vertex_samples + d.a_to_b.area_samples +
-                                        d.b_to_a.vertex_samples + d.b_to_a.area_samples}};
+  nlohmann::json metrics = {{"hausdorff_relative", d.hausdorff_relative},
+                            {"mean_relative", d.mean_relative},
+                            {"hausdorff", d.hausdorff},
+                            {"mean", d.mean},
+                            {"diagonal", d.diagonal},
+                            {"samples", d.a_to_b.vertex_samples + d.a_to_b.area_samples +
+                                            d.b_to_a.vertex_samples + d.b_to_a.area_samples}};
+  LODBAKE_RETURN_IF_ERROR(add_mesh_attribute_metrics(input, output, &metrics));
+  return metrics;
 }
 
 std::string metrics_text(const nlohmann::json& metrics) {
@@ -121,7 +124,7 @@ std::string metrics_text(const nlohmann::json& metrics) {
   std::ostringstream text;
   text << ", Hausdorff " << metrics["hausdorff_relative"].get<double>() << " and mean "
        << metrics["mean_relative"].get<double>() << " of the diagonal";
-  return text.str();
+  return text.str() + attribute_metrics_text(metrics);
 }
 
 // Written to a temporary file; `outputs` renames every output into place at
@@ -315,6 +318,13 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
       level_triangles += m.lod_triangles[level];
     nlohmann::json out = {{"file", path}, {"triangles", level_triangles}};
     if (!options.ratios.empty()) out["ratio"] = options.ratios[level];
+    out["metrics"] = nullptr;
+    if (request.metrics) {
+      Result<nlohmann::json> metrics =
+          measure_asset_level(scene.value(), lods.value().levels[level]);
+      if (!metrics.is_ok()) return tool.fail(request.input, metrics.status());
+      out["metrics"] = metrics.value();
+    }
     outputs.push_back(std::move(out));
   }
   std::string failed_path;
@@ -367,7 +377,8 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
             << moved << " wedges kept their values at a moved point\n";
   for (const nlohmann::json& out : outputs)
     std::cout << "wrote         " << out["file"].get<std::string>() << ": "
-              << out["triangles"].get<uint64_t>() << " triangles\n";
+              << out["triangles"].get<uint64_t>() << " triangles"
+              << level_metrics_text(out["metrics"]) << "\n";
   return 0;
 }
 
@@ -588,7 +599,9 @@ int main(int argc, char** argv) {
       "threads", po::value<unsigned>(&request.options.threads)->value_name("N"),
       "threads for the engine's parallel steps: 1 (default) or 2 (0: 2 when there are two "
       "cores); two take less wall time and about twice the CPU time, the output is the same")(
-      "no-metrics", "skip measuring the Hausdorff and mean distance to the input");
+      "no-metrics",
+      "skip measuring the Hausdorff and mean distance, and the UV and normal deviation, to the "
+      "input");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
