@@ -31,7 +31,7 @@
 // produced a scored output.
 //
 //   bench_attributes [--ratios 0.5,0.25,0.1] [--runs N] [--samples N] [--threads N] [--quick]
-//                    [--tools LIST] [--json] [--check] [--require-peers] [--keep DIR]
+//                    [--tools LIST] [--json] [--markdown] [--check] [--require-peers] [--keep DIR]
 //                    [--lodbake PATH] [--node PATH] [--npm DIR] ASSET...
 //
 // Without node or the npm packages, the peers' rows are left out with a
@@ -412,31 +412,34 @@ void print_goals(const Goals& goals) {
 }
 
 void print_table(const Setup& setup, const std::vector<Asset>& assets,
-                 const std::vector<Case>& cases, const Goals& goals) {
-  std::printf("%-32s %5s %-12s %7s %7s %-7s %9s %8s %8s %9s %9s %7s\n", "asset", "ratio", "tool",
-              "target", "tris", "reached", "haus %", "uv p95", "nrm p95", "time ms", "process",
-              "vs lb");
-  for (const Asset& asset : assets)
-    if (!asset.error.empty())
-      std::printf("%-32s %s\n", name_of(asset.path).c_str(), asset.error.c_str());
+                 const std::vector<Case>& cases, const Goals& goals, bool markdown) {
+  // The columns, in the plain layout or as a Markdown table for the docs.
+  const char* head = markdown ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
+                              : "%-32s %5s %-12s %7s %7s %-7s %9s %8s %8s %9s %9s %7s\n";
+  const char* row = markdown ? "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n"
+                             : "%-32s %5s %-12s %7s %7s %-7s %9s %8s %8s %9s %9s %7s\n";
+  std::printf(head, "asset", "ratio", "tool", "target", "tris", "reached", "haus %", "uv p95",
+              "nrm p95", "time ms", "process", "vs lb");
+  if (markdown) std::printf("|---|---:|---|---:|---:|---|---:|---:|---:|---:|---:|---:|\n");
   const size_t ours = tool_index(setup, ToolKind::kLodbake);
   for (const Case& c : cases) {
     const Asset& asset = assets[c.asset];
     for (size_t t = 0; t < setup.tools.size(); ++t) {
       const Result& r = c.results[t];
-      std::printf("%-32s %5s %-12s %7llu ", name_of(asset.path).c_str(),
-                  ratio_text(c.ratio).c_str(), setup.tools[t].name.c_str(),
-                  static_cast<unsigned long long>(c.target));
+      const std::string target = std::to_string(c.target);
       if (!r.error.empty()) {
-        std::printf("failed: %s\n", r.error.c_str());
+        std::printf(row, name_of(asset.path).c_str(), ratio_text(c.ratio).c_str(),
+                    setup.tools[t].name.c_str(), target.c_str(), "-", "failed", "-", "-", "-", "-",
+                    "-", r.error.c_str());
         continue;
       }
       const Result* base = ours < setup.tools.size() ? &c.results[ours] : nullptr;
       const std::string versus = base && base->error.empty() && base->time_ms > 0 && t != ours
                                      ? number(r.time_ms / base->time_ms, "%.2fx")
                                      : "";
-      std::printf("%7llu %-7s %9s %8s %8s %9s %9s %7s\n",
-                  static_cast<unsigned long long>(r.triangles), reached(asset, c, r) ? "yes" : "no",
+      std::printf(row, name_of(asset.path).c_str(), ratio_text(c.ratio).c_str(),
+                  setup.tools[t].name.c_str(), target.c_str(), std::to_string(r.triangles).c_str(),
+                  reached(asset, c, r) ? "yes" : "no",
                   r.score.measured ? number(100 * r.score.hausdorff_relative, "%.3f").c_str() : "-",
                   score_text(r, r.score.uv_p95, r.score.uv_samples, "%.5f").c_str(),
                   score_text(r, r.score.normal_p95, r.score.normal_samples, "%.2f").c_str(),
@@ -445,6 +448,10 @@ void print_table(const Setup& setup, const std::vector<Asset>& assets,
       if (!r.score.error.empty()) std::printf("  (not scored: %s)\n", r.score.error.c_str());
     }
   }
+  if (markdown) std::printf("\n");
+  for (const Asset& asset : assets)
+    if (!asset.error.empty())
+      std::printf("left out: %s: %s\n", name_of(asset.path).c_str(), asset.error.c_str());
   std::printf(
       "target = ratio x the input's drawn triangles (each mesh once per node); reached = at most\n"
       "one triangle per drawn primitive above the exact ratio; haus %% = symmetric Hausdorff, %% "
@@ -562,7 +569,7 @@ int usage_error(const std::string& message) {
   std::fprintf(
       stderr,
       "Error: %s\nusage: bench_attributes [--ratios 0.5,0.25,0.1] [--runs N] [--samples N] "
-      "[--threads N] [--quick] [--tools LIST] [--json] [--check] [--require-peers] "
+      "[--threads N] [--quick] [--tools LIST] [--json] [--markdown] [--check] [--require-peers] "
       "[--keep DIR] [--lodbake PATH] [--node PATH] [--npm DIR] ASSET...\n",
       message.c_str());
   return 1;
@@ -587,7 +594,7 @@ int main(int argc, char** argv) {
   setup.npm = LODBAKE_BENCH_NPM_DIR;
   setup.script = LODBAKE_BENCH_MESHOPT_SCRIPT;
   std::vector<std::string> tool_names;
-  bool json = false, check = false, require_peers = false;
+  bool json = false, markdown = false, check = false, require_peers = false;
   std::string keep;
   std::vector<Asset> assets;
   for (int i = 1; i < argc; ++i) {
@@ -613,6 +620,8 @@ int main(int argc, char** argv) {
       tool_names = split_list(argv[++i]);
     } else if (arg == "--json") {
       json = true;
+    } else if (arg == "--markdown") {
+      markdown = true;
     } else if (arg == "--check") {
       check = true;
     } else if (arg == "--require-peers") {
@@ -702,7 +711,7 @@ int main(int argc, char** argv) {
   if (json)
     print_json(setup, assets, cases, goals);
   else
-    print_table(setup, assets, cases, goals);
+    print_table(setup, assets, cases, goals, markdown);
   if (keep.empty()) {
     std::error_code error;
     fs::remove_all(scratch, error);
