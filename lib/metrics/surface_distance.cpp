@@ -42,13 +42,14 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <exception>
 #include <new>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "lib/metrics/surface_sampling.h"
 
 namespace lodbake {
 namespace {
@@ -115,62 +116,35 @@ struct Samples {
   size_t vertex_count = 0;  // points[0, vertex_count) are vertices, the rest area samples
 };
 
-// The R2 sequence's generator: 1/g and 1/g^2 for the plastic number g.
-constexpr double kPlastic = 1.32471795724474602596;
-constexpr double kR2StepU = 1.0 / kPlastic;
-constexpr double kR2StepV = 1.0 / (kPlastic * kPlastic);
-
 Samples make_samples(const TriangleMesh& mesh, uint64_t budget) {
   Samples samples;
   const std::vector<uint32_t> vertices = referenced_vertices(mesh);
   std::vector<double> areas(mesh.triangles.size());
-  double total_area = 0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const Triangle& tri = mesh.triangles[t];
     areas[t] =
         std::sqrt(Triangle3(to_point(mesh.positions[tri[0]]), to_point(mesh.positions[tri[1]]),
                             to_point(mesh.positions[tri[2]]))
                       .squared_area());
-    total_area += areas[t];
   }
-  if (!(total_area > 0)) budget = 0;
-  samples.points.reserve(vertices.size() + budget);
+  const std::vector<uint64_t> counts = metrics::samples_per_triangle(areas, budget);
+  uint64_t placed = 0;
+  for (uint64_t c : counts)
+    placed += c;
+  samples.points.reserve(vertices.size() + placed);
   for (uint32_t v : vertices)
     samples.points.push_back(to_point(mesh.positions[v]));
   samples.vertex_count = samples.points.size();
-  if (budget == 0) return samples;
-
-  const double density = static_cast<double>(budget) / total_area;
-  double running = 0;
-  uint64_t placed = 0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    running += areas[t] * density;
-    const uint64_t target =
-        std::min<uint64_t>(budget, static_cast<uint64_t>(std::llround(running)));
-    if (target <= placed) continue;
     const Vec3f& p0 = mesh.positions[mesh.triangles[t][0]];
     const Vec3f& p1 = mesh.positions[mesh.triangles[t][1]];
     const Vec3f& p2 = mesh.positions[mesh.triangles[t][2]];
-    for (uint64_t j = 0; j < target - placed; ++j) {
-      double u = 1.0 / 3.0;
-      double v = 1.0 / 3.0;
-      if (j > 0) {
-        const double fj = static_cast<double>(j);
-        u = 0.5 + fj * kR2StepU;
-        v = 0.5 + fj * kR2StepV;
-        u -= std::floor(u);
-        v -= std::floor(v);
-        if (u + v > 1.0) {
-          u = 1.0 - u;
-          v = 1.0 - v;
-        }
-      }
-      const double w = 1.0 - u - v;
+    for (uint64_t j = 0; j < counts[t]; ++j) {
+      const auto [w, u, v] = metrics::triangle_sample(j);
       samples.points.emplace_back(w * p0[0] + u * p1[0] + v * p2[0],
                                   w * p0[1] + u * p1[1] + v * p2[1],
                                   w * p0[2] + u * p1[2] + v * p2[2]);
     }
-    placed = target;
   }
   return samples;
 }
@@ -180,36 +154,6 @@ struct BlockResult {
   double vertex_sum = 0;
   double area_sum = 0;
 };
-
-// Runs `work(block)` for blocks [0, blocks) on `threads` threads (the caller
-// being one of them). Returns false when a worker failed.
-template <typename Work>
-bool run_blocks(size_t blocks, unsigned threads, const Work& work) {
-  std::atomic<size_t> next{0};
-  std::atomic<bool> failed{false};
-  auto worker = [&]() {
-    try {
-      for (size_t b = next++; b < blocks && !failed; b = next++)
-        work(b);
-    } catch (...) {
-      failed = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  const size_t extra =
-      std::min<size_t>(threads, blocks) > 1 ? std::min<size_t>(threads, blocks) - 1 : 0;
-  for (size_t i = 0; i < extra; ++i) {
-    try {
-      pool.emplace_back(worker);
-    } catch (const std::exception&) {
-      break;  // fewer threads: the remaining ones take the blocks
-    }
-  }
-  worker();
-  for (std::thread& t : pool)
-    t.join();
-  return !failed;
-}
 
 // The target's typical edge length, sqrt(2 * mean triangle area): a hint
 // that close to the next query bounds its search about as tightly as the
@@ -227,7 +171,7 @@ Result<OneSidedDistance> one_sided(const Samples& samples, const Tree& target, d
   const size_t n = samples.points.size();
   const size_t blocks = (n + kBlockSamples - 1) / kBlockSamples;
   std::vector<BlockResult> results(blocks);
-  const bool ok = run_blocks(blocks, threads, [&](size_t b) {
+  const bool ok = metrics::run_blocks(blocks, threads, [&](size_t b) {
     BlockResult r;
     const size_t begin = b * kBlockSamples;
     const size_t end = std::min(n, begin + kBlockSamples);
@@ -303,7 +247,7 @@ Result<SurfaceDistance> measure(const TriangleMesh& a, const TriangleMesh& b,
     tree->rebuild(triangles->begin(), triangles->end());
     tree->accelerate_distance_queries();
   };
-  const bool built = run_blocks(2, threads, [&](size_t which) {
+  const bool built = metrics::run_blocks(2, threads, [&](size_t which) {
     if (which == 0) {
       build(&a_tree, &a_triangles);
     } else {
