@@ -179,7 +179,7 @@ for (const mesh of document.getRoot().listMeshes()) {
       const size = accessor.getElementSize();
       const array = accessor.getArray();
       const out = new array.constructor(kept * size);
-      source.forEach((v, i) => out.set(array.subarray(v * size, v * size + size), i));
+      source.forEach((v, i) => out.set(array.subarray(v * size, v * size + size), i * size));
       const copy = document.createAccessor()
         .setType(accessor.getType())
         .setNormalized(accessor.getNormalized())
