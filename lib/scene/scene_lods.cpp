@@ -4,13 +4,13 @@
 #include <cstring>
 #include <map>
 #include <optional>
+#include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
 #include "formats/scene/accessor_values.h"
 #include "lib/scene/scene_topology.h"
-#include "lib/simplify/lod_chain.h"
-#include "lib/simplify/pm_replay.h"
 
 namespace lodbake {
 namespace {
@@ -53,18 +53,27 @@ TriangleKey rotated_key(const PositionKey& a, const PositionKey& b, const Positi
   return {corners[first], corners[(first + 1) % 3], corners[(first + 2) % 3]};
 }
 
-// For one face slot of the progressive mesh: the input triangle it is and,
-// for each of its corners, which corner of that input triangle.
+// For one triangle of the mesh the engine takes (the welded topology,
+// repaired): the input triangle it is and, for each of its corners, which
+// corner of that input triangle.
 struct SlotSource {
   uint32_t triangle = 0;
   std::array<int, 3> corner{};
 };
 
-// One mesh's way from the progressive mesh's faces back to its primitives.
-class MeshRebuilder {
+// One engine wedge: a vertex of a primitive at one point of the repaired
+// mesh (a point the repair split gives its vertices wedges of their own).
+struct WedgeSource {
+  uint32_t primitive = 0;
+  uint32_t vertex = 0;  // the first vertex of the primitive with these values there
+};
+
+// One mesh's way from its primitives to the engine's wedge mesh and back.
+class WedgeMeshBuilder {
  public:
-  MeshRebuilder(const SceneMesh& mesh, const MeshTopology& topology)
-      : mesh_(mesh), topology_(topology) {
+  WedgeMeshBuilder(const SceneMesh& mesh, const MeshTopology& topology,
+                   const AttributeWeights& weights)
+      : mesh_(mesh), topology_(topology), weights_(weights) {
     for (uint32_t point = 0; point < topology.mesh.positions.size(); ++point)
       point_of_position_.emplace(key_of(topology.mesh.positions[point]), point);
     for (uint32_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -84,39 +93,43 @@ class MeshRebuilder {
     }
   }
 
-  // Slot f of `full` (the fully refined mesh in PM ids) is an input triangle.
-  Status map_slots(const TriangleMesh& full) {
-    slots_.resize(full.triangles.size());
-    for (size_t f = 0; f < full.triangles.size(); ++f) {
-      const Triangle& t = full.triangles[f];
-      const PositionKey k[3] = {key_of(full.positions[t[0]]), key_of(full.positions[t[1]]),
-                                key_of(full.positions[t[2]])};
-      int r = 0;
-      auto found = triangle_of_key_.find(rotated_key(k[0], k[1], k[2], &r));
-      bool reversed = false;
-      if (found == triangle_of_key_.end()) {
-        // The repair may have turned the triangle to orient the mesh.
-        found = triangle_of_key_.find(rotated_key(k[0], k[2], k[1], &r));
-        reversed = true;
+  // The wedge mesh of `repaired` (the topology after prepare_mesh()).
+  Result<WedgeMesh> build(const TriangleMesh& repaired) {
+    LODBAKE_RETURN_IF_ERROR(map_slots(repaired));
+    WedgeMesh out;
+    out.points.reserve(repaired.positions.size());
+    for (const Vec3f& p : repaired.positions)
+      out.points.push_back({p[0], p[1], p[2]});
+    out.triangles = repaired.triangles;
+    out.value_offset.push_back(0);
+    std::map<std::tuple<uint32_t, uint32_t, std::string>, uint32_t> wedge_of;
+    for (size_t f = 0; f < repaired.triangles.size(); ++f) {
+      const SlotSource& s = slots_[f];
+      const uint32_t p = topology_.primitive_of_triangle[s.triangle];
+      const ScenePrimitive& prim = mesh_.primitives[p];
+      std::array<uint32_t, 3> corners{};
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t vertex = local_triangles_[s.triangle][s.corner[k]];
+        const uint32_t point = repaired.triangles[f][k];
+        auto [it, added] = wedge_of.emplace(std::make_tuple(point, p, vertex_bytes(prim, vertex)),
+                                            out.wedge_point.size());
+        if (added) {
+          out.wedge_point.push_back(point);
+          sources_.push_back({p, vertex});
+          append_values(prim, vertex, &out);
+        }
+        corners[k] = it->second;
       }
-      if (found == triangle_of_key_.end())
-        return runtime_error("face " + std::to_string(f) +
-                             " of the simplified mesh is no triangle of the input");
-      const int r_input = found->second.second;
-      SlotSource& s = slots_[f];
-      s.triangle = found->second.first;
-      // Key position i is slot corner (i + r) % 3 (slot order, or a, c, b
-      // when reversed) and input corner (i + r_input) % 3.
-      const int slot_order[3] = {0, reversed ? 2 : 1, reversed ? 1 : 2};
-      for (int i = 0; i < 3; ++i)
-        s.corner[slot_order[(i + r) % 3]] = (i + r_input) % 3;
+      out.corner_wedge.push_back(corners);
     }
-    return Status::ok();
+    initial_points_ = out.wedge_point;
+    return out;
   }
 
-  // The mesh's primitives at a level (PM ids, the first slots).
-  Result<std::vector<ScenePrimitive>> primitives_at(const TriangleMesh& level,
-                                                    uint64_t* borrowed) const {
+  // The mesh's primitives at one level of the engine.
+  Result<std::vector<ScenePrimitive>> primitives_at(const TriangleMesh& repaired,
+                                                    const WedgeLevel& level,
+                                                    uint64_t* moved) const {
     const size_t n = mesh_.primitives.size();
     struct Built {
       std::vector<uint32_t> indices;
@@ -124,20 +137,25 @@ class MeshRebuilder {
       std::map<std::pair<uint32_t, int64_t>, uint32_t> index_of;
     };
     std::vector<Built> built(n);
+    std::vector<uint8_t> counted(level.wedge_point.size(), 0);
+    *moved = 0;
     for (size_t f = 0; f < level.triangles.size(); ++f) {
-      const SlotSource& s = slots_[f];
-      const uint32_t p = topology_.primitive_of_triangle[s.triangle];
-      const std::array<uint32_t, 3>& local = local_triangles_[s.triangle];
       for (int k = 0; k < 3; ++k) {
-        auto point = point_of_position_.find(key_of(level.positions[level.triangles[f][k]]));
-        if (point == point_of_position_.end())
-          return runtime_error("a vertex of the simplified mesh is no point of the input");
-        const uint32_t own = local[s.corner[k]];
-        std::pair<uint32_t, int64_t> source = wedge(p, own, point->second, borrowed);
-        auto [it, added] =
-            built[p].index_of.emplace(source, static_cast<uint32_t>(built[p].sources.size()));
-        if (added) built[p].sources.push_back(source);
-        built[p].indices.push_back(it->second);
+        const uint32_t w = level.corner_wedge[f][k];
+        const WedgeSource& source = sources_[w];
+        std::pair<uint32_t, int64_t> key{source.vertex, -1};
+        if (level.wedge_point[w] != initial_points_[w]) {
+          auto point = point_of_position_.find(key_of(repaired.positions[level.wedge_point[w]]));
+          if (point == point_of_position_.end())
+            return runtime_error("a vertex of the simplified mesh is no point of the input");
+          key.second = point->second;
+          if (!counted[w]) ++*moved;
+          counted[w] = 1;
+        }
+        Built& b = built[source.primitive];
+        auto [it, added] = b.index_of.emplace(key, static_cast<uint32_t>(b.sources.size()));
+        if (added) b.sources.push_back(key);
+        b.indices.push_back(it->second);
       }
     }
     std::vector<ScenePrimitive> out;
@@ -171,40 +189,82 @@ class MeshRebuilder {
   }
 
  private:
-  // The vertex whose values a corner of primitive p, formerly at its own
-  // vertex `own`, takes at `point`; with the point to take the position
-  // from when the vertex is not at it (-1 otherwise).
-  std::pair<uint32_t, int64_t> wedge(uint32_t p, uint32_t own, uint32_t point,
-                                     uint64_t* borrowed) const {
-    if (mesh_.point_of_vertex[p][own] == point) return {own, -1};
-    auto at = vertices_at_.find({p, point});
-    if (at == vertices_at_.end()) {
-      ++*borrowed;
-      return {own, point};
-    }
-    const std::vector<uint32_t>& candidates = at->second;
-    uint32_t best = candidates.front();
-    double best_distance = -1;
-    for (uint32_t c : candidates) {
-      const double d = distance(mesh_.primitives[p], own, c);
-      if (best_distance < 0 || d < best_distance) {
-        best = c;
-        best_distance = d;
+  // Triangle f of `repaired` is an input triangle.
+  Status map_slots(const TriangleMesh& repaired) {
+    slots_.resize(repaired.triangles.size());
+    for (size_t f = 0; f < repaired.triangles.size(); ++f) {
+      const Triangle& t = repaired.triangles[f];
+      const PositionKey k[3] = {key_of(repaired.positions[t[0]]), key_of(repaired.positions[t[1]]),
+                                key_of(repaired.positions[t[2]])};
+      int r = 0;
+      auto found = triangle_of_key_.find(rotated_key(k[0], k[1], k[2], &r));
+      bool reversed = false;
+      if (found == triangle_of_key_.end()) {
+        // The repair may have turned the triangle to orient the mesh.
+        found = triangle_of_key_.find(rotated_key(k[0], k[2], k[1], &r));
+        reversed = true;
       }
+      if (found == triangle_of_key_.end())
+        return runtime_error("face " + std::to_string(f) +
+                             " of the repaired mesh is no triangle of the input");
+      const int r_input = found->second.second;
+      SlotSource& s = slots_[f];
+      s.triangle = found->second.first;
+      // Key position i is slot corner (i + r) % 3 (slot order, or a, c, b
+      // when reversed) and input corner (i + r_input) % 3.
+      const int slot_order[3] = {0, reversed ? 2 : 1, reversed ? 1 : 2};
+      for (int i = 0; i < 3; ++i)
+        s.corner[slot_order[(i + r) % 3]] = (i + r_input) % 3;
     }
-    return {best, -1};
+    return Status::ok();
   }
 
-  static double distance(const ScenePrimitive& prim, uint32_t a, uint32_t b) {
-    double sum = 0;
-    for (const SceneAttribute& s : prim.attributes) {
-      if (s.semantic == "POSITION") continue;
-      for (uint32_t c = 0; c < s.data.components(); ++c) {
-        const double d = float_value(s.data, a, c) - float_value(s.data, b, c);
-        sum += d * d;
-      }
+  // Every stream's bytes of one vertex (its morph targets' too): two
+  // vertices of a primitive with the same bytes at a point are one wedge.
+  static std::string vertex_bytes(const ScenePrimitive& prim, uint32_t v) {
+    std::string bytes;
+    auto add = [&](const AccessorData& d) {
+      const size_t size = d.element_size();
+      bytes.append(reinterpret_cast<const char*>(d.bytes.data()) + size_t{v} * size, size);
+    };
+    for (const SceneAttribute& a : prim.attributes)
+      add(a.data);
+    for (const std::vector<SceneAttribute>& target : prim.targets)
+      for (const SceneAttribute& a : target)
+        add(a.data);
+    return bytes;
+  }
+
+  double weight_of(const std::string& semantic) const {
+    if (semantic == "NORMAL") return weights_.normal;
+    if (semantic == "TANGENT") return weights_.tangent;
+    if (semantic.rfind("TEXCOORD_", 0) == 0) return weights_.texcoord;
+    if (semantic.rfind("COLOR_", 0) == 0) return weights_.color;
+    return 0;
+  }
+
+  // The weighted error values of a new wedge, and its UV and normal.
+  void append_values(const ScenePrimitive& prim, uint32_t v, WedgeMesh* out) const {
+    for (const SceneAttribute& a : prim.attributes) {
+      const double weight = weight_of(a.semantic);
+      if (weight == 0) continue;
+      // TANGENT's w is a handedness sign, not a value to interpolate.
+      const uint32_t components = a.semantic == "TANGENT" ? 3 : a.data.components();
+      for (uint32_t c = 0; c < components; ++c)
+        out->values.push_back(static_cast<float>(weight * float_value(a.data, v, c)));
     }
-    return sum;
+    out->value_offset.push_back(static_cast<uint32_t>(out->values.size()));
+    const SceneAttribute* uv = prim.find("TEXCOORD_0");
+    out->has_uv.push_back(uv != nullptr && uv->data.components() == 2);
+    out->uv.push_back(out->has_uv.back()
+                          ? Vec2f{float_value(uv->data, v, 0), float_value(uv->data, v, 1)}
+                          : Vec2f{});
+    const SceneAttribute* normal = prim.find("NORMAL");
+    out->has_normal.push_back(normal != nullptr && normal->data.components() == 3);
+    out->normal.push_back(out->has_normal.back() ? Vec3f{float_value(normal->data, v, 0),
+                                                         float_value(normal->data, v, 1),
+                                                         float_value(normal->data, v, 2)}
+                                                 : Vec3f{});
   }
 
   static AccessorData select(const AccessorData& in,
@@ -224,7 +284,7 @@ class MeshRebuilder {
     SceneAttribute out = a;
     out.data = select(a.data, sources);
     if (a.semantic != "POSITION") return out;
-    // A borrowed corner sits at another primitive's point: its position.
+    // A moved wedge sits at another point: its position.
     const size_t size = a.data.element_size();
     for (size_t i = 0; i < sources.size(); ++i) {
       if (sources[i].second < 0) continue;
@@ -260,11 +320,14 @@ class MeshRebuilder {
 
   const SceneMesh& mesh_;
   const MeshTopology& topology_;
+  const AttributeWeights& weights_;
   std::unordered_map<PositionKey, uint32_t, PositionKeyHash> point_of_position_;
   std::unordered_map<TriangleKey, std::pair<uint32_t, int>, TriangleKeyHash> triangle_of_key_;
   std::vector<std::array<uint32_t, 3>> local_triangles_;  // per topology triangle
   std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> vertices_at_;  // (prim, point)
   std::vector<SlotSource> slots_;
+  std::vector<WedgeSource> sources_;      // per engine wedge
+  std::vector<uint32_t> initial_points_;  // per engine wedge
 };
 
 std::string mesh_name(uint32_t m) {
@@ -292,33 +355,58 @@ Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& opti
     load.per_vertex_attributes = false;
     Status prepared = prepare_mesh(load, &loaded);
     if (!prepared.is_ok()) return Status(prepared.kind(), mesh_name(m) + ": " + prepared.message());
-    SimplifyOptions run = options.simplify;
-    run.record_pm = true;
-    if (!options.ratios.empty())
-      run.target_ratio = *std::min_element(options.ratios.begin(), options.ratios.end());
-    Result<SimplifyResult> simplified = simplify(loaded.mesh, run);
-    if (!simplified.is_ok())
-      return Status(simplified.status().kind(),
-                    mesh_name(m) + ": " + simplified.status().message());
-    const ProgressiveMesh& pm = *simplified.value().pm;
-    std::vector<uint64_t> targets;
+
+    WedgeMeshBuilder builder(mesh, topology, options.weights);
+    Result<WedgeMesh> wedges = builder.build(loaded.mesh);
+    if (!wedges.is_ok())
+      return Status(wedges.status().kind(), mesh_name(m) + ": " + wedges.status().message());
+
+    // The engine takes its targets in decreasing order; the levels keep
+    // the order of `ratios`.
     const uint64_t triangles = loaded.mesh.triangle_count();
+    std::vector<uint64_t> targets;
     for (double r : options.ratios)
       targets.push_back(static_cast<uint64_t>(r * static_cast<double>(triangles)));
-    if (targets.empty()) targets.push_back(simplified.value().mesh.triangle_count());
-    targets.push_back(UINT64_MAX);  // the fully refined mesh, to map face slots
-    LODBAKE_ASSIGN_OR_RETURN(std::vector<TriangleMesh> meshes, extract_lods(pm, targets));
+    if (targets.empty()) {
+      uint64_t target = 0;
+      if (options.simplify.target_ratio)
+        target =
+            static_cast<uint64_t>(*options.simplify.target_ratio * static_cast<double>(triangles));
+      if (options.simplify.target_triangles)
+        target = std::max(target, *options.simplify.target_triangles);
+      targets.push_back(target);
+    }
+    std::vector<size_t> order(targets.size());
+    for (size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return targets[a] > targets[b]; });
+    WedgeCollapseOptions run;
+    for (size_t i : order)
+      run.targets.push_back(targets[i]);
+    run.max_error = options.simplify.max_error;
+    run.boundary_weight = options.simplify.boundary_weight;
+    run.lock_border = options.simplify.lock_border;
+    run.permissive = options.simplify.permissive;
+    run.max_normal_change_degrees = options.simplify.max_normal_change_degrees;
+    run.progress = options.simplify.progress;
+    Result<WedgeCollapseResult> collapsed = collapse_wedges(wedges.value(), run);
+    if (!collapsed.is_ok())
+      return Status(collapsed.status().kind(), mesh_name(m) + ": " + collapsed.status().message());
 
-    MeshRebuilder rebuilder(mesh, topology);
-    Status mapped = rebuilder.map_slots(meshes.back());
-    if (!mapped.is_ok()) return Status(mapped.kind(), mesh_name(m) + ": " + mapped.message());
     MeshLodReport report;
     report.mesh = m;
     report.input_triangles = topology.mesh.triangles.size();
     report.repaired = loaded.repair.has_value();
-    for (size_t level = 0; level < levels; ++level) {
+    report.blocked = collapsed.value().blocked;
+    report.lod_triangles.resize(levels);
+    report.lod_targets = targets;
+    for (size_t i = 0; i < order.size(); ++i) {
+      const size_t level = order[i];
+      const WedgeLevel& engine_level = collapsed.value().levels[i];
+      uint64_t moved = 0;
       Result<std::vector<ScenePrimitive>> primitives =
-          rebuilder.primitives_at(meshes[level], &report.borrowed_corners);
+          builder.primitives_at(loaded.mesh, engine_level, &moved);
       if (!primitives.is_ok())
         return Status(primitives.status().kind(),
                       mesh_name(m) + ": " + primitives.status().message());
@@ -326,7 +414,8 @@ Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& opti
       out.primitives = std::move(primitives).value();
       out.point_of_vertex.clear();
       out.point_count = 0;
-      report.lod_triangles.push_back(meshes[level].triangle_count());
+      report.lod_triangles[level] = engine_level.triangles.size();
+      if (i + 1 == order.size()) report.moved_wedges = moved;
     }
     result.meshes.push_back(std::move(report));
   }

@@ -3,17 +3,16 @@
 // between materials), and the scene rebuilt around the simplified meshes
 // with every material, texture, node, skin and animation kept.
 //
-// Attributes ride along with the half-edge collapses: a corner keeps the
-// attribute values of a vertex of its own primitive at the point it moved
-// to (the one whose values are closest to the corner's before, when a seam
-// gives that point several), and only where its primitive has no vertex at
-// that point (a collapse across a material border) it keeps its own values
-// at the new position. The attribute-aware error (issue "attribute-aware
-// simplification") is not in the cost yet: the collapse order is the
-// geometric QEM's.
+// Each mesh is collapsed with its wedges (lib/simplify/wedge_collapse.h):
+// a vertex of a primitive is a wedge of its point, the cost counts the
+// normals, texture coordinates, colours and tangents a collapse distorts
+// (weights below), texture seams and material borders move only along
+// themselves, and a corner always keeps the values of a vertex of its own
+// primitive. docs/simplify.md, "Assets (glTF scenes)".
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,8 +20,19 @@
 #include "formats/support/status.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/simplify/simplify.h"
+#include "lib/simplify/wedge_collapse.h"
 
 namespace lodbake {
+
+// How much a difference of 1 in one component of an attribute costs next to
+// a distance of one bounding-box diagonal (docs/simplify.md gives the
+// defaults' measure). 0 leaves the stream out of the error.
+struct AttributeWeights {
+  double normal = 0.5;    // NORMAL (unit vectors)
+  double texcoord = 1.0;  // every TEXCOORD_n
+  double color = 0.5;     // every COLOR_n (RGB or RGBA, 0 to 1)
+  double tangent = 0.25;  // TANGENT's xyz (its w is a sign: a difference is a seam)
+};
 
 struct SceneLodOptions {
   // Placement must be kHalf (a corner then moves to a point of the input).
@@ -33,6 +43,7 @@ struct SceneLodOptions {
   std::vector<double> ratios;
   // repair / strict as the tools' options say; the policy is the engine's.
   LoadOptions load;
+  AttributeWeights weights;
 };
 
 struct MeshLodReport {
@@ -40,7 +51,13 @@ struct MeshLodReport {
   uint64_t input_triangles = 0;
   bool repaired = false;                // the default repair (or --repair) ran
   std::vector<uint64_t> lod_triangles;  // per level
-  uint64_t borrowed_corners = 0;        // corners that kept their own values across a border
+  std::vector<uint64_t> lod_targets;    // per level: the triangles asked for (0: no target)
+  // Wedges that kept their values at another point (a seam moved, only with
+  // `permissive`), at the last level.
+  uint64_t moved_wedges = 0;
+  // When a level stopped above its target: what held the mesh (no legal
+  // collapse was left, or max_error was reached).
+  std::optional<CollapseBlocks> blocked;
 };
 
 struct SceneLods {

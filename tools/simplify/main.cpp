@@ -49,6 +49,8 @@ struct Request {
   int quantize_bits = 0;
   bool metrics = true;
   SimplifyOptions options;
+  AttributeWeights weights;   // assets only
+  std::string weight_option;  // the first weight option given, for the usage error
 };
 
 Result<std::vector<double>> parse_ratios(const std::string& text) {
@@ -248,6 +250,29 @@ bool is_asset_run(const Request& request, const Bytes& bytes) {
                              content.value().format == MeshFormat::kGlb);
 }
 
+// What held a mesh above its target, as the report names it.
+nlohmann::json blocks_json(const CollapseBlocks& b) {
+  return {{"seam_corners", b.seam_corners},
+          {"locked_border", b.border},
+          {"non_manifold", b.non_manifold},
+          {"link", b.link},
+          {"flip", b.flip},
+          {"uv_fold", b.uv_fold},
+          {"normal", b.normal},
+          {"seam_mismatch", b.seam_mismatch}};
+}
+
+// "12 seam corners, 3 flips": the nonzero counts of `blocks`.
+std::string blocks_text(const nlohmann::json& blocks) {
+  std::string text;
+  for (const auto& [name, count] : blocks.items()) {
+    if (count.get<uint64_t>() == 0) continue;
+    if (!text.empty()) text += ", ";
+    text += std::to_string(count.get<uint64_t>()) + " " + name;
+  }
+  return text.empty() ? "nothing left to collapse" : text;
+}
+
 int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
   ImportReport imported;
   Result<Scene> scene = read_scene_bytes(request.input, bytes, SceneResources{}, &imported);
@@ -261,6 +286,7 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
   options.simplify = request.options;
   options.load.repair = request.repair;
   options.load.strict = request.strict;
+  options.weights = request.weights;
   if (!request.ratios.empty()) {
     options.ratios = request.ratios;
   } else if (request.options.target_ratio) {
@@ -301,15 +327,32 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
     tool.warn("", w);
 
   nlohmann::json meshes = nlohmann::json::array();
-  uint64_t borrowed = 0;
+  uint64_t moved = 0;
+  std::string short_of;  // the meshes that stopped above a target
   for (const MeshLodReport& m : lods.value().meshes) {
-    borrowed += m.borrowed_corners;
-    meshes.push_back({{"mesh", m.mesh},
-                      {"input_triangles", m.input_triangles},
-                      {"repaired", m.repaired},
-                      {"triangles", m.lod_triangles},
-                      {"borrowed_corners", m.borrowed_corners}});
+    moved += m.moved_wedges;
+    nlohmann::json mesh = {{"mesh", m.mesh},
+                           {"input_triangles", m.input_triangles},
+                           {"repaired", m.repaired},
+                           {"triangles", m.lod_triangles},
+                           {"targets", m.lod_targets},
+                           {"target_reached", !m.blocked.has_value()},
+                           {"moved_wedges", m.moved_wedges}};
+    if (m.blocked) {
+      mesh["blocked"] = blocks_json(*m.blocked);
+      if (!short_of.empty()) short_of += "; ";
+      const size_t last = static_cast<size_t>(
+          std::min_element(m.lod_targets.begin(), m.lod_targets.end()) - m.lod_targets.begin());
+      short_of += "mesh " + std::to_string(m.mesh) + " at " +
+                  std::to_string(m.lod_triangles[last]) + " triangles for " +
+                  std::to_string(m.lod_targets[last]) + " (" + blocks_text(mesh["blocked"]) + ")";
+    }
+    meshes.push_back(std::move(mesh));
   }
+  // Stopping short is not a failure (exit 0, docs/simplify.md): the output
+  // is the simplest legal mesh, and a build step can read target_reached.
+  if (!short_of.empty())
+    tool.warn(request.input, "no legal collapse left above the target: " + short_of);
   if (tool.json()) {
     tool.print_json({{"schema", kSimplifySchema},
                      {"input", request.input},
@@ -324,7 +367,7 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
   std::cout << "input         " << request.input << ": an asset, " << meshes.size()
             << " meshes with " << triangles << " triangles\n";
   std::cout << "simplified    each mesh once, its primitives together, in " << seconds << " s; "
-            << borrowed << " corners kept their own attributes across a material border\n";
+            << moved << " wedges kept their values at a moved point\n";
   for (const nlohmann::json& out : outputs)
     std::cout << "wrote         " << out["file"].get<std::string>() << ": "
               << out["triangles"].get<uint64_t>() << " triangles\n";
@@ -349,6 +392,10 @@ int run(const Tool& tool, Request& request) {
       return run_asset(tool, request, bytes.value());
     }
   }
+  if (!request.weight_option.empty())
+    return tool.usage_error(request.weight_option +
+                            " applies to an asset written as .glb or .gltf (a mesh is "
+                            "simplified by its geometry)");
   LoadOptions load;
   load.repair = request.repair;
   load.strict = request.strict;
@@ -483,7 +530,10 @@ int main(int argc, char** argv) {
             "reached, or when no collapse is legal. MESH may also be a lodbake container\n"
             "(.lbk), read as the mesh it stands for (a progressive mesh's full mesh, or a\n"
             "BASE that is the input). On a glTF asset, -o OUT.glb simplifies every mesh in\n"
-            "the asset, and --pm (alone) writes every mesh's progressive mesh in its group.");
+            "the asset with its attributes in the error and its seams kept (--permissive\n"
+            "lets them move), and --pm (alone) writes every mesh's progressive mesh in its\n"
+            "group. A mesh left above its target because no collapse is legal is one\n"
+            "warning line and still exit 0 (JSON: target_reached false, and why).");
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;
@@ -511,7 +561,17 @@ int main(int argc, char** argv) {
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
       "permissive", po::bool_switch(&request.options.permissive),
-      "allow collapses across texture seams")(
+      "let texture seams and material borders move: seam corners may go, and a wedge "
+      "without a partner keeps its values at the survivor, the attribute error counted")(
+      "normal-weight", po::value<double>(&request.weights.normal)->value_name("W"),
+      "(assets) the cost of a normal difference of 1 next to a distance of one "
+      "bounding-box diagonal (default 0.5; 0 leaves normals out)")(
+      "uv-weight", po::value<double>(&request.weights.texcoord)->value_name("W"),
+      "(assets) the same for texture coordinates (default 1)")(
+      "color-weight", po::value<double>(&request.weights.color)->value_name("W"),
+      "(assets) the same for vertex colours (default 0.5)")(
+      "tangent-weight", po::value<double>(&request.weights.tangent)->value_name("W"),
+      "(assets) the same for tangents (default 0.25)")(
       "height-guard", po::bool_switch(&request.options.height_guard),
       "(half placement only) also refuse collapses that leave the removed vertex far from "
       "the plane of a face they move: a lower Hausdorff error for 1.1 to 1.5 times the time")(
@@ -578,6 +638,15 @@ int main(int argc, char** argv) {
   // usage errors, not errors about the input.
   if (!(request.options.boundary_weight >= 0 && std::isfinite(request.options.boundary_weight)))
     return tool.usage_error("--boundary-weight takes a finite value >= 0");
+  for (const auto& [name, weight] : {std::make_pair("normal-weight", request.weights.normal),
+                                     std::make_pair("uv-weight", request.weights.texcoord),
+                                     std::make_pair("color-weight", request.weights.color),
+                                     std::make_pair("tangent-weight", request.weights.tangent)}) {
+    if (!tool.has(name)) continue;
+    if (!(weight >= 0 && std::isfinite(weight)))
+      return tool.usage_error(std::string("--") + name + " takes a finite value >= 0");
+    if (request.weight_option.empty()) request.weight_option = std::string("--") + name;
+  }
   if (!(request.options.max_normal_change_degrees >= 0 &&
         request.options.max_normal_change_degrees <= 180))
     return tool.usage_error("--max-normal-change takes degrees in [0, 180]");
