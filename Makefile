@@ -27,7 +27,7 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA) \
   -DLODBAKE_NPM_DIR=$(NPM_DIR)
 
 .PHONY: all deps npm-deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
-  bench-heldout \
+  bench-heldout bench-attributes \
   format format-check clean
 
 all: build
@@ -150,9 +150,16 @@ STRIPS_BENCH_MESHES := $(SHARED_DATA)/meshes/stanford_bun_zipper.ply $(BUILD)/da
 # Whole glTF assets in and out against gltfpack's plain copy (npm gltfpack,
 # from npm-deps): every asset of shared/data/assets (docs/benchmarks.md).
 ASSET_BENCH_FILES := $(sort $(wildcard $(SHARED_DATA)/assets/*/*.gltf $(SHARED_DATA)/assets/*/*.glb))
+# Attribute-aware simplification against gltfpack -si, -sa and meshoptimizer's
+# simplifyWithAttributes at 0.5, 0.25 and 0.1, scored by lib/metrics: every
+# asset with triangles (Duck.gltf left out: Duck.glb's twin) and the textured
+# OBJ meshes (docs/benchmarks.md, "Attributes").
+ATTRIBUTE_BENCH_FILES := $(filter-out %/Duck.gltf,$(ASSET_BENCH_FILES)) \
+  $(SHARED_DATA)/meshes/c3d_spot.obj
 bench: bench-deps build npm-deps
 	cmake --build $(BUILD) --target dragon_data bench_import bench_simplify bench_hierarchy \
-	  bench_dag bench_fan bench_strips bench_pack bench_section_codecs bench_stream bench_assets
+	  bench_dag bench_fan bench_strips bench_pack bench_section_codecs bench_stream bench_assets \
+	  bench_attributes
 	$(BUILD)/tests/bench/bench_import $(BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) $(SIMPLIFY_BENCH_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs $(BENCH_RUNS) --height-guard --peers lodbake,meshopt \
@@ -171,6 +178,12 @@ bench: bench-deps build npm-deps
 	$(BUILD)/tests/bench/bench_stream --runs $(BENCH_RUNS) --clients 16 \
 	  $(SHARED_DATA)/meshes/stanford_bun_zipper.ply
 	$(BUILD)/tests/bench/bench_assets --runs 5 $(ASSET_BENCH_FILES)
+	$(BUILD)/tests/bench/bench_attributes --runs $(BENCH_RUNS) $(ATTRIBUTE_BENCH_FILES)
+
+# The attribute benchmark alone (docs/benchmarks.md, "Attributes").
+bench-attributes: build npm-deps
+	cmake --build $(BUILD) --target bench_attributes
+	$(BUILD)/tests/bench/bench_attributes --runs $(BENCH_RUNS) $(ATTRIBUTE_BENCH_FILES)
 
 bench-heldout: bench-deps build
 	cmake --build $(BUILD) --target bench_simplify

@@ -6,7 +6,10 @@
 // each run to a new file (replacing a file just written costs more on ext4;
 // bench_assets's lodbake runs are set up alike).
 //
-//   node gltfpack_copy.mjs --modules NPM_DIR --out DIR [--runs N] FILE...
+//   node gltfpack_copy.mjs --modules NPM_DIR --out DIR [--runs N] [--arg A]... FILE...
+//
+// Each --arg is appended to the pack's arguments (bench_attributes times a
+// simplifying pack, e.g. --arg -si --arg 0.5, the same way).
 //
 // Prints tab-separated lines for bench_assets to read:
 //   init   <ms to load and compile the wasm>
@@ -18,19 +21,21 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 function usage(message) {
-  console.error(`Error: ${message}\nusage: node gltfpack_copy.mjs --modules DIR --out DIR [--runs N] FILE...`);
+  console.error(`Error: ${message}\nusage: node gltfpack_copy.mjs --modules DIR --out DIR [--runs N] [--arg A]... FILE...`);
   process.exit(2);
 }
 
 let modules = null;
 let out = null;
 let runs = 5;
+const extra = [];
 const files = [];
 const args = process.argv.slice(2);
 for (let i = 0; i < args.length; ++i) {
   if (args[i] === '--modules' && i + 1 < args.length) modules = args[++i];
   else if (args[i] === '--out' && i + 1 < args.length) out = args[++i];
   else if (args[i] === '--runs' && i + 1 < args.length) runs = Math.max(1, parseInt(args[++i], 10) || 1);
+  else if (args[i] === '--arg' && i + 1 < args.length) extra.push(args[++i]);
   else if (args[i].startsWith('--')) usage(`unknown option ${args[i]}`);
   else files.push(args[i]);
 }
@@ -69,7 +74,7 @@ for (const [index, file] of files.entries()) {
     bytesRead = 0;
     start = performance.now();
     try {
-      await pack(['-i', input, '-o', outputOf(r), '-noq'], iface);
+      await pack(['-i', input, '-o', outputOf(r), '-noq', ...extra], iface);
     } catch (err) {
       // "Error loading <input>: why" names the file; the caller prints it.
       failure = String(err.message).trim().split('\n')[0].replace(`Error loading ${input}: `, '');
