@@ -28,10 +28,10 @@ namespace lodbake {
 // a distance of one bounding-box diagonal (docs/simplify.md gives the
 // defaults' measure). 0 leaves the stream out of the error.
 struct AttributeWeights {
-  double normal = 0.5;    // NORMAL (unit vectors)
+  double normal = 0.02;   // NORMAL (unit vectors)
   double texcoord = 1.0;  // every TEXCOORD_n
   double color = 0.5;     // every COLOR_n (RGB or RGBA, 0 to 1)
-  double tangent = 0.25;  // TANGENT's xyz (its w is a sign: a difference is a seam)
+  double tangent = 0.01;  // TANGENT's xyz (its w is a sign: a difference is a seam)
 };
 
 struct SceneLodOptions {

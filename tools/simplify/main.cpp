@@ -575,13 +575,13 @@ int main(int argc, char** argv) {
       "without a partner keeps its values at the survivor, the attribute error counted")(
       "normal-weight", po::value<double>(&request.weights.normal)->value_name("W"),
       "(assets) the cost of a normal difference of 1 next to a distance of one "
-      "bounding-box diagonal (default 0.5; 0 leaves normals out)")(
+      "bounding-box diagonal (default 0.02; 0 leaves normals out)")(
       "uv-weight", po::value<double>(&request.weights.texcoord)->value_name("W"),
       "(assets) the same for texture coordinates (default 1)")(
       "color-weight", po::value<double>(&request.weights.color)->value_name("W"),
       "(assets) the same for vertex colours (default 0.5)")(
       "tangent-weight", po::value<double>(&request.weights.tangent)->value_name("W"),
-      "(assets) the same for tangents (default 0.25)")(
+      "(assets) the same for tangents (default 0.01)")(
       "height-guard", po::bool_switch(&request.options.height_guard),
       "(half placement only) also refuse collapses that leave the removed vertex far from "
       "the plane of a face they move: a lower Hausdorff error for 1.1 to 1.5 times the time")(
