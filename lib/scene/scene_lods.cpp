@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -11,6 +12,7 @@
 
 #include "formats/scene/accessor_values.h"
 #include "lib/scene/scene_topology.h"
+#include "lib/simplify/wedge_pm.h"
 
 namespace lodbake {
 namespace {
@@ -61,13 +63,6 @@ struct SlotSource {
   std::array<int, 3> corner{};
 };
 
-// One engine wedge: a vertex of a primitive at one point of the repaired
-// mesh (a point the repair split gives its vertices wedges of their own).
-struct WedgeSource {
-  uint32_t primitive = 0;
-  uint32_t vertex = 0;  // the first vertex of the primitive with these values there
-};
-
 // One mesh's way from its primitives to the engine's wedge mesh and back.
 class WedgeMeshBuilder {
  public:
@@ -115,44 +110,66 @@ class WedgeMeshBuilder {
                                             out.wedge_point.size());
         if (added) {
           out.wedge_point.push_back(point);
-          sources_.push_back({p, vertex});
+          wedge_primitive_.push_back(p);
+          wedge_vertex_.push_back(vertex);
           append_values(prim, vertex, &out);
         }
         corners[k] = it->second;
       }
       out.corner_wedge.push_back(corners);
     }
-    initial_points_ = out.wedge_point;
     return out;
   }
 
-  // The mesh's primitives at one level of the engine.
-  Result<std::vector<ScenePrimitive>> primitives_at(const TriangleMesh& repaired,
-                                                    const WedgeLevel& level,
-                                                    uint64_t* moved) const {
+  // The (primitive, vertex) of each wedge of the last build().
+  const std::vector<uint32_t>& wedge_primitive() const { return wedge_primitive_; }
+  const std::vector<uint32_t>& wedge_vertex() const { return wedge_vertex_; }
+
+  // The mesh's primitives for `triangles` (indices into `positions`), whose
+  // corners use the wedges `corners` of the table (wedge_primitive,
+  // wedge_vertex). A corner away from its wedge's vertex (a wedge moved by
+  // a permissive collapse) keeps the wedge's values at its own position;
+  // `moved` counts those wedges. The table may come from a file: every
+  // index is checked.
+  Result<std::vector<ScenePrimitive>> assemble(const std::vector<Vec3f>& positions,
+                                               const std::vector<Triangle>& triangles,
+                                               const std::vector<std::array<uint32_t, 3>>& corners,
+                                               const std::vector<uint32_t>& wedge_primitive,
+                                               const std::vector<uint32_t>& wedge_vertex,
+                                               uint64_t* moved) const {
     const size_t n = mesh_.primitives.size();
+    if (corners.size() != triangles.size() || wedge_vertex.size() != wedge_primitive.size())
+      return invalid_input("the wedges do not match the triangles");
     struct Built {
       std::vector<uint32_t> indices;
       std::vector<std::pair<uint32_t, int64_t>> sources;  // (vertex, point for the position or -1)
       std::map<std::pair<uint32_t, int64_t>, uint32_t> index_of;
     };
     std::vector<Built> built(n);
-    std::vector<uint8_t> counted(level.wedge_point.size(), 0);
+    std::vector<uint8_t> counted(wedge_primitive.size(), 0);
     *moved = 0;
-    for (size_t f = 0; f < level.triangles.size(); ++f) {
+    for (size_t f = 0; f < triangles.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
-        const uint32_t w = level.corner_wedge[f][k];
-        const WedgeSource& source = sources_[w];
-        std::pair<uint32_t, int64_t> key{source.vertex, -1};
-        if (level.wedge_point[w] != initial_points_[w]) {
-          auto point = point_of_position_.find(key_of(repaired.positions[level.wedge_point[w]]));
+        const uint32_t w = corners[f][k];
+        const uint32_t at = triangles[f][k];
+        if (w >= wedge_primitive.size() || at >= positions.size())
+          return invalid_input("triangle " + std::to_string(f) + " has a corner out of range");
+        const uint32_t p = wedge_primitive[w], v = wedge_vertex[w];
+        if (p >= n || v >= mesh_.point_of_vertex[p].size() ||
+            topology_.triangles_per_primitive[p] == 0)
+          return invalid_input("wedge " + std::to_string(w) +
+                               " is no vertex of a triangle primitive");
+        std::pair<uint32_t, int64_t> key{v, -1};
+        const PositionKey here = key_of(positions[at]);
+        if (here != key_of(topology_.mesh.positions[mesh_.point_of_vertex[p][v]])) {
+          auto point = point_of_position_.find(here);
           if (point == point_of_position_.end())
-            return runtime_error("a vertex of the simplified mesh is no point of the input");
+            return invalid_input("a vertex of the simplified mesh is no point of the input");
           key.second = point->second;
           if (!counted[w]) ++*moved;
           counted[w] = 1;
         }
-        Built& b = built[source.primitive];
+        Built& b = built[p];
         auto [it, added] = b.index_of.emplace(key, static_cast<uint32_t>(b.sources.size()));
         if (added) b.sources.push_back(key);
         b.indices.push_back(it->second);
@@ -326,78 +343,113 @@ class WedgeMeshBuilder {
   std::vector<std::array<uint32_t, 3>> local_triangles_;  // per topology triangle
   std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> vertices_at_;  // (prim, point)
   std::vector<SlotSource> slots_;
-  std::vector<WedgeSource> sources_;      // per engine wedge
-  std::vector<uint32_t> initial_points_;  // per engine wedge
+  std::vector<uint32_t> wedge_primitive_;  // per engine wedge
+  std::vector<uint32_t> wedge_vertex_;
 };
 
 std::string mesh_name(uint32_t m) {
   return "mesh " + std::to_string(m);
 }
 
-}  // namespace
+Status in_mesh(uint32_t m, const Status& status) {
+  return Status(status.kind(), mesh_name(m) + ": " + status.message());
+}
 
-Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& options) {
+// One mesh made ready for the engine: its welded topology, repaired as the
+// load options say, and its wedge mesh. Not movable: the builder refers to
+// the topology.
+struct PreparedMesh {
+  PreparedMesh(const SceneMesh& mesh, const AttributeWeights& weights)
+      : topology(mesh_topology(mesh)), builder(mesh, topology, weights) {}
+  MeshTopology topology;
+  LoadedMesh loaded;
+  WedgeMeshBuilder builder;
+  WedgeMesh wedges;
+};
+
+// Null when the mesh has no triangle.
+Result<std::unique_ptr<PreparedMesh>> prepare(const SceneMesh& mesh, uint32_t m,
+                                              const SceneLodOptions& options) {
+  auto prepared = std::make_unique<PreparedMesh>(mesh, options.weights);
+  if (prepared->topology.mesh.triangles.empty()) return std::unique_ptr<PreparedMesh>();
+  prepared->loaded.mesh = prepared->topology.mesh;
+  LoadOptions load = options.load;
+  load.drop_unreferenced = true;
+  load.per_vertex_attributes = false;
+  if (Status ok = prepare_mesh(load, &prepared->loaded); !ok.is_ok()) return in_mesh(m, ok);
+  Result<WedgeMesh> wedges = prepared->builder.build(prepared->loaded.mesh);
+  if (!wedges.is_ok()) return in_mesh(m, wedges.status());
+  prepared->wedges = std::move(wedges).value();
+  return prepared;
+}
+
+WedgeCollapseOptions engine_options(const SceneLodOptions& options) {
+  WedgeCollapseOptions run;
+  run.max_error = options.simplify.max_error;
+  run.boundary_weight = options.simplify.boundary_weight;
+  run.lock_border = options.simplify.lock_border;
+  run.permissive = options.simplify.permissive;
+  run.max_normal_change_degrees = options.simplify.max_normal_change_degrees;
+  run.progress = options.simplify.progress;
+  return run;
+}
+
+// Each level's target triangle count, in the order of `ratios` (one when
+// it is empty: the simplify options' target, 0 without one).
+std::vector<uint64_t> level_targets(const SceneLodOptions& options, uint64_t triangles) {
+  std::vector<uint64_t> targets;
+  for (double r : options.ratios)
+    targets.push_back(static_cast<uint64_t>(r * static_cast<double>(triangles)));
+  if (targets.empty()) {
+    uint64_t target = 0;
+    if (options.simplify.target_ratio)
+      target =
+          static_cast<uint64_t>(*options.simplify.target_ratio * static_cast<double>(triangles));
+    if (options.simplify.target_triangles)
+      target = std::max(target, *options.simplify.target_triangles);
+    targets.push_back(target);
+  }
+  return targets;
+}
+
+Status check_placement(const SceneLodOptions& options) {
   if (options.simplify.placement != Placement::kHalf)
     return Status(ErrorKind::kUsage,
                   "an asset is simplified with half-edge collapses only (its corners keep "
                   "their attributes at the input's points)");
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& options) {
+  LODBAKE_RETURN_IF_ERROR(check_placement(options));
   const size_t levels = options.ratios.empty() ? 1 : options.ratios.size();
   SceneLods result;
   result.levels.assign(levels, scene);
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
-    const SceneMesh& mesh = scene.meshes[m];
-    const MeshTopology topology = mesh_topology(mesh);
-    if (topology.mesh.triangles.empty()) continue;
-    LoadedMesh loaded;
-    loaded.mesh = topology.mesh;
-    LoadOptions load = options.load;
-    load.drop_unreferenced = true;
-    load.per_vertex_attributes = false;
-    Status prepared = prepare_mesh(load, &loaded);
-    if (!prepared.is_ok()) return Status(prepared.kind(), mesh_name(m) + ": " + prepared.message());
-
-    WedgeMeshBuilder builder(mesh, topology, options.weights);
-    Result<WedgeMesh> wedges = builder.build(loaded.mesh);
-    if (!wedges.is_ok())
-      return Status(wedges.status().kind(), mesh_name(m) + ": " + wedges.status().message());
-
+    LODBAKE_ASSIGN_OR_RETURN(std::unique_ptr<PreparedMesh> prepared,
+                             prepare(scene.meshes[m], m, options));
+    if (!prepared) continue;
     // The engine takes its targets in decreasing order; the levels keep
     // the order of `ratios`.
-    const uint64_t triangles = loaded.mesh.triangle_count();
-    std::vector<uint64_t> targets;
-    for (double r : options.ratios)
-      targets.push_back(static_cast<uint64_t>(r * static_cast<double>(triangles)));
-    if (targets.empty()) {
-      uint64_t target = 0;
-      if (options.simplify.target_ratio)
-        target =
-            static_cast<uint64_t>(*options.simplify.target_ratio * static_cast<double>(triangles));
-      if (options.simplify.target_triangles)
-        target = std::max(target, *options.simplify.target_triangles);
-      targets.push_back(target);
-    }
+    const std::vector<uint64_t> targets =
+        level_targets(options, prepared->loaded.mesh.triangle_count());
     std::vector<size_t> order(targets.size());
     for (size_t i = 0; i < order.size(); ++i)
       order[i] = i;
     std::stable_sort(order.begin(), order.end(),
                      [&](size_t a, size_t b) { return targets[a] > targets[b]; });
-    WedgeCollapseOptions run;
+    WedgeCollapseOptions run = engine_options(options);
     for (size_t i : order)
       run.targets.push_back(targets[i]);
-    run.max_error = options.simplify.max_error;
-    run.boundary_weight = options.simplify.boundary_weight;
-    run.lock_border = options.simplify.lock_border;
-    run.permissive = options.simplify.permissive;
-    run.max_normal_change_degrees = options.simplify.max_normal_change_degrees;
-    run.progress = options.simplify.progress;
-    Result<WedgeCollapseResult> collapsed = collapse_wedges(wedges.value(), run);
-    if (!collapsed.is_ok())
-      return Status(collapsed.status().kind(), mesh_name(m) + ": " + collapsed.status().message());
+    Result<WedgeCollapseResult> collapsed = collapse_wedges(prepared->wedges, run);
+    if (!collapsed.is_ok()) return in_mesh(m, collapsed.status());
 
     MeshLodReport report;
     report.mesh = m;
-    report.input_triangles = topology.mesh.triangles.size();
-    report.repaired = loaded.repair.has_value();
+    report.input_triangles = prepared->topology.mesh.triangles.size();
+    report.repaired = prepared->loaded.repair.has_value();
     report.blocked = collapsed.value().blocked;
     report.lod_triangles.resize(levels);
     report.lod_targets = targets;
@@ -405,11 +457,10 @@ Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& opti
       const size_t level = order[i];
       const WedgeLevel& engine_level = collapsed.value().levels[i];
       uint64_t moved = 0;
-      Result<std::vector<ScenePrimitive>> primitives =
-          builder.primitives_at(loaded.mesh, engine_level, &moved);
-      if (!primitives.is_ok())
-        return Status(primitives.status().kind(),
-                      mesh_name(m) + ": " + primitives.status().message());
+      Result<std::vector<ScenePrimitive>> primitives = prepared->builder.assemble(
+          prepared->loaded.mesh.positions, engine_level.triangles, engine_level.corner_wedge,
+          prepared->builder.wedge_primitive(), prepared->builder.wedge_vertex(), &moved);
+      if (!primitives.is_ok()) return in_mesh(m, primitives.status());
       SceneMesh& out = result.levels[level].meshes[m];
       out.primitives = std::move(primitives).value();
       out.point_of_vertex.clear();
@@ -420,6 +471,46 @@ Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& opti
     result.meshes.push_back(std::move(report));
   }
   return result;
+}
+
+Result<std::vector<MeshPm>> scene_progressive_meshes(const Scene& scene,
+                                                     const SceneLodOptions& options) {
+  LODBAKE_RETURN_IF_ERROR(check_placement(options));
+  std::vector<MeshPm> out;
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    LODBAKE_ASSIGN_OR_RETURN(std::unique_ptr<PreparedMesh> prepared,
+                             prepare(scene.meshes[m], m, options));
+    if (!prepared) continue;
+    const std::vector<uint64_t> targets =
+        level_targets(options, prepared->loaded.mesh.triangle_count());
+    WedgeCollapseOptions run = engine_options(options);
+    run.targets = {*std::min_element(targets.begin(), targets.end())};
+    run.record = true;
+    Result<WedgeCollapseResult> collapsed = collapse_wedges(prepared->wedges, run);
+    if (!collapsed.is_ok()) return in_mesh(m, collapsed.status());
+    Result<WedgePm> recorded = record_wedge_pm(prepared->wedges, collapsed.value());
+    if (!recorded.is_ok()) return in_mesh(m, recorded.status());
+    MeshPm pm;
+    pm.mesh = m;
+    pm.repaired = prepared->loaded.repair.has_value();
+    pm.blocked = collapsed.value().blocked;
+    pm.pm = std::move(recorded.value().pm);
+    pm.wedges = std::move(recorded.value().wedges);
+    pm.wedges.wedge_primitive = prepared->builder.wedge_primitive();
+    pm.wedges.wedge_vertex = prepared->builder.wedge_vertex();
+    out.push_back(std::move(pm));
+  }
+  return out;
+}
+
+Result<std::vector<ScenePrimitive>> primitives_at_level(
+    const SceneMesh& mesh, const TriangleMesh& level,
+    const std::vector<std::array<uint32_t, 3>>& corners, const PmWedges& wedges) {
+  const MeshTopology topology = mesh_topology(mesh);
+  const WedgeMeshBuilder assembler(mesh, topology, AttributeWeights{});
+  uint64_t moved = 0;
+  return assembler.assemble(level.positions, level.triangles, corners, wedges.wedge_primitive,
+                            wedges.wedge_vertex, &moved);
 }
 
 }  // namespace lodbake

@@ -11,11 +11,14 @@
 // primitive. docs/simplify.md, "Assets (glTF scenes)".
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "formats/mesh/pm_wedges.h"
+#include "formats/mesh/progressive_mesh.h"
 #include "formats/scene/scene.h"
 #include "formats/support/status.h"
 #include "lib/ingest/load_mesh.h"
@@ -65,9 +68,36 @@ struct SceneLods {
   std::vector<MeshLodReport> meshes;  // per mesh with triangles
 };
 
+// A mesh's progressive mesh with its wedges: the collapses of
+// simplify_scene() recorded down to the smallest target (0 without one), so
+// the level with a level's vertex count has that level's triangles.
+struct MeshPm {
+  uint32_t mesh = 0;
+  bool repaired = false;
+  // Positions and connectivity; input_vertex maps to the mesh's welded
+  // (and repaired) points. No attribute streams: the wedges carry them.
+  ProgressiveMesh pm;
+  // The wedge table names (primitive, vertex) pairs of the scene mesh.
+  PmWedges wedges;
+  std::optional<CollapseBlocks> blocked;  // the base stopped above the target
+};
+
 // Needs every mesh's point_of_vertex filled. Fails with the mesh's number
 // when a mesh cannot be simplified (kInvalidInput for a mesh the engine
 // cannot take, naming its problem).
 Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& options);
+
+// One MeshPm per mesh with triangles, as simplify_scene() fails.
+Result<std::vector<MeshPm>> scene_progressive_meshes(const Scene& scene,
+                                                     const SceneLodOptions& options);
+
+// The primitives of `mesh` at one level of its progressive mesh: `level`
+// (PM vertex ids, e.g. WedgeRefiner::mesh()) whose corners use `corners`
+// of `wedges`. Points and lines primitives are kept; a triangle primitive
+// with no triangle at this level is left out. Every index is checked
+// (kInvalidInput): the wedges may come from a file.
+Result<std::vector<ScenePrimitive>> primitives_at_level(
+    const SceneMesh& mesh, const TriangleMesh& level,
+    const std::vector<std::array<uint32_t, 3>>& corners, const PmWedges& wedges);
 
 }  // namespace lodbake
