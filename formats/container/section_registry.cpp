@@ -29,6 +29,8 @@ const std::vector<SectionKind>& known_section_kinds() {
       {kSetsTag, "SETS multiresolution strip graph over a progressive mesh's contractions", false},
       {kScneTag, "the asset: glTF scene (nodes, materials, textures, skins) and its meshes' groups",
        false},
+      {kWedgTag, "the wedges of an asset mesh's progressive mesh: each corner's primitive vertex",
+       false},
   };
   return kinds;
 }

@@ -21,6 +21,7 @@ inline constexpr char kFanhTag[] = "FANH";  ///< fan-merge hierarchy (formats/se
 inline constexpr char kStrpTag[] = "STRP";  ///< triangle strips (formats/sections/strp.h)
 inline constexpr char kSetsTag[] = "SETS";  ///< SETS strip graph (formats/sections/sets.h)
 inline constexpr char kScneTag[] = "SCNE";  ///< the asset's scene (formats/sections/scne.h)
+inline constexpr char kWedgTag[] = "WEDG";  ///< a PM's wedges (formats/sections/wedg.h)
 
 struct SectionKind {
   const char* tag;          ///< 4 printable ASCII characters

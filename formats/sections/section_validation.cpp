@@ -19,6 +19,7 @@
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
+#include "formats/sections/wedg.h"
 
 namespace lodbake {
 namespace {
@@ -40,6 +41,8 @@ struct Decoded {
   std::optional<TriangleMesh> fanh_base;  // BASE's mesh, kept for FANH's replay
   const Section* strp_section = nullptr;
   const Section* sets_section = nullptr;
+  const Section* wedg_section = nullptr;
+  std::optional<ProgressiveMesh> pm;  // kept from VSPL's check when WEDG needs it
 };
 
 // META's counts, when present, must agree with the sections they describe
@@ -112,6 +115,23 @@ void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
   }
   for (std::string& finding : validate_vspl(pm.value()))
     findings->push_back({kVsplTag, std::move(finding)});
+  if (d->wedg_section != nullptr) d->pm = std::move(pm).value();
+}
+
+// WEDG follows the group's progressive mesh.
+void check_wedg(const Decoded& d, std::vector<SectionFinding>* findings) {
+  Result<PmWedges> wedges = decode_wedg(d.wedg_section->data, d.wedg_section->size);
+  if (!wedges.is_ok()) {
+    findings->push_back({kWedgTag, wedges.status().message()});
+    return;
+  }
+  if (d.vspl_section == nullptr) {
+    findings->push_back({kWedgTag, "no VSPL section holds the progressive mesh it describes"});
+    return;
+  }
+  if (!d.pm) return;  // VSPL's own finding says why
+  for (std::string& finding : validate_wedg(wedges.value(), *d.pm))
+    findings->push_back({kWedgTag, std::move(finding)});
 }
 
 // DAGE and VTRE describe the container's progressive mesh: one DAG node,
@@ -265,6 +285,8 @@ std::vector<SectionFinding> validate_group(const Container& container) {
       d.strp_section = &section;
     } else if (section.tag() == kSetsTag) {
       d.sets_section = &section;
+    } else if (section.tag() == kWedgTag) {
+      d.wedg_section = &section;
     }
   }
   check_vhie(d, &findings);
@@ -286,6 +308,7 @@ std::vector<SectionFinding> validate_group(const Container& container) {
                                d.vspl_section != nullptr, d.vspl ? &*d.vspl : nullptr))
       findings.push_back({kSetsTag, std::move(finding)});
   }
+  if (d.wedg_section != nullptr) check_wedg(d, &findings);
   if (d.meta) check_meta_counts(d, &findings);
   return findings;
 }

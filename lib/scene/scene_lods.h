@@ -27,14 +27,16 @@
 
 namespace lodbake {
 
-// How much a difference of 1 in one component of an attribute costs next to
-// a distance of one bounding-box diagonal (docs/simplify.md gives the
-// defaults' measure). 0 leaves the stream out of the error.
+// How much an attribute's difference costs next to a distance: a weighted
+// difference of 1 spread over a distance d costs about what moving the
+// surface by d does (meshoptimizer's convention, with distances relative
+// to the bounding-box diagonal; docs/simplify.md gives the defaults'
+// measure). 0 leaves the stream out of the error.
 struct AttributeWeights {
-  double normal = 0.02;   // NORMAL (unit vectors)
-  double texcoord = 1.0;  // every TEXCOORD_n
-  double color = 0.5;     // every COLOR_n (RGB or RGBA, 0 to 1)
-  double tangent = 0.01;  // TANGENT's xyz (its w is a sign: a difference is a seam)
+  double normal = 0.3;    // NORMAL (unit vectors)
+  double texcoord = 5.0;  // every TEXCOORD_n
+  double color = 1.0;     // every COLOR_n (RGB or RGBA, 0 to 1)
+  double tangent = 0.1;   // TANGENT's xyz (its w is a sign: a difference is a seam)
 };
 
 struct SceneLodOptions {

@@ -402,17 +402,21 @@ class WedgeCollapser {
     // The error this collapse adds: vt's quadrics (the faces it moves and
     // the wedges it gives up) at vs's point and values. vs's own quadrics
     // are the error of earlier collapses; they count when vs is removed.
+    // The geometric part is a mean over vt's area; the appearance part is
+    // left a sum over it, so that an attribute difference of 1 over a
+    // distance d costs about what a distance d does (as meshoptimizer
+    // weighs them): appearance counts more as the triangles grow.
     const Quadric& qt = geometric_[vt];
-    double error = qt.evaluate(to);
+    double geometric = qt.evaluate(to);
+    double appearance = 0;
     for (const WedgeMove& m : *moves) {
       const uint32_t first = in_.value_offset[m.from];
       const uint32_t target_first = in_.value_offset[m.to];
-      error += evaluate_position_part(wedge_quadric_[m.from], to);
+      appearance += evaluate_position_part(wedge_quadric_[m.from], to);
       for (uint32_t j = 0; j < values_of(m.from); ++j)
-        error += evaluate_component(component_[first + j], to, in_.values[target_first + j]);
+        appearance += evaluate_component(component_[first + j], to, in_.values[target_first + j]);
     }
-    error = std::max(error, 0.0);  // rounding may take an exact zero below
-    *cost = qt.weight > 0 ? error / qt.weight : 0;
+    *cost = (qt.weight > 0 ? geometric / qt.weight : 0) + std::max(appearance, 0.0);
     if (!legality) return Refusal::kNone;
 
     // Link condition: the common neighbours are the removed faces' third points.

@@ -574,14 +574,14 @@ int main(int argc, char** argv) {
       "let texture seams and material borders move: seam corners may go, and a wedge "
       "without a partner keeps its values at the survivor, the attribute error counted")(
       "normal-weight", po::value<double>(&request.weights.normal)->value_name("W"),
-      "(assets) the cost of a normal difference of 1 next to a distance of one "
-      "bounding-box diagonal (default 0.02; 0 leaves normals out)")(
+      "(assets) how much normals weigh: a weighted difference of 1 over a distance d "
+      "costs about what moving the surface by d does (default 0.3; 0 leaves them out)")(
       "uv-weight", po::value<double>(&request.weights.texcoord)->value_name("W"),
-      "(assets) the same for texture coordinates (default 1)")(
+      "(assets) the same for texture coordinates (default 5)")(
       "color-weight", po::value<double>(&request.weights.color)->value_name("W"),
-      "(assets) the same for vertex colours (default 0.5)")(
+      "(assets) the same for vertex colours (default 1)")(
       "tangent-weight", po::value<double>(&request.weights.tangent)->value_name("W"),
-      "(assets) the same for tangents (default 0.01)")(
+      "(assets) the same for tangents (default 0.1)")(
       "height-guard", po::bool_switch(&request.options.height_guard),
       "(half placement only) also refuse collapses that leave the removed vertex far from "
       "the plane of a face they move: a lower Hausdorff error for 1.1 to 1.5 times the time")(
