@@ -20,6 +20,10 @@ struct PmWedges {
   // primitive whose attribute values it has.
   std::vector<uint32_t> wedge_primitive;
   std::vector<uint32_t> wedge_vertex;
+  // Per wedge, the PM vertex it belongs to: a corner of a coarser level at
+  // another vertex uses the wedge's values at that vertex's position (a
+  // seam moved by a permissive collapse).
+  std::vector<uint32_t> wedge_home;
   // Per base triangle, its corners' wedges.
   std::vector<std::array<uint32_t, 3>> base;
   // Per split, the corners of the faces it adds, (vs, vt, vl) then
@@ -35,7 +39,8 @@ struct PmWedges {
   size_t wedge_count() const { return wedge_primitive.size(); }
   bool operator==(const PmWedges& o) const {
     return wedge_primitive == o.wedge_primitive && wedge_vertex == o.wedge_vertex &&
-           base == o.base && added == o.added && moved_offset == o.moved_offset && moved == o.moved;
+           wedge_home == o.wedge_home && base == o.base && added == o.added &&
+           moved_offset == o.moved_offset && moved == o.moved;
   }
 };
 

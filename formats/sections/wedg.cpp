@@ -18,7 +18,8 @@ std::string str(uint64_t v) {
 // The invariants both directions check; `what` prefixes the message.
 std::string first_problem(const PmWedges& w) {
   const uint64_t count = w.wedge_primitive.size();
-  if (w.wedge_vertex.size() != count) return "the wedge table's two lists differ in length";
+  if (w.wedge_vertex.size() != count || w.wedge_home.size() != count)
+    return "the wedge table's lists differ in length";
   if (w.moved_offset.size() != w.added.size() + 1)
     return "the moved offsets are not one more than the splits";
   if (w.moved_offset.front() != 0 || w.moved_offset.back() != w.moved.size())
@@ -64,6 +65,7 @@ Result<Bytes> encode_wedg(const PmWedges& wedges) {
   for (size_t i = 0; i < wedges.wedge_count(); ++i) {
     w.write<uint32_t>(wedges.wedge_primitive[i]);
     w.write<uint32_t>(wedges.wedge_vertex[i]);
+    w.write<uint32_t>(wedges.wedge_home[i]);
   }
   for (const std::array<uint32_t, 3>& t : wedges.base)
     for (uint32_t v : t)
@@ -85,15 +87,17 @@ Result<PmWedges> decode_wedg(const uint8_t* data, size_t size) {
     return bad("the header needs " + str(kWedgFixedBytes) + " bytes, " + str(size) + " remain");
   if (flags != 0) return bad("unknown flags " + str(flags));
   const uint64_t expected =
-      kWedgFixedBytes + 8ull * wedges + 12ull * base + 28ull * splits + 4ull * moved;
+      kWedgFixedBytes + 12ull * wedges + 12ull * base + 28ull * splits + 4ull * moved;
   if (expected != size)
     return bad("the counts need " + str(expected) + " bytes, the payload has " + str(size));
   PmWedges out;
   out.wedge_primitive.resize(wedges);
   out.wedge_vertex.resize(wedges);
+  out.wedge_home.resize(wedges);
   for (uint32_t i = 0; i < wedges; ++i) {
     r.read(&out.wedge_primitive[i]);
     r.read(&out.wedge_vertex[i]);
+    r.read(&out.wedge_home[i]);
   }
   out.base.resize(base);
   for (std::array<uint32_t, 3>& t : out.base)
@@ -124,6 +128,12 @@ Result<PmWedges> decode_wedg(const uint8_t* data, size_t size) {
 
 std::vector<std::string> validate_wedg(const PmWedges& wedges, const ProgressiveMesh& pm) {
   std::vector<std::string> findings;
+  for (uint32_t home : wedges.wedge_home)
+    if (home >= pm.full_vertex_count()) {
+      findings.push_back("a wedge's vertex " + str(home) + " is not one of VSPL's " +
+                         str(pm.full_vertex_count()));
+      break;
+    }
   if (wedges.base.size() != pm.base.triangles.size())
     findings.push_back("WEDG names " + str(wedges.base.size()) + " base triangles, BASE has " +
                        str(pm.base.triangles.size()));

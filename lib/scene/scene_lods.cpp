@@ -136,13 +136,16 @@ class WedgeMeshBuilder {
                                                const std::vector<std::array<uint32_t, 3>>& corners,
                                                const std::vector<uint32_t>& wedge_primitive,
                                                const std::vector<uint32_t>& wedge_vertex,
+                                               const std::vector<uint32_t>& wedge_home,
                                                uint64_t* moved) const {
     const size_t n = mesh_.primitives.size();
-    if (corners.size() != triangles.size() || wedge_vertex.size() != wedge_primitive.size())
+    if (corners.size() != triangles.size() || wedge_vertex.size() != wedge_primitive.size() ||
+        wedge_home.size() != wedge_primitive.size())
       return invalid_input("the wedges do not match the triangles");
     struct Built {
       std::vector<uint32_t> indices;
-      std::vector<std::pair<uint32_t, int64_t>> sources;  // (vertex, point for the position or -1)
+      // (vertex, the corner's vertex in `positions` when away from home, or -1)
+      std::vector<std::pair<uint32_t, int64_t>> sources;
       std::map<std::pair<uint32_t, int64_t>, uint32_t> index_of;
     };
     std::vector<Built> built(n);
@@ -160,12 +163,8 @@ class WedgeMeshBuilder {
           return invalid_input("wedge " + std::to_string(w) +
                                " is no vertex of a triangle primitive");
         std::pair<uint32_t, int64_t> key{v, -1};
-        const PositionKey here = key_of(positions[at]);
-        if (here != key_of(topology_.mesh.positions[mesh_.point_of_vertex[p][v]])) {
-          auto point = point_of_position_.find(here);
-          if (point == point_of_position_.end())
-            return invalid_input("a vertex of the simplified mesh is no point of the input");
-          key.second = point->second;
+        if (at != wedge_home[w]) {
+          key.second = at;
           if (!counted[w]) ++*moved;
           counted[w] = 1;
         }
@@ -190,7 +189,7 @@ class WedgeMeshBuilder {
       prim.extensions = in.extensions;
       prim.indices = std::move(built[p].indices);
       for (const SceneAttribute& a : in.attributes)
-        prim.attributes.push_back(gather(a, built[p].sources));
+        prim.attributes.push_back(gather(a, built[p].sources, positions));
       for (const std::vector<SceneAttribute>& target : in.targets) {
         std::vector<SceneAttribute> t;
         for (const SceneAttribute& a : target) {
@@ -297,7 +296,8 @@ class WedgeMeshBuilder {
   }
 
   SceneAttribute gather(const SceneAttribute& a,
-                        const std::vector<std::pair<uint32_t, int64_t>>& sources) const {
+                        const std::vector<std::pair<uint32_t, int64_t>>& sources,
+                        const std::vector<Vec3f>& positions) const {
     SceneAttribute out = a;
     out.data = select(a.data, sources);
     if (a.semantic != "POSITION") return out;
@@ -305,17 +305,22 @@ class WedgeMeshBuilder {
     const size_t size = a.data.element_size();
     for (size_t i = 0; i < sources.size(); ++i) {
       if (sources[i].second < 0) continue;
-      const Vec3f& position = topology_.mesh.positions[sources[i].second];
+      const Vec3f& position = positions[static_cast<size_t>(sources[i].second)];
       if (a.data.component_type == ComponentType::kFloat && a.data.components() == 3) {
         std::memcpy(out.data.bytes.data() + i * size, position.data(), size);
-      } else if (const std::optional<std::pair<uint32_t, uint32_t>> same =
-                     same_type_vertex(static_cast<uint32_t>(sources[i].second), a.data)) {
+        continue;
+      }
+      auto point = point_of_position_.find(key_of(position));
+      if (point == point_of_position_.end()) continue;
+      if (const std::optional<std::pair<uint32_t, uint32_t>> same =
+              same_type_vertex(point->second, a.data)) {
         const AccessorData& from = mesh_.primitives[same->first].find("POSITION")->data;
         std::memcpy(out.data.bytes.data() + i * size,
                     from.bytes.data() + size_t{same->second} * size, size);
       }
-      // Otherwise (quantized differently in every primitive at that point)
-      // the corner keeps its own position; documented in docs/simplify.md.
+      // Otherwise (quantized differently in every primitive at that point,
+      // or a quantized progressive mesh's point) the corner keeps its own
+      // position; documented in docs/simplify.md.
     }
     return out;
   }
@@ -459,7 +464,8 @@ Result<SceneLods> simplify_scene(const Scene& scene, const SceneLodOptions& opti
       uint64_t moved = 0;
       Result<std::vector<ScenePrimitive>> primitives = prepared->builder.assemble(
           prepared->loaded.mesh.positions, engine_level.triangles, engine_level.corner_wedge,
-          prepared->builder.wedge_primitive(), prepared->builder.wedge_vertex(), &moved);
+          prepared->builder.wedge_primitive(), prepared->builder.wedge_vertex(),
+          prepared->wedges.wedge_point, &moved);
       if (!primitives.is_ok()) return in_mesh(m, primitives.status());
       SceneMesh& out = result.levels[level].meshes[m];
       out.primitives = std::move(primitives).value();
@@ -510,7 +516,7 @@ Result<std::vector<ScenePrimitive>> primitives_at_level(
   const WedgeMeshBuilder assembler(mesh, topology, AttributeWeights{});
   uint64_t moved = 0;
   return assembler.assemble(level.positions, level.triangles, corners, wedges.wedge_primitive,
-                            wedges.wedge_vertex, &moved);
+                            wedges.wedge_vertex, wedges.wedge_home, &moved);
 }
 
 }  // namespace lodbake

@@ -39,6 +39,8 @@ Result<WedgePm> record_wedge_pm(const WedgeMesh& mesh, const WedgeCollapseResult
   for (const Triangle& t : base.triangles)
     pm.base.triangles.push_back({pm_id[t[0]], pm_id[t[1]], pm_id[t[2]]});
   out.wedges.base = base.corner_wedge;
+  for (uint32_t point : mesh.wedge_point)
+    out.wedges.wedge_home.push_back(pm_id[point]);
   out.wedges.moved_offset.push_back(0);
   for (size_t i = result.log.size(); i-- > 0;) {
     const WedgeCollapseRecord& r = result.log[i];

@@ -15,8 +15,9 @@ struct WedgePm {
   // input_vertex maps PM vertices to the wedge mesh's points; no attribute
   // streams (the wedges carry them).
   ProgressiveMesh pm;
-  // The wedge ids are the wedge mesh's; the wedge table (primitive, vertex)
-  // is left for the caller, who knows what the wedges are.
+  // The wedge ids are the wedge mesh's, wedge_home filled; the rest of the
+  // wedge table (primitive, vertex) is left for the caller, who knows what
+  // the wedges are.
   PmWedges wedges;
 };
 

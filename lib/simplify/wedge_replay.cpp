@@ -9,8 +9,11 @@ namespace lodbake {
 
 Result<WedgeRefiner> WedgeRefiner::create(const ProgressiveMesh& pm, const PmWedges& wedges) {
   const size_t count = wedges.wedge_count();
-  if (wedges.wedge_vertex.size() != count)
-    return invalid_input("the wedge table's primitive and vertex lists differ in length");
+  if (wedges.wedge_vertex.size() != count || wedges.wedge_home.size() != count)
+    return invalid_input("the wedge table's lists differ in length");
+  for (uint32_t home : wedges.wedge_home)
+    if (home >= pm.full_vertex_count())
+      return invalid_input("a wedge's vertex " + std::to_string(home) + " is out of range");
   if (wedges.base.size() != pm.base.triangles.size())
     return invalid_input("the wedges name " + std::to_string(wedges.base.size()) +
                          " base triangles, the base mesh has " +
