@@ -38,6 +38,9 @@ struct AssetRun {
   // Called once the asset is read, before any mesh is built (e.g. to share
   // a triangle budget among its meshes); may be empty.
   std::function<void(const Scene&)> on_scene;
+  // The structure carries the asset's attributes (a progressive mesh with
+  // WEDG): no kPositionsOnly warning.
+  bool attributes = false;
 };
 
 // A builder's whole run over an asset (`bytes`: the input's content):

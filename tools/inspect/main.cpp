@@ -31,6 +31,7 @@
 #include "lib/meshio/mesh_writers.h"
 #include "lib/scene/scene_container.h"
 #include "lib/scene/scene_io.h"
+#include "lib/scene/scene_levels.h"
 #include "lib/scene/scene_summary.h"
 #include "lib/simplify/lod_chain.h"
 #include "lib/simplify/pm_replay.h"
@@ -590,6 +591,14 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
     // The whole asset back, unless a level or a group is asked for.
     if (asset && !options.lod && !options.group && is_scene_output(options.extract)) {
       extracted = extract_asset(tool, *asset, options.extract, &report);
+    } else if (asset && options.lod && !options.group && is_scene_output(options.extract)) {
+      // Every mesh at the level, with its materials and attributes.
+      const LodRequest lod = *options.lod;
+      Result<Scene> level = scene_at_level(file.decoded(), *asset, [&](const ProgressiveMesh& pm) {
+        return lod_vertex_count(pm, lod);
+      });
+      extracted = level.is_ok() ? extract_asset(tool, level.value(), options.extract, &report)
+                                : FileStatus{path, level.status()};
     } else {
       extracted = extract_base(tool, path, file, options, &report);
     }

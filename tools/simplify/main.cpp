@@ -17,6 +17,7 @@
 #include "formats/sections/base.h"
 #include "formats/sections/meta.h"
 #include "formats/sections/vspl.h"
+#include "formats/sections/wedg.h"
 #include "formats/support/file_io.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/mesh_writers.h"
@@ -207,7 +208,6 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
 // --pm on an asset (glTF, or a container with SCNE): every mesh's
 // progressive mesh, each in its group beside the scene.
 int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
-  request.options.record_pm = true;
   MetaSection meta = make_meta("lodbake-simplify");
   meta.options = pm_meta_options(request);
   AssetRun run{request.input,
@@ -216,29 +216,53 @@ int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
                request.strict,
                kSimplifySchema,
                "simplifying",
-               {}};
-  // --triangles is the asset's budget, shared by its meshes in proportion
-  // to their size (as -o ASSET.glb shares it).
+               {},
+               /*attributes=*/true};
+  // Each mesh's progressive mesh with its wedges, recorded once the asset
+  // is read: --triangles is the asset's budget, shared by its meshes in
+  // proportion to their size (as -o ASSET.glb shares it).
+  std::map<uint32_t, MeshPm> pms;
+  Status recorded = Status::ok();
   run.on_scene = [&](const Scene& scene) {
+    SceneLodOptions options;
+    options.simplify = request.options;
+    options.load.repair = request.repair;
+    options.load.strict = request.strict;
+    options.weights = request.weights;
     const uint64_t triangles = summarize_scene(scene).triangles;
     if (request.options.target_triangles && triangles > 0) {
       const double ratio = std::min(1.0, static_cast<double>(*request.options.target_triangles) /
                                              static_cast<double>(triangles));
-      if (!request.options.target_ratio || ratio < *request.options.target_ratio)
-        request.options.target_ratio = ratio;
+      if (!options.simplify.target_ratio || ratio < *options.simplify.target_ratio)
+        options.simplify.target_ratio = ratio;
     }
-    request.options.target_triangles.reset();
+    options.simplify.target_triangles.reset();
+    Result<std::vector<MeshPm>> all = scene_progressive_meshes(scene, options);
+    if (!all.is_ok()) {
+      recorded = all.status();
+      return;
+    }
+    for (MeshPm& m : all.value())
+      pms.emplace(m.mesh, std::move(m));
   };
   return run_asset_build(
       tool, run, std::move(meta), bytes,
-      [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-        LODBAKE_ASSIGN_OR_RETURN(SimplifyResult simplified, simplify(mesh, request.options));
-        LODBAKE_ASSIGN_OR_RETURN(PmSections pm, pm_sections(request, *simplified.pm));
+      [&](uint32_t scene_mesh, const TriangleMesh&) -> Result<MeshSections> {
+        LODBAKE_RETURN_IF_ERROR(recorded);
+        auto found = pms.find(scene_mesh);
+        if (found == pms.end())
+          return runtime_error("mesh " + std::to_string(scene_mesh) + " has no progressive mesh");
+        const MeshPm& m = found->second;
+        LODBAKE_ASSIGN_OR_RETURN(PmSections pm, pm_sections(request, m.pm));
+        LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(m.wedges));
         MeshSections out;
         out.sections.emplace_back(kBaseTag, std::move(pm.base));
         out.sections.emplace_back(kVsplTag, std::move(pm.vspl));
+        out.sections.emplace_back(kWedgTag, std::move(wedg));
         out.counts = pm.counts;
         out.report = pm.counts;
+        out.report["wedges"] = m.wedges.wedge_count();
+        out.report["target_reached"] = !m.blocked.has_value();
         return out;
       });
 }
