@@ -3,15 +3,27 @@
 #   inspect ASSET -> pack -> inspect --validate --extract (.glb and .gltf)
 #   -> simplify --lods 0.5,0.25 (.glb)
 #   -> hierarchy, fan, strips, simplify --pm (from the asset and from its
-#      container) -> inspect --validate, replay --validate
+#      container) -> inspect --validate, replay --validate (vhier, dag,
+#      stream and vtrees on the hierarchy, fan, sets on the strips)
+#   -> simplify --pm with default options (every collapse) -> inspect
+#      --extract --lod 0, 0.25, 0.5 and 1.0 (.glb; 0.25 also as .gltf)
+#   -> pack --draco of that PM -> inspect --validate, --extract --lod 0.5
 # Every output keeps the asset: lodbake's own scene report of each equals
-# the input's (every count for the copies; for the levels all but triangle,
-# vertex, point and seam counts), Khronos's validator finds no error the
-# input does not already have, and gltf-transform inspect lists the same
-# scenes, meshes, materials, textures and animations. An asset that is not
-# glTF (an OBJ with materials) is its own reference for lodbake's report;
-# for the validator (no error at all) and the inventory the reference is the
-# .glb its container gives back.
+# the input's (every count for the copies; for the PM's full level all but
+# its vertex layout; for the levels all but triangle, vertex, point and
+# seam counts: every primitive stays, with its material and attributes),
+# Khronos's validator finds no error the input does not already have, and
+# gltf-transform inspect lists the same scenes, meshes (with their
+# primitives and attributes), materials, textures and animations. Corner
+# by corner (tests/npm/same_triangles.mjs: every triangle with every
+# attribute value of its corners, exactly): the PM's full level is the
+# input, its levels at 0.5 and 0.25 are simplify --lods' levels (the same
+# collapse order), whether written as .gltf or extracted from the Draco
+# container (a Draco BASE is lossy in positions, but a level's corners take
+# their points from the asset's SCNE, so no tolerance is needed). An asset
+# that is not glTF (an OBJ with materials) is its own reference for
+# lodbake's report; for the validator (no error at all), the inventory and
+# the triangles the reference is the .glb its container gives back.
 #
 #   asset_toolchain.sh TOOLS NPM_DIR ASSET WORK [--allow-missing URI]
 set -eu
@@ -27,12 +39,18 @@ fi
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-# The "scene" object of an inspect report, without what a level changes.
-scene_of() {  # FILE JSON-REPORT MODE(copy|level)
+# The "scene" object of an inspect report, without what a level changes;
+# for a PM's full level, without its primitives' vertex layout (a
+# non-indexed input, Fox's, comes back indexed: corners with equal values
+# share a vertex).
+scene_of() {  # FILE JSON-REPORT MODE(copy|full|level)
   node -e '
     const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
     const s = r.scene;
     if (!s) { console.error("no scene in the report"); process.exit(1); }
+    if (process.argv[2] === "full") {
+      for (const m of s.meshes) for (const p of m.primitives) { delete p.vertices; delete p.indexed; }
+    }
     if (process.argv[2] === "level") {
       delete s.triangles; delete s.instanced_triangles;
       for (const m of s.meshes) {
@@ -46,6 +64,7 @@ scene_of() {  # FILE JSON-REPORT MODE(copy|level)
 
 "$tools/lodbake-inspect" "$asset" --json -q > "$work/input.json" || fail "inspect $asset"
 scene_of "$work/input.json" copy > "$work/input.copy"
+scene_of "$work/input.json" full > "$work/input.full"
 scene_of "$work/input.json" level > "$work/input.level"
 
 "$tools/lodbake-pack" "$asset" -o "$work/asset.lbk" -q > /dev/null || fail "pack"
@@ -64,8 +83,8 @@ esac
 
 # Structures over the asset: each builder builds every mesh in its group,
 # the same bytes from the asset and from its container, valid, replayed.
-build() {  # NAME REPLAY-MODE TOOL OPTION...: TOOL ASSET OPTION... NAME.lbk
-  name=$1 mode=$2 tool=$3
+build() {  # NAME REPLAY-MODES TOOL OPTION...: TOOL ASSET OPTION... NAME.lbk
+  name=$1 modes=$2 tool=$3
   shift 3
   "$tools/$tool" "$asset" "$@" "$work/$name.lbk" -q > /dev/null || fail "$name"
   "$tools/$tool" "$work/asset.lbk" "$@" "$work/${name}_2.lbk" -q > /dev/null \
@@ -73,44 +92,84 @@ build() {  # NAME REPLAY-MODE TOOL OPTION...: TOOL ASSET OPTION... NAME.lbk
   cmp -s "$work/$name.lbk" "$work/${name}_2.lbk" || fail "$name from the container differs"
   "$tools/lodbake-inspect" "$work/$name.lbk" --validate -q > /dev/null \
     || fail "inspect --validate $name.lbk"
-  case $mode in
-    none) ;;
-    # Not camera-driven; the paper's tests take minutes on SheenCloth's
-    # 58k LoDs, one short test takes seconds.
-    sets) path="--percent 0.2 --spacing linear" ;;
-    *) path="--path orbit" ;;
-  esac
-  if [ "$mode" != none ]; then
+  for mode in $(echo "$modes" | tr , ' '); do
+    case $mode in
+      none) continue ;;
+      # Not camera-driven; the paper's tests take minutes on SheenCloth's
+      # 58k LoDs, one short test takes seconds.
+      sets) path="--percent 0.2 --spacing linear" ;;
+      *) path="--path orbit" ;;
+    esac
     # shellcheck disable=SC2086
     "$tools/lodbake-replay" "$work/$name.lbk" --mode "$mode" $path --validate -q > /dev/null \
       || fail "replay $name.lbk --mode $mode"
-  fi
+  done
 }
-build hierarchy vhier lodbake-hierarchy -o
+# The hierarchy's default sections (VHIE + RFIN, DAGE, VTRE) serve four modes.
+build hierarchy vhier,dag,stream,vtrees lodbake-hierarchy -o
 build fan fan lodbake-fan -o
 build strips sets lodbake-strips -o
 build strips_only none lodbake-strips --strips-only -o
 build pm none lodbake-simplify --ratio 0.5 --pm
+build pm_full none lodbake-simplify --pm
+
+# The full PM's levels, and the same PM with a Draco BASE.
+level() {  # CONTAINER LOD OUT
+  "$tools/lodbake-inspect" "$work/$1" --extract "$work/$3" --lod "$2" -q > /dev/null \
+    || fail "extract $3 from $1 at --lod $2"
+}
+level pm_full.lbk 0 pm_0.glb
+level pm_full.lbk 0.25 pm_25.glb
+level pm_full.lbk 0.25 gltf/pm_25.gltf
+level pm_full.lbk 0.5 pm_50.glb
+level pm_full.lbk 1.0 pm_100.glb
+"$tools/lodbake-pack" --draco "$work/pm_full.lbk" -o "$work/draco.lbk" -q > /dev/null \
+  || fail "pack --draco pm_full.lbk"
+"$tools/lodbake-inspect" "$work/draco.lbk" --validate -q > /dev/null || fail "inspect --validate draco.lbk"
+level draco.lbk 0.5 draco_50.glb
 
 scene_of "$work/container.json" copy > "$work/container.copy"
 cmp -s "$work/input.copy" "$work/container.copy" || fail "the container's scene differs from the input's"
-for out in back.glb gltf/back.gltf lod_0.glb lod_1.glb; do
+copies="back.glb gltf/back.gltf"
+levels="lod_0.glb lod_1.glb pm_0.glb pm_25.glb gltf/pm_25.gltf pm_50.glb draco_50.glb pm_100.glb"
+for out in $copies $levels; do
   "$tools/lodbake-inspect" "$work/$out" --json -q > "$work/out.json" || fail "inspect $out"
   case $out in
-    lod_*) mode=level inventory=--lod ;;
-    *) mode=copy inventory= ;;
+    pm_100.glb) mode=full ;;
+    back.glb | gltf/back.gltf) mode=copy ;;
+    *) mode=level ;;
   esac
   scene_of "$work/out.json" $mode > "$work/out.$mode"
   cmp -s "$work/input.$mode" "$work/out.$mode" || {
     diff "$work/input.$mode" "$work/out.$mode" >&2 || true
     fail "$out: its scene differs from the input's"
   }
-  # shellcheck disable=SC2086
-  node "$scripts/validate.mjs" --modules "$npm" $baseline $allow "$work/$out" > "$work/v.txt" \
-    || { cat "$work/v.txt" >&2; fail "$out: the validator found errors"; }
-  head -1 "$work/v.txt"
-  # shellcheck disable=SC2086
-  node "$scripts/same_inventory.mjs" --modules "$npm" $inventory "$reference" "$work/$out" \
-    || fail "$out: gltf-transform inspect lists something else"
 done
+
+# The node checks take each list in one run (a node start and the
+# reference's own inspection or validation are most of their time), from
+# the work folder so that the lists are plain names.
+absolute() { echo "$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"; }
+reference=$(absolute "$reference") npm=$(absolute "$npm")
+case $baseline in
+  "") ;;
+  *) baseline="--baseline $(absolute "$asset")" ;;
+esac
+cd "$work"
+# shellcheck disable=SC2086
+node "$scripts/validate.mjs" --modules "$npm" $baseline $allow $copies $levels > v.txt \
+  || { cat v.txt >&2; fail "the validator found errors"; }
+grep -v '^ ' v.txt
+# shellcheck disable=SC2086
+node "$scripts/same_inventory.mjs" --modules "$npm" "$reference" $copies \
+  || fail "gltf-transform inspect lists something else"
+# shellcheck disable=SC2086
+node "$scripts/same_inventory.mjs" --modules "$npm" --lod "$reference" $levels \
+  || fail "gltf-transform inspect lists something else in a level"
+node "$scripts/same_triangles.mjs" --modules "$npm" "$reference" pm_100.glb \
+  || fail "the PM's full level is not the input"
+node "$scripts/same_triangles.mjs" --modules "$npm" lod_0.glb pm_50.glb draco_50.glb \
+  || fail "the PM's level at 0.5 is not simplify's"
+node "$scripts/same_triangles.mjs" --modules "$npm" lod_1.glb pm_25.glb gltf/pm_25.gltf \
+  || fail "the PM's level at 0.25 is not simplify's"
 echo "ok: $asset"

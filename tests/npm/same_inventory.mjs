@@ -1,15 +1,16 @@
 // Compares what `gltf-transform inspect` (npm @gltf-transform/cli) reports
-// for an asset lodbake read and a file lodbake wrote from it: the scenes,
+// for an asset lodbake read and files lodbake wrote from it: the scenes,
 // meshes (primitives, attributes, instances), materials, textures and
 // animations must be the same. Exits 0 when they are, 1 with the first
-// difference, 77 when the CLI is not installed, 2 on bad usage.
+// difference of each output that differs, 77 when the CLI is not
+// installed, 2 on bad usage. The input is inspected once for all outputs.
 //
-//   node same_inventory.mjs [--modules NPM_DIR] [--lod] INPUT OUTPUT
+//   node same_inventory.mjs [--modules NPM_DIR] [--lod] INPUT OUTPUT...
 //
 // Columns that are the writer's choice are left out: sizes in bytes,
 // image URIs (a GLB embeds what a .gltf names), index types, and the
-// overview (the generator; decoded compression extensions). --lod: OUTPUT
-// is a simplified level, so triangle and vertex counts and bounds may differ.
+// overview (the generator; decoded compression extensions). --lod: each
+// OUTPUT is a simplified level, so triangle and vertex counts and bounds may differ.
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -18,15 +19,16 @@ import { fileURLToPath } from 'node:url';
 let modules = process.env.LODBAKE_NPM_DIR || path.dirname(fileURLToPath(import.meta.url));
 let lod = false;
 const files = [];
+let unknown = false;
 const args = process.argv.slice(2);
 for (let i = 0; i < args.length; ++i) {
   if (args[i] === '--modules' && i + 1 < args.length) modules = args[++i];
   else if (args[i] === '--lod') lod = true;
-  else if (args[i].startsWith('--')) files.length = 99;
+  else if (args[i].startsWith('--')) unknown = true;
   else files.push(args[i]);
 }
-if (files.length !== 2) {
-  console.error('usage: node same_inventory.mjs [--modules DIR] [--lod] INPUT OUTPUT');
+if (files.length < 2 || unknown) {
+  console.error('usage: node same_inventory.mjs [--modules DIR] [--lod] INPUT OUTPUT...');
   process.exit(2);
 }
 const cli = path.join(path.resolve(modules), 'node_modules', '.bin', 'gltf-transform');
@@ -78,7 +80,7 @@ function inventory(file) {
   return sections;
 }
 
-const [input, output] = files.map(inventory);
+const input = inventory(files[0]);
 // gltf-transform 4.5 cannot read some valid inputs (EXT_mesh_features
 // without property tables; an image file that is missing): then there is
 // nothing to compare against, which is said, not failed. An output it
@@ -87,23 +89,33 @@ if (input.failed) {
   console.log(`${files[0]}: gltf-transform cannot read it (${input.failed}); inventory not compared`);
   process.exit(0);
 }
-if (output.failed) {
-  console.log(`${files[1]}: gltf-transform cannot read it: ${output.failed}`);
-  process.exit(1);
-}
-for (const section of new Set([...Object.keys(input), ...Object.keys(output)])) {
-  const a = input[section] || [], b = output[section] || [];
-  if (a.length !== b.length) {
-    console.log(`${section}: ${a.length} rows in the input, ${b.length} in ${files[1]}`);
-    process.exit(1);
-  }
-  for (let i = 0; i < a.length; ++i) {
-    if (JSON.stringify(a[i]) !== JSON.stringify(b[i])) {
-      console.log(`${section} row ${i}: input ${JSON.stringify(a[i])}\n  output ${JSON.stringify(b[i])}`);
-      process.exit(1);
+
+// The first difference between the input's inventory and OUTPUT's, or null.
+function difference(file) {
+  const output = inventory(file);
+  if (output.failed) return `gltf-transform cannot read it: ${output.failed}`;
+  for (const section of new Set([...Object.keys(input), ...Object.keys(output)])) {
+    const a = input[section] || [], b = output[section] || [];
+    if (a.length !== b.length) return `${section}: ${a.length} rows in the input, ${b.length} in ${file}`;
+    for (let i = 0; i < a.length; ++i) {
+      if (JSON.stringify(a[i]) !== JSON.stringify(b[i])) {
+        return `${section} row ${i}: input ${JSON.stringify(a[i])}\n  output ${JSON.stringify(b[i])}`;
+      }
     }
   }
+  return null;
 }
+
 const count = (s) => (input[s] || []).length;
-console.log(`${files[1]}: same inventory as ${files[0]} (${count('SCENES')} scenes, ${count('MESHES')} meshes, ` +
-            `${count('MATERIALS')} materials, ${count('TEXTURES')} textures, ${count('ANIMATIONS')} animations)`);
+let same = true;
+for (const file of files.slice(1)) {
+  const why = difference(file);
+  if (why !== null) {
+    console.log(`${file}: ${why}`);
+    same = false;
+  } else {
+    console.log(`${file}: same inventory as ${files[0]} (${count('SCENES')} scenes, ${count('MESHES')} meshes, ` +
+                `${count('MATERIALS')} materials, ${count('TEXTURES')} textures, ${count('ANIMATIONS')} animations)`);
+  }
+}
+process.exit(same ? 0 : 1);

@@ -1,10 +1,11 @@
-// Validates a .gltf or .glb with Khronos's glTF validator (npm
-// gltf-validator), external buffers and images read from the file's folder.
-// Prints the error count and each error; exits 1 when there is an error,
-// 77 (CTest's skip code here) when the validator is not installed, 2 on bad
-// usage or an unreadable file.
+// Validates .gltf and .glb files with Khronos's glTF validator (npm
+// gltf-validator), external buffers and images read from each file's
+// folder. Prints each file's error count and each error; exits 1 when a
+// file has an error, 77 (CTest's skip code here) when the validator is not
+// installed, 2 on bad usage or an unreadable file. Several files share one
+// node start and one validation of the baseline.
 //
-//   node validate.mjs [--modules NPM_DIR] [--allow-missing URI]... FILE
+//   node validate.mjs [--modules NPM_DIR] [--allow-missing URI]... [--baseline INPUT] FILE...
 //
 // --modules: the folder `make npm-deps` installed the packages into
 // (default: $LODBAKE_NPM_DIR, else this script's folder).
@@ -21,24 +22,24 @@ import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';
 
 function usage(message) {
-  console.error(`Error: ${message}\nusage: node validate.mjs [--modules DIR] [--allow-missing URI]... FILE`);
+  console.error(`Error: ${message}\n` +
+                'usage: node validate.mjs [--modules DIR] [--allow-missing URI]... [--baseline INPUT] FILE...');
   process.exit(2);
 }
 
 let modules = process.env.LODBAKE_NPM_DIR || path.dirname(fileURLToPath(import.meta.url));
 const allowMissing = new Set();
 let baseline = null;
-let file = null;
+const files = [];
 const args = process.argv.slice(2);
 for (let i = 0; i < args.length; ++i) {
   if (args[i] === '--modules' && i + 1 < args.length) modules = args[++i];
   else if (args[i] === '--allow-missing' && i + 1 < args.length) allowMissing.add(args[++i]);
   else if (args[i] === '--baseline' && i + 1 < args.length) baseline = args[++i];
   else if (args[i].startsWith('--')) usage(`unknown option ${args[i]}`);
-  else if (file === null) file = args[i];
-  else usage('one file only');
+  else files.push(args[i]);
 }
-if (file === null) usage('no file given');
+if (files.length === 0) usage('no file given');
 
 let validator;
 try {
@@ -68,31 +69,38 @@ async function validate(name) {
   });
 }
 
-const report = await validate(file);
 const inherited = new Set();
 if (baseline !== null) {
   for (const m of (await validate(baseline)).issues.messages)
     if (m.severity === 0) inherited.add(m.code);
 }
 
-// The resource each pointer names ("/images/0" -> "Lantern_baseColor.png"),
-// to tell the accepted missing-file errors from any other.
-const uriOf = new Map();
-for (const resource of (report.info && report.info.resources) || []) {
-  if (resource.uri !== undefined) uriOf.set(resource.pointer, resource.uri);
-}
-const accepted = (m) => inherited.has(m.code) ||
-  m.code === 'IO_ERROR' && m.pointer !== undefined && m.pointer.endsWith('/uri') &&
-  allowMissing.has(decodeURIComponent(uriOf.get(m.pointer.slice(0, -4)) || ''));
+// Prints FILE's report; true when it has no error but accepted ones.
+async function check(file) {
+  const report = await validate(file);
+  // The resource each pointer names ("/images/0" -> "Lantern_baseColor.png"),
+  // to tell the accepted missing-file errors from any other.
+  const uriOf = new Map();
+  for (const resource of (report.info && report.info.resources) || []) {
+    if (resource.uri !== undefined) uriOf.set(resource.pointer, resource.uri);
+  }
+  const accepted = (m) => inherited.has(m.code) ||
+    m.code === 'IO_ERROR' && m.pointer !== undefined && m.pointer.endsWith('/uri') &&
+    allowMissing.has(decodeURIComponent(uriOf.get(m.pointer.slice(0, -4)) || ''));
 
-const errors = report.issues.messages.filter((m) => m.severity === 0);
-const failing = errors.filter((m) => !accepted(m));
-console.log(`${file}: ${failing.length} errors (${errors.length - failing.length} accepted), ` +
-            `${report.issues.numWarnings} warnings, validator ${report.validatorVersion}`);
-for (const m of errors) {
-  console.log(`  ${accepted(m) ? 'accepted' : 'error'} ${m.code} at ${m.pointer || '/'}: ${m.message}`);
+  const errors = report.issues.messages.filter((m) => m.severity === 0);
+  const failing = errors.filter((m) => !accepted(m));
+  console.log(`${file}: ${failing.length} errors (${errors.length - failing.length} accepted), ` +
+              `${report.issues.numWarnings} warnings, validator ${report.validatorVersion}`);
+  for (const m of errors) {
+    console.log(`  ${accepted(m) ? 'accepted' : 'error'} ${m.code} at ${m.pointer || '/'}: ${m.message}`);
+  }
+  for (const m of report.issues.messages.filter((w) => w.severity === 1)) {
+    console.log(`  warning ${m.code} at ${m.pointer || '/'}: ${m.message}`);
+  }
+  return failing.length === 0;
 }
-for (const m of report.issues.messages.filter((w) => w.severity === 1)) {
-  console.log(`  warning ${m.code} at ${m.pointer || '/'}: ${m.message}`);
-}
-process.exit(failing.length === 0 ? 0 : 1);
+
+let clean = true;
+for (const file of files) clean = (await check(file)) && clean;
+process.exit(clean ? 0 : 1);
