@@ -1,7 +1,6 @@
-// Compares the geometry of two glTF files corner by corner, read with
-// glTF-Transform's core (npm @gltf-transform/core, Draco decoded by
-// draco3dgltf): each mesh's primitives, in order, must have the same mode,
-// material, attribute names and morph target count, and the same triangles
+// Compares the geometry of glTF files with an expected one, corner by
+// corner, read with glTF-Transform's core (gltf_read.mjs): each mesh's
+// primitives, in order, must have the same mode, material, attribute names and morph target count, and the same triangles
 // (points and lines: the same elements) where a corner is the values of
 // every attribute and morph target at its vertex. Triangles are compared as
 // a multiset, each rotated to start at its least corner (the orientation is
@@ -10,86 +9,38 @@
 // with the first difference, 77 when the packages are not installed, 2 on
 // bad usage or an unreadable file.
 //
-//   node same_triangles.mjs [--modules NPM_DIR] EXPECTED ACTUAL...
+//   node same_triangles.mjs [--modules NPM_DIR] EXPECTED ACTUAL... [-- EXPECTED ACTUAL...]...
 //
 // Used for the full level of a progressive mesh (it must be its input), and
 // for one level written twice (.glb and .gltf, or from a Draco container).
-// Images are not read: a .gltf's missing image is not an error here.
-import fs from 'node:fs';
 import path from 'node:path';
-import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';
+import { openReader } from './gltf_read.mjs';
 
 function usage(message) {
-  console.error(`Error: ${message}\nusage: node same_triangles.mjs [--modules DIR] EXPECTED ACTUAL...`);
+  console.error(`Error: ${message}\n` +
+                'usage: node same_triangles.mjs [--modules DIR] EXPECTED ACTUAL... [-- EXPECTED ACTUAL...]...');
   process.exit(2);
 }
 
 let modules = process.env.LODBAKE_NPM_DIR || path.dirname(fileURLToPath(import.meta.url));
-const files = [];
+const groups = [[]];  // each: an expected file and the files compared with it
 const args = process.argv.slice(2);
 for (let i = 0; i < args.length; ++i) {
   if (args[i] === '--modules' && i + 1 < args.length) modules = args[++i];
+  else if (args[i] === '--') groups.push([]);
   else if (args[i].startsWith('--')) usage(`unknown option ${args[i]}`);
-  else files.push(args[i]);
+  else groups[groups.length - 1].push(args[i]);
 }
-if (files.length < 2) usage('an expected file and at least one other are needed');
+if (groups.some((g) => g.length < 2)) usage('each group needs an expected file and at least one other');
 
-let core, extensions, draco3d;
-try {
-  const require = createRequire(path.join(path.resolve(modules), 'package.json'));
-  core = await import(require.resolve('@gltf-transform/core'));
-  extensions = await import(require.resolve('@gltf-transform/extensions'));
-  draco3d = require('draco3dgltf');
-} catch (e) {
-  console.error(`Warning: @gltf-transform/core, extensions or draco3dgltf is not installed in ${modules} ` +
+const reader = await openReader(modules);
+if (reader === null) {
+  console.error(`Warning: @gltf-transform/core, extensions, functions or draco3dgltf is not installed in ${modules} ` +
                 `(run make npm-deps): skipped`);
   process.exit(77);
 }
-// gltf-transform 4.5 cannot read EXT_mesh_features without property tables
-// (BoxMetaDraco): left unregistered, it is an unknown extension and its
-// feature-id attributes are read as attributes.
-const metadata = new Set(['EXT_mesh_features', 'EXT_structural_metadata']);
-const io = new core.NodeIO()
-  .setLogger(new core.Logger(core.Logger.Verbosity.ERROR))
-  .registerExtensions(extensions.ALL_EXTENSIONS.filter((e) => !metadata.has(e.EXTENSION_NAME)))
-  .registerDependencies({ 'draco3d.decoder': await draco3d.createDecoderModule() });
-
-// A GLB's JSON and BIN chunks.
-function glbChunks(bytes) {
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  if (bytes.length < 20 || view.getUint32(0, true) !== 0x46546c67) throw new Error('not a GLB');
-  let json = null, bin = null;
-  for (let at = 12; at + 8 <= bytes.length;) {
-    const length = view.getUint32(at, true), type = view.getUint32(at + 4, true);
-    const chunk = bytes.subarray(at + 8, at + 8 + length);
-    if (type === 0x4e4f534a) json = JSON.parse(new TextDecoder().decode(chunk));
-    else if (type === 0x004e4942) bin = chunk;
-    at += 8 + length;
-  }
-  if (json === null) throw new Error('a GLB without a JSON chunk');
-  return { json, bin };
-}
-
-// The JSON with its buffers (a GLB's BIN chunk, a .gltf's files); images
-// are given as empty, so a missing one (Lantern's) does not stop the read.
-async function read(file) {
-  const bytes = new Uint8Array(fs.readFileSync(file));
-  const { json, bin } = file.endsWith('.glb') ? glbChunks(bytes)
-                                              : { json: JSON.parse(new TextDecoder().decode(bytes)), bin: null };
-  const resources = {};
-  if (bin !== null) resources['@glb.bin'] = bin;  // gltf-transform's name for the GLB buffer
-  for (const buffer of json.buffers || []) {
-    if (buffer.uri !== undefined && !buffer.uri.startsWith('data:')) {
-      resources[buffer.uri] =
-        new Uint8Array(fs.readFileSync(path.join(path.dirname(file), decodeURIComponent(buffer.uri))));
-    }
-  }
-  for (const image of json.images || []) {
-    if (image.uri !== undefined && !image.uri.startsWith('data:')) resources[image.uri] = new Uint8Array(0);
-  }
-  return io.readJSON({ json, resources });
-}
+const { core } = reader;
 
 // One corner: every attribute's values, then every morph target's, in name
 // order, printed exactly (a float32 read as a double prints all its bits).
@@ -187,23 +138,25 @@ function difference(expected, actual) {
 
 async function load(file) {
   try {
-    return meshesOf(await read(file));
+    return meshesOf(await reader.read(file));
   } catch (e) {
     console.error(`Error: ${file}: ${e.message}`);
     process.exit(2);
   }
 }
 
-const expected = await load(files[0]);
 let failed = false;
-for (const file of files.slice(1)) {
-  const why = difference(expected, await load(file));
-  if (why !== null) {
-    console.log(`${file}: not the triangles of ${files[0]}: ${why}`);
-    failed = true;
-  } else {
-    const elements = expected.flat().reduce((n, p) => n + p.elements.length, 0);
-    console.log(`${file}: the same ${elements} triangles, lines and points as ${files[0]}, every corner's values`);
+for (const [first, ...others] of groups) {
+  const expected = await load(first);
+  for (const file of others) {
+    const why = difference(expected, await load(file));
+    if (why !== null) {
+      console.log(`${file}: not the triangles of ${first}: ${why}`);
+      failed = true;
+    } else {
+      const elements = expected.flat().reduce((n, p) => n + p.elements.length, 0);
+      console.log(`${file}: the same ${elements} triangles, lines and points as ${first}, every corner's values`);
+    }
   }
 }
 process.exit(failed ? 1 : 0);
