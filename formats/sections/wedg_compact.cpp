@@ -26,9 +26,11 @@
 //   11.8 for the difference from the previous home), a copy of an earlier
 //   wedge's home (a seam), the next base vertex (base vertices keep the
 //   input's order), or explicit.
-// - Exp-Golomb streams (compact_coding.h) like the other standalone-size
-//   codecs, so every count is bounded by the bits before allocating; the
-//   moved corners, often free, are bounded by a stated limit of 8 per bit.
+// - Exp-Golomb streams (compact_coding.h), as the codecs other than VSPL's,
+//   so a count is bounded by the bits before allocating (each wedge and
+//   each split takes at least one); the moved corners, mostly free, by a
+//   stated limit of 8 per bit. Ranks cost nothing where a vertex has one
+//   wedge, so an adaptive range coder would gain little but the flags.
 #include "formats/sections/wedg_compact.h"
 
 #include <algorithm>
