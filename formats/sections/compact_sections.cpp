@@ -11,6 +11,7 @@
 #include "formats/sections/strp_compact.h"
 #include "formats/sections/vhie_compact.h"
 #include "formats/sections/vtre_compact.h"
+#include "formats/sections/wedg_compact.h"
 
 namespace lodbake {
 namespace {
@@ -38,6 +39,7 @@ struct BaseCompactCodec {
 const BaseCompactCodec kBaseCodecs[] = {
     {kFanhTag, encode_fanh_compact, decode_fanh_compact},
     {kStrpTag, encode_strp_compact, decode_strp_compact},
+    {kWedgTag, encode_wedg_compact, decode_wedg_compact},
 };
 
 const BaseCompactCodec* find_base(std::string_view tag) {

@@ -1,6 +1,7 @@
 // The compact codecs (codec 1) of the section kinds other than VSPL
 // (docs/format.md "Codecs"): those that need no other section (VTRE, SETS,
-// VHIE, RFIN, DAGE) and those coded against the container's BASE (FANH, STRP).
+// VHIE, RFIN, DAGE) and those coded against the container's BASE (FANH, STRP,
+// WEDG).
 // VSPL's compact codec, also against BASE, has its own entry points
 // (formats/sections/vspl_compact.h).
 #pragma once

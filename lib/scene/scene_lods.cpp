@@ -71,50 +71,55 @@ class WedgeMeshBuilder {
       : mesh_(mesh), topology_(topology), weights_(weights) {
     for (uint32_t point = 0; point < topology.mesh.positions.size(); ++point)
       point_of_position_.emplace(key_of(topology.mesh.positions[point]), point);
-    for (uint32_t p = 0; p < mesh.primitives.size(); ++p) {
+    for (uint32_t p = 0; p < mesh.primitives.size(); ++p)
       for (const std::array<uint32_t, 3>& t : primitive_triangles(mesh.primitives[p]))
         local_triangles_.push_back(t);
-      const std::vector<uint32_t>& points = mesh.point_of_vertex[p];
-      for (uint32_t v = 0; v < points.size(); ++v)
-        vertices_at_[{p, points[v]}].push_back(v);
-    }
-    for (uint32_t t = 0; t < topology.mesh.triangles.size(); ++t) {
-      const Triangle& tri = topology.mesh.triangles[t];
-      int r = 0;
-      const TriangleKey key = rotated_key(key_of(topology.mesh.positions[tri[0]]),
-                                          key_of(topology.mesh.positions[tri[1]]),
-                                          key_of(topology.mesh.positions[tri[2]]), &r);
-      triangle_of_key_.emplace(key, std::make_pair(t, r));
-    }
   }
 
   // The wedge mesh of `repaired` (the topology after prepare_mesh()).
   Result<WedgeMesh> build(const TriangleMesh& repaired) {
     LODBAKE_RETURN_IF_ERROR(map_slots(repaired));
+    // A primitive's vertices with the same point and bytes are one wedge:
+    // each vertex's first such vertex.
+    std::vector<std::vector<uint32_t>> first_alike(mesh_.primitives.size());
+    for (uint32_t p = 0; p < mesh_.primitives.size(); ++p) {
+      const std::vector<uint32_t>& points = mesh_.point_of_vertex[p];
+      std::unordered_map<std::string, uint32_t> first;
+      first_alike[p].resize(points.size());
+      for (uint32_t v = 0; v < points.size(); ++v) {
+        std::string key = vertex_bytes(mesh_.primitives[p], v);
+        key.append(reinterpret_cast<const char*>(&points[v]), sizeof(uint32_t));
+        first_alike[p][v] = first.emplace(std::move(key), v).first->second;
+      }
+    }
     WedgeMesh out;
     out.points.reserve(repaired.positions.size());
     for (const Vec3f& p : repaired.positions)
       out.points.push_back({p[0], p[1], p[2]});
     out.triangles = repaired.triangles;
     out.value_offset.push_back(0);
-    std::map<std::tuple<uint32_t, uint32_t, std::string>, uint32_t> wedge_of;
+    // The wedges at each point of `repaired`: a few at most.
+    std::vector<std::vector<uint32_t>> wedges_at(repaired.positions.size());
     for (size_t f = 0; f < repaired.triangles.size(); ++f) {
       const SlotSource& s = slots_[f];
       const uint32_t p = topology_.primitive_of_triangle[s.triangle];
       const ScenePrimitive& prim = mesh_.primitives[p];
       std::array<uint32_t, 3> corners{};
       for (int k = 0; k < 3; ++k) {
-        const uint32_t vertex = local_triangles_[s.triangle][s.corner[k]];
+        const uint32_t vertex = first_alike[p][local_triangles_[s.triangle][s.corner[k]]];
         const uint32_t point = repaired.triangles[f][k];
-        auto [it, added] = wedge_of.emplace(std::make_tuple(point, p, vertex_bytes(prim, vertex)),
-                                            out.wedge_point.size());
-        if (added) {
+        uint32_t wedge = kNoVertex;
+        for (uint32_t w : wedges_at[point])
+          if (wedge_primitive_[w] == p && wedge_vertex_[w] == vertex) wedge = w;
+        if (wedge == kNoVertex) {
+          wedge = static_cast<uint32_t>(out.wedge_point.size());
+          wedges_at[point].push_back(wedge);
           out.wedge_point.push_back(point);
           wedge_primitive_.push_back(p);
           wedge_vertex_.push_back(vertex);
           append_values(prim, vertex, &out);
         }
-        corners[k] = it->second;
+        corners[k] = wedge;
       }
       out.corner_wedge.push_back(corners);
     }
@@ -208,19 +213,35 @@ class WedgeMeshBuilder {
   // Triangle f of `repaired` is an input triangle.
   Status map_slots(const TriangleMesh& repaired) {
     slots_.resize(repaired.triangles.size());
+    if (repaired.triangles == topology_.mesh.triangles &&
+        repaired.positions == topology_.mesh.positions) {
+      // Nothing repaired (the common case): triangle f is triangle f.
+      for (uint32_t f = 0; f < slots_.size(); ++f)
+        slots_[f] = {f, {0, 1, 2}};
+      return Status::ok();
+    }
+    std::unordered_map<TriangleKey, std::pair<uint32_t, int>, TriangleKeyHash> triangle_of_key;
+    for (uint32_t t = 0; t < topology_.mesh.triangles.size(); ++t) {
+      const Triangle& tri = topology_.mesh.triangles[t];
+      int r = 0;
+      const TriangleKey key = rotated_key(key_of(topology_.mesh.positions[tri[0]]),
+                                          key_of(topology_.mesh.positions[tri[1]]),
+                                          key_of(topology_.mesh.positions[tri[2]]), &r);
+      triangle_of_key.emplace(key, std::make_pair(t, r));
+    }
     for (size_t f = 0; f < repaired.triangles.size(); ++f) {
       const Triangle& t = repaired.triangles[f];
       const PositionKey k[3] = {key_of(repaired.positions[t[0]]), key_of(repaired.positions[t[1]]),
                                 key_of(repaired.positions[t[2]])};
       int r = 0;
-      auto found = triangle_of_key_.find(rotated_key(k[0], k[1], k[2], &r));
+      auto found = triangle_of_key.find(rotated_key(k[0], k[1], k[2], &r));
       bool reversed = false;
-      if (found == triangle_of_key_.end()) {
+      if (found == triangle_of_key.end()) {
         // The repair may have turned the triangle to orient the mesh.
-        found = triangle_of_key_.find(rotated_key(k[0], k[2], k[1], &r));
+        found = triangle_of_key.find(rotated_key(k[0], k[2], k[1], &r));
         reversed = true;
       }
-      if (found == triangle_of_key_.end())
+      if (found == triangle_of_key.end())
         return runtime_error("face " + std::to_string(f) +
                              " of the repaired mesh is no triangle of the input");
       const int r_input = found->second.second;
@@ -328,6 +349,13 @@ class WedgeMeshBuilder {
   // A vertex of any primitive at `point` whose POSITION is stored like `like`.
   std::optional<std::pair<uint32_t, uint32_t>> same_type_vertex(uint32_t point,
                                                                 const AccessorData& like) const {
+    if (vertices_at_.empty()) {  // built on the first need: moved quantized positions are rare
+      for (uint32_t p = 0; p < mesh_.primitives.size(); ++p) {
+        const std::vector<uint32_t>& points = mesh_.point_of_vertex[p];
+        for (uint32_t v = 0; v < points.size(); ++v)
+          vertices_at_[{p, points[v]}].push_back(v);
+      }
+    }
     for (uint32_t q = 0; q < mesh_.primitives.size(); ++q) {
       const SceneAttribute* pos = mesh_.primitives[q].find("POSITION");
       if (pos == nullptr || pos->data.component_type != like.component_type ||
@@ -344,9 +372,9 @@ class WedgeMeshBuilder {
   const MeshTopology& topology_;
   const AttributeWeights& weights_;
   std::unordered_map<PositionKey, uint32_t, PositionKeyHash> point_of_position_;
-  std::unordered_map<TriangleKey, std::pair<uint32_t, int>, TriangleKeyHash> triangle_of_key_;
   std::vector<std::array<uint32_t, 3>> local_triangles_;  // per topology triangle
-  std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> vertices_at_;  // (prim, point)
+  // (primitive, point) -> its vertices there; filled by same_type_vertex().
+  mutable std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> vertices_at_;
   std::vector<SlotSource> slots_;
   std::vector<uint32_t> wedge_primitive_;  // per engine wedge
   std::vector<uint32_t> wedge_vertex_;

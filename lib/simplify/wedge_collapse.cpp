@@ -142,12 +142,16 @@ class WedgeCollapser {
         continue;
       }
       if (options_.record) record(top.point, top.target, cost, &result);
+      // Whose candidates the collapse can change: vs (its quadrics and
+      // faces) and vt's neighbours (their faces now meet vs). vs's other
+      // neighbours keep their faces, quadrics and costs; a collapse of
+      // theirs the new neighbourhood makes illegal is refused when it comes
+      // up.
+      touched.clear();
+      neighbours(top.point, &touched);
       collapse(top.point, top.target, moves);
       ++result.collapses;
       result.max_collapse_error = std::max(result.max_collapse_error, std::sqrt(cost));
-      touched.clear();
-      touched.push_back(top.target);
-      neighbours(top.target, &touched);
       for (uint32_t v : touched) {
         refused_[v].clear();
         push(v);

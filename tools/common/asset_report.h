@@ -13,7 +13,8 @@
 
 namespace lodbake::cli {
 
-// Until structures carry attributes, every build over an asset says so once.
+// Until structures carry attributes, every build over an asset says so once,
+// as a note: the input is fine, the structure is what leaves them out.
 inline constexpr char kPositionsOnly[] =
     "the structures hold positions only: the asset's attributes and materials stay in its SCNE "
     "section, not in the levels they refine to (attribute-aware structures: not yet)";
