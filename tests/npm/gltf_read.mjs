@@ -3,7 +3,8 @@
 // the checks that compare what lodbake wrote with its input
 // (same_triangles.mjs, same_inventory.mjs). Two differences from
 // `gltf-transform inspect`'s reader, both so that every shared asset reads:
-// an image file that is missing is read as empty (Lantern names one), and
+// an image file that is missing is read as a 1x1 grey PNG (Lantern names
+// one; inspect() needs an image it can size), and
 // EXT_mesh_features / EXT_structural_metadata are left unregistered, so
 // they are unknown extensions (gltf-transform 4.5 fails on
 // EXT_mesh_features without property tables, BoxMetaDraco's) and their
@@ -16,6 +17,8 @@ import path from 'node:path';
 import { createRequire } from 'node:module';
 
 const metadata = new Set(['EXT_mesh_features', 'EXT_structural_metadata']);
+const placeholder = Buffer.from('iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAAAAAA6fptVAAAACklEQVR4nGNgAAAAAgABSK+kcQAAAABJRU5ErkJggg==',
+                                'base64');
 
 // A GLB's JSON and BIN chunks.
 function glbChunks(bytes) {
@@ -65,7 +68,7 @@ export async function openReader(modules) {
     for (const image of json.images || []) {
       if (image.uri !== undefined && !image.uri.startsWith('data:')) {
         const where = external(image.uri);
-        resources[image.uri] = fs.existsSync(where) ? new Uint8Array(fs.readFileSync(where)) : new Uint8Array(0);
+        resources[image.uri] = new Uint8Array(fs.existsSync(where) ? fs.readFileSync(where) : placeholder);
       }
     }
     return io.readJSON({ json, resources });
