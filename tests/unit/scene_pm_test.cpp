@@ -20,18 +20,13 @@
 #include "lib/scene/scene_levels.h"
 #include "lib/scene/scene_lods.h"
 #include "lib/simplify/wedge_replay.h"
+#include "tests/unit/asset_test_support.h"
 
 namespace lodbake {
 namespace {
 
-const std::string kAssets = std::string(LODBAKE_TEST_SHARED_DATA) + "/assets/";
-
-Scene read_asset(const std::string& path) {
-  ImportReport report;
-  Result<Scene> scene = read_scene_file(path, {}, &report);
-  EXPECT_TRUE(scene.is_ok()) << path << ": " << scene.status().message();
-  return scene.is_ok() ? std::move(scene).value() : Scene();
-}
+using test::kAssets;
+using test::read_asset;
 
 // Every stream's bytes of one vertex (positions included).
 std::string vertex_bytes(const ScenePrimitive& prim, uint32_t v) {
