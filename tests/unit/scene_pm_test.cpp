@@ -99,6 +99,32 @@ TEST_P(ScenePm, FullRefinementGivesEveryCornerBackAndEveryLevelIsTextured) {
   }
 }
 
+TEST_P(ScenePm, EveryLevelsCornersAreFoundByFaceAndVertex) {
+  const Scene scene = read_asset(kAssets + GetParam());
+  const SceneLodOptions options;
+  Result<std::vector<MeshPm>> pms = scene_progressive_meshes(scene, options);
+  ASSERT_TRUE(pms.is_ok());
+  for (const MeshPm& m : pms.value()) {
+    Result<CornerWedges> lookup = CornerWedges::create(m.pm, m.wedges);
+    ASSERT_TRUE(lookup.is_ok()) << lookup.status().message();
+    Result<WedgeRefiner> refiner = WedgeRefiner::create(m.pm, m.wedges);
+    ASSERT_TRUE(refiner.is_ok());
+    const size_t splits = m.pm.splits.size();
+    for (int step = 0; step <= 4; ++step) {
+      ASSERT_TRUE(refiner.value().refine_to(m.pm.base.vertex_count() + splits * step / 4).is_ok());
+      const TriangleMesh& level = refiner.value().mesh();
+      for (size_t f = 0; f < level.triangles.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+          ASSERT_EQ(lookup.value().wedge(static_cast<uint32_t>(f), level.triangles[f][k]),
+                    refiner.value().corners()[f][k])
+              << "mesh " << m.mesh << ", step " << step << ", face " << f;
+    }
+    EXPECT_EQ(
+        lookup.value().wedge(static_cast<uint32_t>(m.pm.base.triangles.size() + 2 * splits), 0),
+        kNoVertex);
+  }
+}
+
 TEST_P(ScenePm, TheLevelAtALevelsCountIsThatLevel) {
   const Scene scene = read_asset(kAssets + GetParam());
   SceneLodOptions options;
