@@ -67,7 +67,7 @@ namespace {
 
 using dracoio::GltfDocument;
 using dracoio::Json;
-using dracoio::Mat4;
+
 using dracoio::RawMesh;
 
 constexpr uint64_t kMinBudget = uint64_t{1} << 22;
@@ -486,11 +486,11 @@ Result<TriangleMesh> GltfImporter::run(ImportReport* report) {
 
   std::vector<std::pair<uint32_t, Mat4>> stack;
   for (auto it = scene.roots.rbegin(); it != scene.roots.rend(); ++it) {
-    stack.emplace_back(*it, dracoio::identity_matrix());
+    stack.emplace_back(*it, identity_matrix());
   }
   while (!stack.empty()) {
     const uint32_t node = stack.back().first;
-    const Mat4 world = dracoio::multiply(stack.back().second, forest.local[node]);
+    const Mat4 world = multiply(stack.back().second, forest.local[node]);
     stack.pop_back();
     const int64_t mesh = forest.mesh[node];
     if (mesh >= 0) {

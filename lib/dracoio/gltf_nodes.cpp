@@ -39,51 +39,17 @@ Result<Mat4> node_transform(const Json& node, const std::string& where) {
                            member_numbers(node, "translation", 3, where));
   LODBAKE_ASSIGN_OR_RETURN(const std::vector<double> r, member_numbers(node, "rotation", 4, where));
   LODBAKE_ASSIGN_OR_RETURN(const std::vector<double> s, member_numbers(node, "scale", 3, where));
-  double qx = 0, qy = 0, qz = 0, qw = 1;
   if (!r.empty()) {
     const double norm = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
     if (!(norm > 0) || !std::isfinite(norm)) {
       return invalid_input(where + ": 'rotation' is not a usable quaternion");
     }
-    qx = r[0] / norm;
-    qy = r[1] / norm;
-    qz = r[2] / norm;
-    qw = r[3] / norm;
   }
-  const double rot[3][3] = {
-      {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)},
-      {2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)},
-      {2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)}};
-  Mat4 m = identity_matrix();
-  for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col) {
-      m[at(row, col)] = rot[row][col] * (s.empty() ? 1.0 : s[static_cast<size_t>(col)]);
-    }
-    m[at(row, 3)] = t.empty() ? 0.0 : t[static_cast<size_t>(row)];
-  }
-  return m;
+  return trs_matrix(t.empty() ? nullptr : t.data(), r.empty() ? nullptr : r.data(),
+                    s.empty() ? nullptr : s.data());
 }
 
 }  // namespace
-
-Mat4 identity_matrix() {
-  Mat4 m{};
-  m[0] = m[5] = m[10] = m[15] = 1.0;
-  return m;
-}
-
-Mat4 multiply(const Mat4& a, const Mat4& b) {
-  Mat4 m{};
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      double sum = 0;
-      for (int k = 0; k < 4; ++k)
-        sum += a[at(r, k)] * b[at(k, c)];
-      m[at(r, c)] = sum;
-    }
-  }
-  return m;
-}
 
 bool is_identity(const Mat4& m) {
   return m == identity_matrix();

@@ -8,17 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "formats/scene/node_matrix.h"
 #include "formats/support/status.h"
 #include "lib/dracoio/gltf_document.h"
 
 namespace lodbake {
 namespace dracoio {
 
-// A 4x4 affine transform, column-major like glTF's node.matrix.
-using Mat4 = std::array<double, 16>;
-
-Mat4 identity_matrix();
-Mat4 multiply(const Mat4& a, const Mat4& b);
+// Node transforms are formats/scene/node_matrix.h's Mat4 (column-major).
 bool is_identity(const Mat4& m);
 // Determinant of the upper-left 3x3 part (negative: the transform mirrors).
 double linear_determinant(const Mat4& m);

@@ -46,7 +46,9 @@
 #include <utility>
 #include <vector>
 
+#include "formats/mesh/vec3d.h"
 #include "formats/scene/accessor_values.h"
+#include "formats/scene/node_matrix.h"
 #include "lib/metrics/surface_sampling.h"
 
 namespace lodbake {
@@ -61,24 +63,13 @@ using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 using PointAndId = Tree::Point_and_primitive_id;
 
-using Vec3d = std::array<double, 3>;
 using Vec2d = std::array<double, 2>;
-using Mat4 = std::array<double, 16>;  // column-major, as glTF's node.matrix
 
 constexpr size_t kBlockSamples = 4096;
 constexpr uint64_t kMaxAreaSamples = uint64_t{1} << 30;
 constexpr double kTieTolerance = 1e-6;  // of the diagonal
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 bool finite3(const Vec3d& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
@@ -86,49 +77,12 @@ Point to_point(const Vec3d& p) {
   return Point(p[0], p[1], p[2]);
 }
 
-Mat4 identity() {
-  Mat4 m{};
-  m[0] = m[5] = m[10] = m[15] = 1.0;
-  return m;
-}
-
-Mat4 multiply(const Mat4& a, const Mat4& b) {
-  Mat4 m{};
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) {
-      double sum = 0;
-      for (int k = 0; k < 4; ++k)
-        sum += a[k * 4 + r] * b[c * 4 + k];
-      m[c * 4 + r] = sum;
-    }
-  return m;
-}
-
 // The node's local transform: its matrix, else T * R * S.
 Mat4 local_transform(const SceneNode& node) {
   if (node.matrix) return *node.matrix;
-  double qx = 0, qy = 0, qz = 0, qw = 1;
-  if (node.rotation) {
-    const auto& r = *node.rotation;
-    const double norm = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
-    if (norm > 0) {
-      qx = r[0] / norm;
-      qy = r[1] / norm;
-      qz = r[2] / norm;
-      qw = r[3] / norm;
-    }
-  }
-  const double rot[3][3] = {
-      {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)},
-      {2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)},
-      {2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)}};
-  Mat4 m = identity();
-  for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col)
-      m[col * 4 + row] = rot[row][col] * (node.scale ? (*node.scale)[col] : 1.0);
-    m[12 + row] = node.translation ? (*node.translation)[row] : 0.0;
-  }
-  return m;
+  return trs_matrix(node.translation ? node.translation->data() : nullptr,
+                    node.rotation ? node.rotation->data() : nullptr,
+                    node.scale ? node.scale->data() : nullptr);
 }
 
 Vec3d transform_point(const Mat4& m, const Vec3d& p) {
@@ -213,7 +167,7 @@ Result<std::vector<std::pair<uint32_t, Mat4>>> instances_of(const Scene& scene, 
   std::vector<uint8_t> used(scene.meshes.size(), 0);
   std::vector<std::pair<uint32_t, Mat4>> stack;  // iterative: no recursion on file depth
   for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-    stack.emplace_back(*it, identity());
+    stack.emplace_back(*it, identity_matrix());
   while (!stack.empty()) {
     const auto [index, parent] = stack.back();
     stack.pop_back();
@@ -237,7 +191,7 @@ Result<std::vector<std::pair<uint32_t, Mat4>>> instances_of(const Scene& scene, 
       stack.emplace_back(*c, world);
   }
   for (uint32_t m = 0; m < scene.meshes.size(); ++m)
-    if (!used[m]) out.emplace_back(m, identity());
+    if (!used[m]) out.emplace_back(m, identity_matrix());
   return out;
 }
 

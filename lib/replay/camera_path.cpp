@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "formats/mesh/vec3d.h"
+
 namespace lodbake {
 namespace {
 
@@ -38,19 +40,6 @@ CameraFrame frame(const Vec3f& eye, const Vec3f& target, float fov) {
   return f;
 }
 
-using Vec3d = std::array<double, 3>;
-Vec3d to_d(const Vec3f& v) {
-  return {v[0], v[1], v[2]};
-}
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 Vec3d normalized(const Vec3d& v) {
   const double len = std::sqrt(dot(v, v));
   return len > 0 ? Vec3d{v[0] / len, v[1] / len, v[2] / len} : Vec3d{0, 0, 0};

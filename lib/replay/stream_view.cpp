@@ -7,23 +7,16 @@
 
 #include <cmath>
 
+#include "formats/mesh/vec3d.h"
+
 namespace lodbake {
 namespace {
 
-using Vec3d = std::array<double, 3>;
 constexpr double kPi = 3.14159265358979323846;
 
 Vec3d normalized(const Vec3d& v) {
   const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   return len > 0 ? Vec3d{v[0] / len, v[1] / len, v[2] / len} : Vec3d{0, 0, 0};
-}
-
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "formats/container/container_reader.h"
 #include "formats/mesh/progressive_mesh.h"
@@ -24,5 +26,13 @@ using LevelChooser = std::function<size_t(const ProgressiveMesh&)>;
 /// the scene.
 Result<Scene> scene_at_level(const Container& container, const Scene& scene,
                              const LevelChooser& choose);
+
+/// --validate's check of every mesh's progressive mesh with wedges against
+/// the asset: refined to the full mesh, every corner is at its wedge's home
+/// and each primitive has its input's triangle count; coarsened back, the
+/// base corners' wedges; both levels assemble into primitives. One message
+/// per mesh that fails ("mesh M (group G): ..."); empty when every level
+/// extracts.
+std::vector<std::string> check_scene_levels(const Container& container, const Scene& scene);
 
 }  // namespace lodbake

@@ -8,9 +8,9 @@
 
 #include <array>
 
-namespace lodbake {
+#include "formats/mesh/vec3d.h"
 
-using Vec3d = std::array<double, 3>;
+namespace lodbake {
 
 /// Q(p) = sum_i w_i * (n_i . p + d_i)^2 over the accumulated planes.
 struct Quadric {

@@ -8,29 +8,10 @@
 #include <cstdint>
 
 #include "formats/mesh/triangle_mesh.h"
+#include "formats/mesh/vec3d.h"
 #include "lib/simplify/quadric.h"
 
 namespace lodbake {
-
-/// `p` widened to double.
-inline Vec3d to_d(const Vec3f& p) {
-  return {p[0], p[1], p[2]};
-}
-
-/// a - b.
-inline Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
-/// a x b.
-inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-/// a . b.
-inline double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /// The corner (0, 1 or 2) of `t` that holds vertex `v`; 2 when `v` is not in `t`.
 inline int corner_of(const Triangle& t, uint32_t v) {

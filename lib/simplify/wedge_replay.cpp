@@ -1,5 +1,6 @@
 #include "lib/simplify/wedge_replay.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -99,6 +100,48 @@ Status WedgeRefiner::refine_to(size_t vertex_count) {
   while (refiner_.vertex_count() > vertex_count)
     LODBAKE_RETURN_IF_ERROR(collapse_last());
   return Status::ok();
+}
+
+Result<CornerWedges> CornerWedges::create(const ProgressiveMesh& pm, const PmWedges& wedges) {
+  LODBAKE_ASSIGN_OR_RETURN(WedgeRefiner refiner, WedgeRefiner::create(pm, wedges));
+  std::vector<std::pair<uint64_t, uint32_t>> entries;
+  auto add = [&](size_t face, uint32_t vertex, uint32_t wedge) {
+    entries.emplace_back(uint64_t{static_cast<uint32_t>(face)} << 32 | vertex, wedge);
+  };
+  for (size_t f = 0; f < refiner.mesh().triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      add(f, refiner.mesh().triangles[f][k], refiner.corners()[f][k]);
+  while (!refiner.refiner().fully_refined()) {
+    const size_t first_new = refiner.mesh().triangles.size();
+    LODBAKE_RETURN_IF_ERROR(refiner.split_next());
+    const TriangleMesh& m = refiner.mesh();
+    const uint32_t vt = static_cast<uint32_t>(m.positions.size() - 1);
+    const auto [begin, end] = refiner.refiner().last_moved_faces();
+    for (const uint32_t* f = begin; f != end; ++f)
+      add(*f, vt, refiner.corners()[*f][corner_of(m.triangles[*f], vt)]);
+    for (size_t f = first_new; f < m.triangles.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        add(f, m.triangles[f][k], refiner.corners()[f][k]);
+  }
+  std::sort(entries.begin(), entries.end());
+  CornerWedges out;
+  out.keys_.reserve(entries.size());
+  out.values_.reserve(entries.size());
+  for (const auto& [key, wedge] : entries) {
+    // A face's corner is at a vertex once: the same pair cannot come twice
+    // with two wedges (the replay would have refused the record).
+    if (!out.keys_.empty() && out.keys_.back() == key) continue;
+    out.keys_.push_back(key);
+    out.values_.push_back(wedge);
+  }
+  return out;
+}
+
+uint32_t CornerWedges::wedge(uint32_t face, uint32_t vertex) const {
+  const uint64_t key = uint64_t{face} << 32 | vertex;
+  auto it = std::lower_bound(keys_.begin(), keys_.end(), key);
+  if (it == keys_.end() || *it != key) return kNoVertex;
+  return values_[static_cast<size_t>(it - keys_.begin())];
 }
 
 }  // namespace lodbake

@@ -47,4 +47,26 @@ class WedgeRefiner {
   std::vector<uint32_t> undo_;  // the wedges moved corners had at vs, split by split
 };
 
+// The wedge of every (face, vertex) pair a level of detail can hold: a face
+// slot of the progressive mesh (its base triangles, then each split's added
+// faces) keeps, at each vertex its corner ever sits at, the wedge it took
+// there. So any mesh made of the PM's face slots whose corners sit at PM
+// vertices (the levels of the PM, and the fronts of the structures built
+// over it) finds its corners' wedges without replaying its own history.
+class CornerWedges {
+ public:
+  /// Replays `pm` once with `wedges` (fails as WedgeRefiner does).
+  static Result<CornerWedges> create(const ProgressiveMesh& pm, const PmWedges& wedges);
+
+  /// The wedge face slot `face` has at `vertex`, or kNoVertex when its
+  /// corner is never at that vertex.
+  uint32_t wedge(uint32_t face, uint32_t vertex) const;
+
+  size_t size() const { return keys_.size(); }
+
+ private:
+  std::vector<uint64_t> keys_;  // face << 32 | vertex, sorted
+  std::vector<uint32_t> values_;
+};
+
 }  // namespace lodbake

@@ -22,18 +22,13 @@
 #include "lib/scene/scene_pack.h"
 #include "lib/scene/scene_points.h"
 #include "lib/scene/scene_topology.h"
+#include "tests/unit/asset_test_support.h"
 
 namespace lodbake {
 namespace {
 
-const std::string kAssets = std::string(LODBAKE_TEST_SHARED_DATA) + "/assets/";
-
-Scene read_asset(const std::string& path) {
-  ImportReport report;
-  Result<Scene> scene = read_scene_file(path, {}, &report);
-  EXPECT_TRUE(scene.is_ok()) << path << ": " << scene.status().message();
-  return scene.is_ok() ? std::move(scene).value() : Scene();
-}
+using test::kAssets;
+using test::read_asset;
 
 TEST(AssetContainer, GivesTheSceneBackWithAGroupPerMesh) {
   const Scene truck = read_asset(kAssets + "CesiumMilkTruck/CesiumMilkTruck.gltf");

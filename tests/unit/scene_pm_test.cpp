@@ -8,22 +8,25 @@
 #include <string>
 #include <vector>
 
+#include "formats/container/section_registry.h"
 #include "formats/scene/accessor_values.h"
+#include "formats/sections/base.h"
+#include "formats/sections/meta.h"
+#include "formats/sections/open_container.h"
+#include "formats/sections/vspl.h"
+#include "formats/sections/wedg.h"
+#include "lib/scene/asset_build.h"
 #include "lib/scene/scene_io.h"
+#include "lib/scene/scene_levels.h"
 #include "lib/scene/scene_lods.h"
 #include "lib/simplify/wedge_replay.h"
+#include "tests/unit/asset_test_support.h"
 
 namespace lodbake {
 namespace {
 
-const std::string kAssets = std::string(LODBAKE_TEST_SHARED_DATA) + "/assets/";
-
-Scene read_asset(const std::string& path) {
-  ImportReport report;
-  Result<Scene> scene = read_scene_file(path, {}, &report);
-  EXPECT_TRUE(scene.is_ok()) << path << ": " << scene.status().message();
-  return scene.is_ok() ? std::move(scene).value() : Scene();
-}
+using test::kAssets;
+using test::read_asset;
 
 // Every stream's bytes of one vertex (positions included).
 std::string vertex_bytes(const ScenePrimitive& prim, uint32_t v) {
@@ -93,6 +96,32 @@ TEST_P(ScenePm, FullRefinementGivesEveryCornerBackAndEveryLevelIsTextured) {
     // And back down: collapsing undoes the splits' wedges too.
     ASSERT_TRUE(refiner.value().refine_to(m.pm.base.vertex_count()).is_ok());
     EXPECT_EQ(refiner.value().corners(), m.wedges.base);
+  }
+}
+
+TEST_P(ScenePm, EveryLevelsCornersAreFoundByFaceAndVertex) {
+  const Scene scene = read_asset(kAssets + GetParam());
+  const SceneLodOptions options;
+  Result<std::vector<MeshPm>> pms = scene_progressive_meshes(scene, options);
+  ASSERT_TRUE(pms.is_ok());
+  for (const MeshPm& m : pms.value()) {
+    Result<CornerWedges> lookup = CornerWedges::create(m.pm, m.wedges);
+    ASSERT_TRUE(lookup.is_ok()) << lookup.status().message();
+    Result<WedgeRefiner> refiner = WedgeRefiner::create(m.pm, m.wedges);
+    ASSERT_TRUE(refiner.is_ok());
+    const size_t splits = m.pm.splits.size();
+    for (int step = 0; step <= 4; ++step) {
+      ASSERT_TRUE(refiner.value().refine_to(m.pm.base.vertex_count() + splits * step / 4).is_ok());
+      const TriangleMesh& level = refiner.value().mesh();
+      for (size_t f = 0; f < level.triangles.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+          ASSERT_EQ(lookup.value().wedge(static_cast<uint32_t>(f), level.triangles[f][k]),
+                    refiner.value().corners()[f][k])
+              << "mesh " << m.mesh << ", step " << step << ", face " << f;
+    }
+    EXPECT_EQ(
+        lookup.value().wedge(static_cast<uint32_t>(m.pm.base.triangles.size() + 2 * splits), 0),
+        kNoVertex);
   }
 }
 
@@ -168,6 +197,67 @@ TEST(WedgeRefiner, RefusesWedgesThatDoNotFit) {
   ASSERT_TRUE(r2.value().refine_to(m.pm.full_vertex_count()).is_ok());
   level = primitives_at_level(scene.meshes[0], r2.value().mesh(), r2.value().corners(), wrong);
   EXPECT_FALSE(level.is_ok());
+}
+
+}  // namespace
+}  // namespace lodbake
+
+namespace lodbake {
+namespace {
+
+// An asset container as lodbake-simplify --pm writes it, from `pms` (whose
+// wedges a test may have changed).
+Bytes pm_container(const Scene& scene, const std::vector<MeshPm>& pms) {
+  Result<AssetBuild> built = build_asset(
+      scene, make_meta("test"), LoadOptions{},
+      [&](uint32_t mesh, const TriangleMesh&) -> Result<MeshSections> {
+        for (const MeshPm& m : pms) {
+          if (m.mesh != mesh) continue;
+          MeshSections out;
+          LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(m.pm.base, BaseEncodeOptions{}));
+          LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(m.pm, VsplEncodeOptions{}));
+          LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(m.wedges));
+          out.sections.emplace_back(kBaseTag, std::move(base));
+          out.sections.emplace_back(kVsplTag, std::move(vspl));
+          out.sections.emplace_back(kWedgTag, std::move(wedg));
+          return out;
+        }
+        return runtime_error("no progressive mesh");
+      });
+  EXPECT_TRUE(built.is_ok()) << built.status().message();
+  return built.is_ok() ? built.value().file : Bytes();
+}
+
+TEST(SceneLevels, ValidationReplaysEveryMeshsWedges) {
+  const Scene truck = read_asset(kAssets + "CesiumMilkTruck/CesiumMilkTruck.gltf");
+  const SceneLodOptions options;
+  Result<std::vector<MeshPm>> pms = scene_progressive_meshes(truck, options);
+  ASSERT_TRUE(pms.is_ok());
+  Result<OpenedContainer> good = open_container(pm_container(truck, pms.value()));
+  ASSERT_TRUE(good.is_ok()) << good.status().message();
+  EXPECT_TRUE(check_scene_levels(good.value().decoded(), truck).empty());
+  // A level extracts with the asset's materials.
+  Result<Scene> half = scene_at_level(good.value().decoded(), truck, [](const ProgressiveMesh& pm) {
+    return (pm.base.vertex_count() + pm.full_vertex_count()) / 2;
+  });
+  ASSERT_TRUE(half.is_ok()) << half.status().message();
+  EXPECT_EQ(half.value().materials, truck.materials);
+
+  // A moved corner given another vertex's wedge: every section decodes and
+  // agrees in counts, but the replay finds it.
+  std::vector<MeshPm> damaged = pms.value();
+  PmWedges& w = damaged[0].wedges;
+  // The last moved corner: no later split moves it again.
+  ASSERT_FALSE(w.moved.empty());
+  const size_t last = w.moved.size() - 1;
+  const uint32_t wrong = w.moved[last] == 0 ? 1 : 0;
+  ASSERT_NE(w.wedge_home[wrong], w.wedge_home[w.moved[last]]);
+  w.moved[last] = wrong;
+  Result<OpenedContainer> bad = open_container(pm_container(truck, damaged));
+  ASSERT_TRUE(bad.is_ok());
+  const std::vector<std::string> findings = check_scene_levels(bad.value().decoded(), truck);
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_NE(findings[0].find("mesh 0 (group"), std::string::npos) << findings[0];
 }
 
 }  // namespace

@@ -6,18 +6,15 @@
 
 #include "lib/scene/scene_io.h"
 #include "lib/scene/scene_lods.h"
+#include "tests/unit/asset_test_support.h"
 
 namespace lodbake {
 namespace {
 
-const std::string kAssets = std::string(LODBAKE_TEST_SHARED_DATA) + "/assets/";
-
 MeshPm duck_pm() {
-  ImportReport report;
-  Result<Scene> scene = read_scene_file(kAssets + "Duck/Duck.glb", {}, &report);
-  EXPECT_TRUE(scene.is_ok());
+  const Scene scene = test::read_asset(test::kAssets + "Duck/Duck.glb");
   const SceneLodOptions options;
-  Result<std::vector<MeshPm>> pms = scene_progressive_meshes(scene.value(), options);
+  Result<std::vector<MeshPm>> pms = scene_progressive_meshes(scene, options);
   EXPECT_TRUE(pms.is_ok());
   return pms.value().at(0);
 }

@@ -581,6 +581,14 @@ int inspect_container(const Tool& tool, const std::string& path, const Bytes& by
     if (scene.is_ok()) {
       report["scene"] = to_json(summarize_scene(scene.value()));
       asset = std::move(scene).value();
+      if (validating) {
+        // Every level of an asset's PM extracts with its wedges.
+        for (std::string& problem : check_scene_levels(file.decoded(), *asset)) {
+          report["validation"]["findings"].push_back({{"section", kWedgTag}, {"message", problem}});
+          findings.push_back({kWedgTag, std::move(problem)});
+        }
+        report["validation"]["ok"] = findings.empty();
+      }
     } else {
       undecodable = scene.status();
       if (!validating) report["error"] = undecodable.message();

@@ -1,0 +1,19 @@
+// Node transforms as column-major 4x4 matrices (glTF's layout): what the
+// glTF reader's node forest and the attribute metric's world space share.
+#pragma once
+
+#include <array>
+
+namespace lodbake {
+
+using Mat4 = std::array<double, 16>;  // column-major
+
+Mat4 identity_matrix();
+Mat4 multiply(const Mat4& a, const Mat4& b);
+
+/// T * R * S from a translation, a rotation quaternion (x, y, z, w) and a
+/// scale, each null when absent. The quaternion is normalised; the caller
+/// refuses one without a usable length (a zero one gives no rotation here).
+Mat4 trs_matrix(const double* translation, const double* rotation, const double* scale);
+
+}  // namespace lodbake
