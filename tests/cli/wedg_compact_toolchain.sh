@@ -17,13 +17,21 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$tools/lodbake-simplify" -q "$asset" --pm "$work/p.lbk" > /dev/null || fail "simplify --pm"
 "$tools/lodbake-pack" -q "$work/p.lbk" -o "$work/c.lbk" > /dev/null || fail "pack"
-"$tools/lodbake-pack" -q --draco "$work/p.lbk" -o "$work/d.lbk" > /dev/null || fail "pack --draco"
-for c in c d; do
+# A build without the Draco codec (make test-nodraco) refuses --draco with
+# exit 5: the draco container is then left out.
+packed="c d"
+"$tools/lodbake-pack" -q --draco "$work/p.lbk" -o "$work/d.lbk" > /dev/null 2> "$work/d.err"
+case $? in
+  0) ;;
+  5) packed="c" ;;
+  *) cat "$work/d.err" >&2; fail "pack --draco" ;;
+esac
+for c in $packed; do
   "$tools/lodbake-inspect" "$work/$c.lbk" > "$work/$c.txt" || fail "inspect $c.lbk"
   grep -q "WEDG  compact" "$work/$c.txt" || fail "$c.lbk does not store WEDG compact"
   "$tools/lodbake-inspect" "$work/$c.lbk" --validate -q > /dev/null || fail "inspect --validate $c.lbk"
 done
-for c in p c d; do
+for c in p $packed; do
   "$tools/lodbake-inspect" "$work/$c.lbk" --extract "$work/$c.glb" --lod 0.5 -q > /dev/null \
     || fail "extract --lod 0.5 from $c.lbk"
 done
@@ -32,7 +40,7 @@ if [ ! -d "$npm/node_modules/gltf-validator" ] || ! command -v node > /dev/null;
   echo "skipped the validator: node or the npm test tools are missing (make npm-deps)" >&2
   exit 77
 fi
-for c in c d; do
+for c in $packed; do
   node "$scripts/validate.mjs" --modules "$npm" --baseline "$asset" "$work/$c.glb" > "$work/v.txt" \
     || { cat "$work/v.txt" >&2; fail "$c.glb: the validator found errors"; }
   head -1 "$work/v.txt"
