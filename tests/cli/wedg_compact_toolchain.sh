@@ -20,8 +20,9 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 # A build without the Draco codec (make test-nodraco) refuses --draco with
 # exit 5: the draco container is then left out.
 packed="c d"
-"$tools/lodbake-pack" -q --draco "$work/p.lbk" -o "$work/d.lbk" > /dev/null 2> "$work/d.err"
-case $? in
+rc=0
+"$tools/lodbake-pack" -q --draco "$work/p.lbk" -o "$work/d.lbk" > /dev/null 2> "$work/d.err" || rc=$?
+case $rc in
   0) ;;
   5) packed="c" ;;
   *) cat "$work/d.err" >&2; fail "pack --draco" ;;
