@@ -1,17 +1,19 @@
 // Choices the papers leave open, stated in docs/simplify.md ("Assets (glTF
 // scenes)"):
-// - points are scaled to a unit bounding-box diagonal, so a geometric error
-//   and an attribute difference of the same number cost the same;
-// - the priority is the error the collapse adds: vt's quadrics (geometric,
-//   and the appearance quadrics of the wedges it gives up) at vs's point
-//   and values, over vt's area (a mean squared error). Adding vs's own
+// - points are scaled to a unit bounding-box diagonal;
+// - the priority is the error the collapse adds: vt's quadrics at vs's
+//   point and values, the geometric one over vt's area (a mean squared
+//   error), the appearance ones of the wedges it gives up left a sum over
+//   it (check() says why). Adding vs's own
 //   quadrics as well, as Garland & Heckbert's sum does, gave a Hausdorff
-//   error 1.2 to 1.5 times larger on the assets at 25% (docs/lab/);
+//   error 1.2 to 1.5 times larger on the assets at 25%
+//   (docs/lab/wedge-weights.md);
 // - border and seam edges add a constraint plane through the edge,
 //   perpendicular to its face, to both ends (Garland & Heckbert 1998 do so
 //   for discontinuities), so a seam keeps its course while it shortens;
-// - a collapse is re-evaluated for the survivor and its neighbours only: no
-//   other point's collapses read anything the collapse changed.
+// - after a collapse only vs and vt's former neighbours are re-evaluated,
+//   and illegal collapses are found when they come up: before calling the
+//   mesh blocked every point is offered once more.
 #include "lib/simplify/wedge_collapse.h"
 
 #include <algorithm>
@@ -119,6 +121,7 @@ class WedgeCollapser {
     const uint64_t start = live_;
     size_t next = 0;
     bool stopped_by_error = false;
+    bool swept = false;  // every point offered again since the last collapse
     std::vector<WedgeMove> moves;
     std::vector<uint32_t> touched;
     while (next < options_.targets.size()) {
@@ -127,7 +130,20 @@ class WedgeCollapser {
         ++next;
         continue;
       }
-      if (heap.empty()) break;
+      if (heap.empty()) {
+        // A point whose every candidate was refused leaves the heap until a
+        // collapse touches it; one that only its second ring changed may
+        // have become legal. Before calling the mesh blocked, every point
+        // is offered once more.
+        if (swept) break;
+        swept = true;
+        for (uint32_t v = 0; v < points_.size(); ++v) {
+          if (faces_[v].empty()) continue;
+          refused_[v].clear();
+          push(v);
+        }
+        continue;
+      }
       const HeapEntry top = heap.top();
       heap.pop();
       if (top.stamp != stamp_[top.point] || faces_[top.point].empty()) continue;
@@ -150,6 +166,7 @@ class WedgeCollapser {
       touched.clear();
       neighbours(top.point, &touched);
       collapse(top.point, top.target, moves);
+      swept = false;
       ++result.collapses;
       result.max_collapse_error = std::max(result.max_collapse_error, std::sqrt(cost));
       for (uint32_t v : touched) {
@@ -169,10 +186,8 @@ class WedgeCollapser {
       result.blocked = blocks;
     }
     result.stopped_by_error = stopped_by_error;
-    if (next < options_.targets.size()) {
-      while (next++ < options_.targets.size())
-        result.levels.push_back(level());
-    }
+    while (next++ < options_.targets.size())
+      result.levels.push_back(level());
     return result;
   }
 
