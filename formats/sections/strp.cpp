@@ -19,6 +19,7 @@
 
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
+#include "formats/mesh/canonical_triangles.h"
 #include "formats/support/bit_packing.h"
 #include "formats/support/byte_reader.h"
 #include "formats/support/string_format.h"
@@ -179,20 +180,13 @@ std::vector<std::string> compare_strip_triangles(const TriangleStrips& strips,
                                                  const std::vector<Triangle>& triangles,
                                                  const char* what) {
   std::vector<std::string> findings;
-  // Compare canonical (smallest vertex first, order kept) sorted lists.
-  auto canonical = [](Triangle t) {
-    while (t[0] > t[1] || t[0] > t[2])
-      t = {t[1], t[2], t[0]};
-    return t;
-  };
   std::vector<Triangle> from_strips = strip_triangles(strips);
   std::vector<Triangle> from_mesh;
+  from_mesh.reserve(triangles.size());
   for (const Triangle& t : triangles)
-    if (is_real_triangle(t[0], t[1], t[2])) from_mesh.push_back(canonical(t));
-  for (Triangle& t : from_strips)
-    t = canonical(t);
-  std::sort(from_strips.begin(), from_strips.end());
-  std::sort(from_mesh.begin(), from_mesh.end());
+    if (is_real_triangle(t[0], t[1], t[2])) from_mesh.push_back(t);
+  sort_canonical_triangles(&from_strips);
+  sort_canonical_triangles(&from_mesh);
   std::vector<Triangle> extra, missing;
   std::set_difference(from_strips.begin(), from_strips.end(), from_mesh.begin(), from_mesh.end(),
                       std::back_inserter(extra));

@@ -348,4 +348,15 @@ MeshCheckReport check_mesh(const TriangleMesh& mesh) {
   return r;
 }
 
+MeshCheckReport check_triangulation(const TriangleMesh& mesh) {
+  MeshCheckReport r;
+  r.vertices = mesh.positions.size();
+  r.triangles = mesh.triangles.size();
+  Classified c = classify_triangles(mesh, &r);
+  r.degenerate_triangles = r.repeated_index_triangles;
+  check_edges(mesh, c, &r);
+  check_duplicates(mesh, c, &r);
+  return r;
+}
+
 }  // namespace lodbake

@@ -99,4 +99,12 @@ struct MeshCheckReport {
 /// (out-of-range indices are counted, not followed).
 MeshCheckReport check_mesh(const TriangleMesh& mesh);
 
+/// The index-structure part of check_mesh() that says whether `mesh` is a
+/// triangulation: out-of-range and repeated indices, edges (boundary,
+/// non-manifold, inconsistent orientation) and duplicates, with their
+/// samples, equal to check_mesh()'s. Coordinates, zero areas, non-manifold
+/// vertices, components and genus are left at zero: the replay modes run
+/// this at every step, where those cost more than the rest together.
+MeshCheckReport check_triangulation(const TriangleMesh& mesh);
+
 }  // namespace lodbake

@@ -450,7 +450,7 @@ std::vector<std::string> DagReplay::check() const {
   TriangleMesh mesh;
   mesh.positions.assign(pm_->base.vertex_count() + pm_->splits.size(), Vec3f{0, 0, 0});
   mesh.triangles = cut_triangles();
-  for (std::string& p : triangulation_problems(check_mesh(mesh)))
+  for (std::string& p : triangulation_problems(mesh))
     problems.push_back(std::move(p));
   if (mesh.triangle_count() != triangles_) {
     problems.push_back("triangle count " + std::to_string(triangles_) + " but the cut has " +

@@ -178,8 +178,7 @@ Result<FanFrameStats> FanReplay::adapt(const BoundingSphere& sphere, const Camer
 
 std::vector<std::string> FanReplay::check() const {
   const TriangleMesh mesh = runtime_.mesh();
-  const MeshCheckReport r = check_mesh(mesh);
-  std::vector<std::string> problems = triangulation_problems(r);
+  std::vector<std::string> problems = triangulation_problems(mesh);
   if (mesh.triangle_count() != runtime_.triangle_count()) {
     problems.push_back("triangle count " + std::to_string(runtime_.triangle_count()) +
                        " but the mesh has " + std::to_string(mesh.triangle_count()) + " triangles");

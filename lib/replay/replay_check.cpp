@@ -1,6 +1,6 @@
 #include "lib/replay/replay_check.h"
 
-#include <algorithm>
+#include "formats/mesh/canonical_triangles.h"
 
 namespace lodbake {
 
@@ -18,15 +18,12 @@ std::vector<std::string> triangulation_problems(const MeshCheckReport& r) {
   return problems;
 }
 
+std::vector<std::string> triangulation_problems(const TriangleMesh& mesh) {
+  return triangulation_problems(check_triangulation(mesh));
+}
+
 std::vector<Triangle> sorted_canonical(std::vector<Triangle> triangles) {
-  for (Triangle& t : triangles) {
-    if (t[1] < t[0] && t[1] < t[2]) {
-      t = {t[1], t[2], t[0]};
-    } else if (t[2] < t[0] && t[2] < t[1]) {
-      t = {t[2], t[0], t[1]};
-    }
-  }
-  std::sort(triangles.begin(), triangles.end());
+  sort_canonical_triangles(&triangles);
   return triangles;
 }
 

@@ -18,6 +18,10 @@ namespace lodbake {
 /// vertices and boundaries are not problems (an input may have them).
 std::vector<std::string> triangulation_problems(const MeshCheckReport& report);
 
+/// triangulation_problems() of check_triangulation(mesh): the same lines,
+/// without the geometric and vertex-fan checks that do not bear on them.
+std::vector<std::string> triangulation_problems(const TriangleMesh& mesh);
+
 /// Each triangle rotated to start at its smallest corner (the cyclic order,
 /// so the orientation, kept), then sorted: two triangle lists describe the
 /// same oriented triangles exactly when these are equal.

@@ -173,7 +173,7 @@ std::vector<std::string> SetsReplay::check(std::optional<uint32_t> against_lod) 
     TriangleMesh strips_mesh;
     strips_mesh.positions.assign(pm_mesh.vertex_count(), Vec3f{0, 0, 0});
     strips_mesh.triangles = strip_triangles(fresh_->to_strips());
-    for (std::string& problem : triangulation_problems(check_mesh(strips_mesh)))
+    for (std::string& problem : triangulation_problems(strips_mesh))
       problems.push_back(std::move(problem));
     return problems;
   } catch (const std::bad_alloc&) {

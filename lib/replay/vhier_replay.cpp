@@ -45,7 +45,7 @@ Result<VhierFrameStats> adapt_vhier_frame(SelectiveRefiner* refiner, const Verte
 
 std::vector<std::string> check_vhier_mesh(const SelectiveRefiner& refiner) {
   const TriangleMesh mesh = refiner.current_mesh();
-  std::vector<std::string> problems = triangulation_problems(check_mesh(mesh));
+  std::vector<std::string> problems = triangulation_problems(mesh);
   if (mesh.vertex_count() != refiner.front_size()) {
     problems.push_back("front size " + std::to_string(refiner.front_size()) + " but the mesh has " +
                        std::to_string(mesh.vertex_count()) + " vertices");

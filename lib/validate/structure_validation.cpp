@@ -369,7 +369,7 @@ void check_dag(const Container& decoded, uint32_t group, bool with_hierarchy, Fi
     mesh.positions.assign(pm.base.vertex_count() + pm.splits.size(), Vec3f{0, 0, 0});
     mesh.triangles = dag_cut_triangles(lineage.value(), fronts);
     std::vector<std::string> problems = fronts.check_counters();
-    for (std::string& p : triangulation_problems(check_mesh(mesh)))
+    for (std::string& p : triangulation_problems(mesh))
       problems.push_back(std::move(p));
     return problems;
   };
@@ -458,7 +458,7 @@ void check_strp(const Container& decoded, uint32_t group, Findings* f) {
   Result<TriangleMesh> out = mesh_from_strips(strips.value(), mesh.value());
   if (!out.is_ok()) return f->add(kStrpTag, "--extract", out.status().message());
   f->none(kStrpTag, "--extract", "the strips' mesh",
-          triangulation_problems(check_mesh(out.value())));
+          triangulation_problems(out.value()));
 }
 
 }  // namespace

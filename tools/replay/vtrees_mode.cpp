@@ -184,7 +184,7 @@ bool vtrees_overlap(const VtreesClient& client, const std::vector<Triangle>& tri
   TriangleMesh mesh;
   mesh.positions = client.positions();
   mesh.triangles = triangles;
-  return !triangulation_problems(check_mesh(mesh)).empty();
+  return !triangulation_problems(mesh).empty();
 }
 
 // --serve: a TCP server on loopback for --clients connections, each on its
