@@ -7,7 +7,8 @@
 # lodbake.pc in place; samples/embed_replay is then configured and built
 # against that prefix alone, by a separate cmake run (find_package(lodbake),
 # CMAKE_PREFIX_PATH) and by the compiler with `pkg-config --cflags --libs
-# lodbake`. Both builds replay the orbit path on MESH's balanced hierarchy
+# lodbake`, and every installed header must compile from the prefix. Both
+# builds replay the orbit path on MESH's balanced hierarchy
 # (made by the build's lodbake-hierarchy) and must print, frame by frame, the
 # triangle counts of `lodbake-replay --mode vhier --csv` on the same file.
 set -u
@@ -86,6 +87,15 @@ $cxx -std=c++17 -O1 "$src/samples/embed_replay/main.cpp" $flags -o "$tmp/pc_samp
   fail "embed_replay (pkg-config build) failed"
 cmp -s "$tmp/pc_sample.csv" "$tmp/expected.csv" ||
   fail "embed_replay (pkg-config build) triangle counts differ from lodbake-replay --csv"
+
+# Every installed header compiles against the prefix alone (one translation
+# unit including them all: no header reaches for a file left uninstalled).
+(cd "$prefix/include/lodbake" && find formats lib -name '*.h' | sort | sed 's/.*/#include "&"/') \
+  > "$tmp/all_headers.cpp"
+[ "$(wc -l < "$tmp/all_headers.cpp")" -gt 50 ] || fail "too few headers installed"
+# shellcheck disable=SC2086 # flags are words
+$cxx -std=c++17 -fsyntax-only "$tmp/all_headers.cpp" $flags > "$tmp/headers.log" 2>&1 ||
+  { head -20 "$tmp/headers.log"; fail "the installed headers do not compile on their own"; }
 
 # A container without the hierarchy is refused with lodbake's exit code 3.
 "$build/tools/lodbake-pack" "$mesh" -o "$tmp/base.lbk" --quiet > /dev/null 2>&1 || fail "lodbake-pack failed"
