@@ -1,0 +1,93 @@
+#!/bin/sh
+# lodbake-bake against the tools: a recipe over two small meshes and a glTF
+# asset (written here), every step's files compared byte for byte with what
+# the tool its step stands for writes with the same options (pack,
+# simplify --pm, simplify --lods, hierarchy --sections, fan, pack --draco of
+# the containers), an override changing one input's options, the JSON report
+# listing every step as baked, and the exit codes of a bake where some or
+# all inputs fail.
+#
+#   bake_identity.sh TOOLS DATA WORK
+set -eu
+tools=$1 data=$2 work=$3
+rm -rf "$work" && mkdir -p "$work/tools"
+fail() { echo "bake_identity: $*" >&2; exit 1; }
+same() { cmp "$1" "$2" > /dev/null || fail "$2 differs from $1"; }
+
+cat > "$work/recipe.toml" <<TOML
+version = 1
+[vars]
+data = "$data"
+[inputs]
+globs = ["{data}/meshes/igl_decimated-knight.off", "{data}/meshes/cgal_tetrahedron.off",
+         "{data}/assets/Fox/*.gltf"]
+[output]
+path = "{dir}/{name}/{step}.lbk"
+lods = "{dir}/{name}/lod{level}.{format}"
+[steps.pack]
+quantize = 14
+[steps.simplify]
+ratio = 0.25
+placement = "half"
+[steps.lods]
+ratios = [0.5, 0.2]
+[steps.hierarchy]
+[steps.fan]
+degree_weight = 1.5
+[steps.package]
+from = ["simplify", "hierarchy"]
+draco = true
+qp = 12
+[[override]]
+glob = "*/igl_decimated-knight.off"
+[override.steps.hierarchy]
+sections = ["vhie"]
+[override.steps.simplify]
+triangles = 300
+TOML
+"$tools/lodbake-bake" "$work/recipe.toml" --out "$work/out" --json --quiet > "$work/report.json"
+grep -q '"schema": "lodbake.bake/1"' "$work/report.json" || fail "no report"
+[ "$(grep -c '"status": "baked"' "$work/report.json")" = 18 ] || fail "not 18 steps baked"
+
+check() {  # INPUT DIR NAME HIERARCHY_SECTIONS SIMPLIFY_OPTIONS...
+  input=$1 out=$work/out/$2/$3 sections=$4 t=$work/tools/$3
+  shift 4
+  "$tools/lodbake-pack" "$input" -o "$t.pack.lbk" --quantize 14 > /dev/null
+  same "$t.pack.lbk" "$out/pack.lbk"
+  "$tools/lodbake-simplify" "$input" --pm "$t.pm.lbk" --ratio 0.25 "$@" > /dev/null
+  same "$t.pm.lbk" "$out/simplify.lbk"
+  "$tools/lodbake-simplify" "$input" --lods 0.5,0.2 -o "$t.lod%d.glb" --no-metrics > /dev/null
+  same "$t.lod0.glb" "$out/lod0.glb"
+  same "$t.lod1.glb" "$out/lod1.glb"
+  "$tools/lodbake-hierarchy" "$input" -o "$t.h.lbk" --sections "$sections" > /dev/null
+  same "$t.h.lbk" "$out/hierarchy.lbk"
+  "$tools/lodbake-fan" "$input" -o "$t.fan.lbk" --degree-weight 1.5 > /dev/null
+  same "$t.fan.lbk" "$out/fan.lbk"
+  "$tools/lodbake-pack" "$t.pm.lbk" "$t.h.lbk" --draco --qp 12 -o "$t.pkg.lbk" > /dev/null
+  same "$t.pkg.lbk" "$out/package.lbk"
+}
+check "$data/meshes/igl_decimated-knight.off" meshes igl_decimated-knight.off vhie --triangles 300
+check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,vtre
+check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre
+
+# Some inputs fail (a file that is not a mesh): 8 with --keep-going, the
+# others baked; all fail: 9. No output of a failed step is left.
+printf 'not a mesh\n' > "$work/a_broken.off"
+cp "$data/meshes/cgal_tetrahedron.off" "$work/b_tetrahedron.off"
+cat > "$work/partly.toml" <<TOML
+[inputs]
+globs = ["*.off"]
+[steps.pack]
+TOML
+code=0
+"$tools/lodbake-bake" "$work/partly.toml" --out "$work/partly" --keep-going --quiet || code=$?
+[ "$code" = 8 ] || fail "some failed: exit $code, not 8"
+[ -f "$work/partly/b_tetrahedron.off/pack.lbk" ] || fail "the good input was not baked"
+[ ! -e "$work/partly/a_broken.off/pack.lbk" ] || fail "a failed step left its output"
+code=0
+"$tools/lodbake-bake" "$work/partly.toml" --out "$work/stopped" --quiet 2> "$work/stopped.err" ||
+  code=$?
+[ "$code" = 9 ] || fail "stopped at the first input: exit $code, not 9"
+grep -q "a_broken.off: pack: " "$work/stopped.err" || fail "the failure is not named"
+[ ! -e "$work/stopped/b_tetrahedron.off" ] || fail "the run went on without --keep-going"
+echo "bake_identity: every step's files equal the tools'"
