@@ -1,5 +1,13 @@
 #include "lib/bake/bake_run.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -59,59 +67,104 @@ std::string output_path(const std::string& out_dir, const std::string& path) {
   return out_dir + "/" + path;
 }
 
+namespace {
+
+// One input's steps in order; a failed step skips the ones after it.
+InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
+                       const std::function<void(const std::string&)>& step_started) {
+  InputReport report;
+  report.input = plan.input;
+  const auto input_start = std::chrono::steady_clock::now();
+  report.status = "ok";
+  Result<Bytes> bytes = read_file(plan.input);
+  std::map<std::string, std::vector<Bytes>> earlier;
+  for (const StepPlan& step : plan.steps) {
+    if (options.only_step && step.step != *options.only_step) continue;
+    StepReport s;
+    s.step = step.step;
+    if (report.status == "failed") {
+      s.status = "skipped";
+      report.steps.push_back(std::move(s));
+      continue;
+    }
+    step_started(step.step);
+    const auto start = std::chrono::steady_clock::now();
+    Status status = bytes.status();
+    if (status.is_ok() && options.only_step)
+      status = read_earlier(plan, options.out_dir, step, &earlier);
+    Result<StepResult> made = status.is_ok()
+                                  ? run_bake_step(step, plan.input, bytes.value(), earlier)
+                                  : Result<StepResult>(status);
+    if (made.is_ok()) status = write_outputs(options.out_dir, made.value().files);
+    if (made.is_ok() && status.is_ok()) {
+      s.status = "baked";
+      s.warnings = made.value().warnings;
+      s.report = made.value().report;
+      for (auto& [path, file] : made.value().files) {
+        s.outputs.emplace_back(output_path(options.out_dir, path), file.size());
+        earlier[step.step].push_back(std::move(file));
+      }
+    } else {
+      const Status& failed = made.is_ok() ? status : made.status();
+      s.status = "failed";
+      s.error = failed.message();
+      s.error_kind = failed.kind();
+      report.status = "failed";
+    }
+    s.seconds = seconds_since(start);
+    report.steps.push_back(std::move(s));
+  }
+  report.seconds = seconds_since(input_start);
+  return report;
+}
+
+}  // namespace
+
+unsigned bake_jobs(unsigned requested) {
+  return requested != 0 ? requested
+                        : static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
+}
+
 std::vector<InputReport> run_bake(const std::vector<InputPlan>& plans, const BakeOptions& options,
                                   const BakeEvents& events) {
   std::vector<InputReport> reports(plans.size());
-  bool stopped = false;
+  for (size_t i = 0; i < plans.size(); ++i)
+    reports[i].input = plans[i].input;
+  std::atomic<bool> stopped{false};
+  std::mutex events_mutex;  // events are never called two at once
+  // Each input is one task: inputs share nothing, so their outputs are the
+  // same whatever thread bakes them and in whatever order. The largest
+  // files start first, so that a big asset does not run alone at the end.
+  std::vector<std::pair<uint64_t, size_t>> order;
   for (size_t i = 0; i < plans.size(); ++i) {
-    const InputPlan& plan = plans[i];
-    InputReport& report = reports[i];
-    report.input = plan.input;
-    if (stopped) continue;
-    const auto input_start = std::chrono::steady_clock::now();
-    report.status = "ok";
-    Result<Bytes> bytes = read_file(plan.input);
-    std::map<std::string, std::vector<Bytes>> earlier;
-    for (const StepPlan& step : plan.steps) {
-      if (options.only_step && step.step != *options.only_step) continue;
-      StepReport s;
-      s.step = step.step;
-      if (report.status == "failed") {
-        s.status = "skipped";
-        report.steps.push_back(std::move(s));
-        continue;
-      }
-      if (events.step_started) events.step_started(i, step.step);
-      const auto start = std::chrono::steady_clock::now();
-      Status status = bytes.status();
-      if (status.is_ok() && options.only_step)
-        status = read_earlier(plan, options.out_dir, step, &earlier);
-      Result<StepResult> made = status.is_ok()
-                                    ? run_bake_step(step, plan.input, bytes.value(), earlier)
-                                    : Result<StepResult>(status);
-      if (made.is_ok()) status = write_outputs(options.out_dir, made.value().files);
-      if (made.is_ok() && status.is_ok()) {
-        s.status = "baked";
-        s.warnings = made.value().warnings;
-        s.report = made.value().report;
-        for (auto& [path, file] : made.value().files) {
-          s.outputs.emplace_back(output_path(options.out_dir, path), file.size());
-          earlier[step.step].push_back(std::move(file));
-        }
-      } else {
-        const Status& failed = made.is_ok() ? status : made.status();
-        s.status = "failed";
-        s.error = failed.message();
-        s.error_kind = failed.kind();
-        report.status = "failed";
-      }
-      s.seconds = seconds_since(start);
-      report.steps.push_back(std::move(s));
-    }
-    report.seconds = seconds_since(input_start);
-    if (report.status == "failed" && !options.keep_going) stopped = true;
-    if (events.input_done) events.input_done(i, report);
+    std::error_code error;
+    const uintmax_t size = std::filesystem::file_size(plans[i].input, error);
+    order.emplace_back(error ? 0 : static_cast<uint64_t>(size), i);
   }
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  tbb::task_arena arena(static_cast<int>(bake_jobs(options.jobs)));
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, order.size(), 1),
+        [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t k = range.begin(); k != range.end(); ++k) {
+            const size_t i = order[k].second;
+            if (stopped.load()) continue;
+            reports[i] = bake_input(plans[i], options, [&](const std::string& step) {
+              if (!events.step_started) return;
+              std::lock_guard<std::mutex> lock(events_mutex);
+              events.step_started(i, step);
+            });
+            if (reports[i].status == "failed" && !options.keep_going) stopped.store(true);
+            if (events.input_done) {
+              std::lock_guard<std::mutex> lock(events_mutex);
+              events.input_done(i, reports[i]);
+            }
+          }
+        },
+        tbb::simple_partitioner());
+  });
   return reports;
 }
 

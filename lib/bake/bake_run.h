@@ -18,6 +18,7 @@ namespace lodbake {
 
 struct BakeOptions {
   std::string out_dir = ".";             // the plans' outputs are relative to it
+  unsigned jobs = 0;                     // inputs baked at once; 0: one per core (bake_jobs())
   bool keep_going = false;               // run the other inputs after one failed
   std::optional<std::string> only_step;  // run this step alone (its inputs made before)
 };
@@ -40,13 +41,20 @@ struct InputReport {
   std::vector<StepReport> steps;
 };
 
-// Called as the run goes (never two at once): a step starts, an input ends.
+// Called as the run goes, from the threads baking (never two at once): a
+// step starts, an input ends.
 struct BakeEvents {
   std::function<void(size_t input, const std::string& step)> step_started;
   std::function<void(size_t input, const InputReport& report)> input_done;
 };
 
-// Bakes `plans` in order; the reports come in the plans' order.
+// The inputs baked at once for `requested` (0: TBB's default concurrency,
+// the cores this process may use).
+unsigned bake_jobs(unsigned requested);
+
+// Bakes `plans`, `options.jobs` inputs at once (oneTBB); the reports come in
+// the plans' order. Without keep_going, inputs not started when one fails
+// are left "skipped".
 std::vector<InputReport> run_bake(const std::vector<InputPlan>& plans, const BakeOptions& options,
                                   const BakeEvents& events);
 

@@ -71,8 +71,10 @@ check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,
 check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre
 
 # Some inputs fail (a file that is not a mesh): 8 with --keep-going, the
-# others baked; all fail: 9. No output of a failed step is left.
-printf 'not a mesh\n' > "$work/a_broken.off"
+# others baked; stopped at the first failure (--jobs 1, the largest input
+# first) before any input baked: 9. No output of a failed step is left.
+# Larger than the tetrahedron, so that it starts first (largest first).
+{ printf 'not a mesh\n' && head -c 4096 /dev/zero | tr '\0' x; } > "$work/a_broken.off"
 cp "$data/meshes/cgal_tetrahedron.off" "$work/b_tetrahedron.off"
 cat > "$work/partly.toml" <<TOML
 [inputs]
@@ -85,7 +87,8 @@ code=0
 [ -f "$work/partly/b_tetrahedron.off/pack.lbk" ] || fail "the good input was not baked"
 [ ! -e "$work/partly/a_broken.off/pack.lbk" ] || fail "a failed step left its output"
 code=0
-"$tools/lodbake-bake" "$work/partly.toml" --out "$work/stopped" --quiet 2> "$work/stopped.err" ||
+"$tools/lodbake-bake" "$work/partly.toml" --out "$work/stopped" --jobs 1 --quiet \
+  2> "$work/stopped.err" ||
   code=$?
 [ "$code" = 9 ] || fail "stopped at the first input: exit $code, not 9"
 grep -q "a_broken.off: pack: " "$work/stopped.err" || fail "the failure is not named"

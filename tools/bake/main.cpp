@@ -157,11 +157,14 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   std::string asset;
   std::string step;
+  unsigned jobs = 0;
   tool.options().add_options()("out", po::value<std::string>(&out_dir)->value_name("DIR"),
                                "the folder the output templates are relative to (default: the "
                                "current folder)")(
       "set", po::value<std::vector<std::string>>(&sets)->value_name("NAME=VALUE"),
       "set a recipe variable ([vars]), e.g. --set data=../shared/data; repeatable")(
+      "jobs,j", po::value<unsigned>(&jobs)->value_name("N"),
+      "bake N inputs at once (default: one per core); the outputs are the same for any N")(
       "keep-going", "bake the other inputs after one failed")(
       "asset", po::value<std::string>(&asset)->value_name("PATH"),
       "bake only this input (a path the globs match, as --list prints it)")(
@@ -220,6 +223,7 @@ int main(int argc, char** argv) {
     }
     BakeOptions options;
     options.out_dir = out_dir;
+    options.jobs = jobs;
     options.keep_going = tool.has("keep-going");
     if (tool.has("step")) options.only_step = step;
     const auto start = std::chrono::steady_clock::now();
