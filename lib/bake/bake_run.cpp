@@ -12,8 +12,10 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 
 #include "formats/support/file_io.h"
+#include "lib/bake/bake_cache.h"
 #include "lib/bake/bake_steps.h"
 
 namespace lodbake {
@@ -78,7 +80,22 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
   report.status = "ok";
   Result<Bytes> bytes = read_file(plan.input);
   std::map<std::string, std::vector<Bytes>> earlier;
+  std::optional<BakeCache> cache;
+  nlohmann::json fingerprint;
+  if (options.cache_dir && bytes.is_ok()) {
+    cache.emplace(*options.cache_dir);
+    fingerprint = input_fingerprint(plan.input, bytes.value());
+  }
+  std::map<std::string, std::string> keys;  // step -> its cache key
   for (const StepPlan& step : plan.steps) {
+    std::string key;
+    if (cache) {
+      std::vector<std::string> merged;
+      if (step.step == "package")
+        for (const nlohmann::json& from : step.options["from"])
+          merged.push_back(keys[from.get<std::string>()]);
+      key = keys[step.step] = step_key(fingerprint, step, merged);
+    }
     if (options.only_step && step.step != *options.only_step) continue;
     StepReport s;
     s.step = step.step;
@@ -90,16 +107,25 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
     step_started(step.step);
     const auto start = std::chrono::steady_clock::now();
     Status status = bytes.status();
-    if (status.is_ok() && options.only_step)
+    std::optional<StepResult> hit;
+    if (status.is_ok() && cache && !options.force) hit = cache->load(key, step);
+    if (status.is_ok() && !hit && options.only_step)
       status = read_earlier(plan, options.out_dir, step, &earlier);
-    Result<StepResult> made = status.is_ok()
+    Result<StepResult> made = hit ? Result<StepResult>(std::move(*hit))
+                              : status.is_ok()
                                   ? run_bake_step(step, plan.input, bytes.value(), earlier)
                                   : Result<StepResult>(status);
     if (made.is_ok()) status = write_outputs(options.out_dir, made.value().files);
     if (made.is_ok() && status.is_ok()) {
-      s.status = "baked";
+      s.status = hit ? "cached" : "baked";
       s.warnings = made.value().warnings;
       s.report = made.value().report;
+      if (cache && !hit) {
+        // A cache that cannot be written costs the next run time, not this
+        // run its outputs.
+        Status stored = cache->store(key, made.value());
+        if (!stored.is_ok()) s.warnings.push_back("cache: " + stored.message());
+      }
       for (auto& [path, file] : made.value().files) {
         s.outputs.emplace_back(output_path(options.out_dir, path), file.size());
         earlier[step.step].push_back(std::move(file));

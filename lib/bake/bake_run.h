@@ -17,15 +17,22 @@
 namespace lodbake {
 
 struct BakeOptions {
-  std::string out_dir = ".";             // the plans' outputs are relative to it
-  unsigned jobs = 0;                     // inputs baked at once; 0: one per core (bake_jobs())
-  bool keep_going = false;               // run the other inputs after one failed
-  std::optional<std::string> only_step;  // run this step alone (its inputs made before)
+  std::string out_dir = ".";  // the plans' outputs are relative to it
+  unsigned jobs = 0;          // inputs baked at once; 0: one per core (bake_jobs())
+  bool keep_going = false;    // run the other inputs after one failed
+  std::optional<std::string> only_step;
+  // The content cache (lib/bake/bake_cache.h): a step whose key is there is
+  // copied from it, not baked; a baked step is stored. None: no cache.
+  std::optional<std::string> cache_dir;
+  bool force = false;  // bake every step, and store it again  // run this step alone (its inputs
+                       // made before)
 };
 
 struct StepReport {
   std::string step;
-  std::string status;  // "baked", "failed", or "skipped" (an earlier step failed)
+  // "baked", "cached" (copied from the cache), "failed", or "skipped" (an
+  // earlier step failed)
+  std::string status;
   double seconds = 0;
   std::vector<std::pair<std::string, uint64_t>> outputs;  // file (in out_dir), bytes
   std::vector<std::string> warnings;

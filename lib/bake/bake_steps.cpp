@@ -188,7 +188,7 @@ Status run_lods(const StepPlan& step, const std::string& input, const Bytes& byt
       SceneWriteReport written;
       LODBAKE_ASSIGN_OR_RETURN(Bytes glb, write_scene_glb(lods.levels[level], &written));
       for (const std::string& w : written.warnings)
-        out->warnings.push_back(step.outputs[level] + ": " + w);
+        out->warnings.push_back("level " + std::to_string(level) + ": " + w);
       out->files.emplace_back("", std::move(glb));
     }
     return Status::ok();
@@ -208,8 +208,9 @@ Status run_lods(const StepPlan& step, const std::string& input, const Bytes& byt
   for (size_t level = 0; level < lods.size(); ++level) {
     const std::string& path = step.outputs[level];
     if (drops_attributes(path, lods[level]))
-      out->warnings.push_back(
-          path + ": this format cannot store the mesh's normals or texture coordinates");
+      out->warnings.push_back("level " + std::to_string(level) +
+                              ": this format cannot store the mesh's normals or texture "
+                              "coordinates");
     LODBAKE_ASSIGN_OR_RETURN(Bytes file, write_mesh_for_path(path, lods[level]));
     triangles.push_back(lods[level].triangle_count());
     out->files.emplace_back("", std::move(file));

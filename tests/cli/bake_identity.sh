@@ -45,7 +45,8 @@ sections = ["vhie"]
 [override.steps.simplify]
 triangles = 300
 TOML
-"$tools/lodbake-bake" "$work/recipe.toml" --out "$work/out" --json --quiet > "$work/report.json"
+"$tools/lodbake-bake" "$work/recipe.toml" --out "$work/out" --no-cache --json --quiet \
+  > "$work/report.json"
 grep -q '"schema": "lodbake.bake/1"' "$work/report.json" || fail "no report"
 [ "$(grep -c '"status": "baked"' "$work/report.json")" = 18 ] || fail "not 18 steps baked"
 
@@ -82,12 +83,13 @@ globs = ["*.off"]
 [steps.pack]
 TOML
 code=0
-"$tools/lodbake-bake" "$work/partly.toml" --out "$work/partly" --keep-going --quiet || code=$?
+"$tools/lodbake-bake" "$work/partly.toml" --out "$work/partly" --no-cache --keep-going --quiet ||
+  code=$?
 [ "$code" = 8 ] || fail "some failed: exit $code, not 8"
 [ -f "$work/partly/b_tetrahedron.off/pack.lbk" ] || fail "the good input was not baked"
 [ ! -e "$work/partly/a_broken.off/pack.lbk" ] || fail "a failed step left its output"
 code=0
-"$tools/lodbake-bake" "$work/partly.toml" --out "$work/stopped" --jobs 1 --quiet \
+"$tools/lodbake-bake" "$work/partly.toml" --out "$work/stopped" --no-cache --jobs 1 --quiet \
   2> "$work/stopped.err" ||
   code=$?
 [ "$code" = 9 ] || fail "stopped at the first input: exit $code, not 9"

@@ -27,7 +27,7 @@ ratios = [0.5, 0.25]
 [steps.package]
 TOML
 for jobs in 1 2; do
-  "$tools/lodbake-bake" "$work/recipe.toml" --out "$work/j$jobs" --jobs $jobs --json \
+  "$tools/lodbake-bake" "$work/recipe.toml" --out "$work/j$jobs" --jobs $jobs --no-cache --json \
     > "$work/j$jobs.json" 2> "$work/j$jobs.err"
   # The report without its timings, and the output folder named alike.
   grep -v '"seconds"' "$work/j$jobs.json" | sed "s|$work/j$jobs|OUT|g" > "$work/j$jobs.report"
@@ -38,7 +38,8 @@ cmp "$work/j1.report" "$work/j2.report" > /dev/null || fail "the reports differ 
 for err in "$work/j1.err" "$work/j2.err"; do
   [ "$(grep -c '^lodbake-bake: \[[1-4]/4\] .*: ok in ' "$err")" = 4 ] || fail "progress: $err"
 done
-"$tools/lodbake-bake" "$work/recipe.toml" --out "$work/q" --jobs 2 --quiet > /dev/null 2> "$work/q.err"
+"$tools/lodbake-bake" "$work/recipe.toml" --out "$work/q" --jobs 2 --no-cache --quiet \
+  > /dev/null 2> "$work/q.err"
 [ ! -s "$work/q.err" ] || fail "--quiet printed on stderr"
 diff -r "$work/j1" "$work/q" > /dev/null || fail "a third run wrote different files"
 echo "bake_jobs: --jobs 1 and --jobs 2 give the same bytes"

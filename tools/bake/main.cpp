@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "formats/support/file_io.h"
+#include "lib/bake/bake_cache.h"
 #include "lib/bake/bake_run.h"
 #include "lib/bake/recipe.h"
 #include "tools/common/cli.h"
@@ -118,21 +119,22 @@ void print_summary(const std::vector<InputReport>& reports, double seconds) {
   for (const InputReport& r : reports)
     width = std::max(width, r.input.size());
   std::cout << std::left << std::setw(static_cast<int>(width)) << "input"
-            << "  status   steps  seconds      bytes\n";
+            << "  status   steps  cached  seconds      bytes\n";
   for (const InputReport& r : reports) {
     uint64_t bytes = 0;
-    size_t baked = 0;
+    size_t baked = 0, cached = 0;
     for (const StepReport& s : r.steps) {
-      baked += s.status != "failed" && s.status != "skipped";
+      baked += s.status == "baked" || s.status == "cached";
+      cached += s.status == "cached";
       for (const auto& [file, size] : s.outputs)
         bytes += size;
     }
     std::ostringstream steps;
     steps << baked << "/" << r.steps.size();
     std::cout << std::left << std::setw(static_cast<int>(width)) << r.input << "  " << std::setw(7)
-              << r.status << "  " << std::setw(5) << steps.str() << std::right << std::fixed
-              << std::setprecision(2) << std::setw(9) << r.seconds << std::setw(11) << bytes
-              << "\n";
+              << r.status << "  " << std::setw(5) << steps.str() << std::right << std::setw(8)
+              << cached << std::fixed << std::setprecision(2) << std::setw(9) << r.seconds
+              << std::setw(11) << bytes << "\n";
     std::cout.unsetf(std::ios::fixed);
   }
   std::cout << "baked " << reports.size() << " inputs in " << std::fixed << std::setprecision(2)
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
   std::string asset;
   std::string step;
   unsigned jobs = 0;
+  std::string cache_dir;
   tool.options().add_options()("out", po::value<std::string>(&out_dir)->value_name("DIR"),
                                "the folder the output templates are relative to (default: the "
                                "current folder)")(
@@ -166,6 +169,12 @@ int main(int argc, char** argv) {
       "jobs,j", po::value<unsigned>(&jobs)->value_name("N"),
       "bake N inputs at once (default: one per core); the outputs are the same for any N")(
       "keep-going", "bake the other inputs after one failed")(
+      "cache", po::value<std::string>(&cache_dir)->value_name("DIR"),
+      "the content cache: a step whose input files, options and lodbake version are "
+      "unchanged is copied from it instead of baked (default: $LODBAKE_CACHE_DIR, else "
+      "$XDG_CACHE_HOME/lodbake, else ~/.cache/lodbake)")("no-cache",
+                                                         "neither read nor fill the cache")(
+      "force", "bake every step even when the cache has it (and store it again)")(
       "asset", po::value<std::string>(&asset)->value_name("PATH"),
       "bake only this input (a path the globs match, as --list prints it)")(
       "step", po::value<std::string>(&step)->value_name("NAME"),
@@ -189,6 +198,8 @@ int main(int argc, char** argv) {
       return tool.usage_error("--set takes NAME=VALUE, not '" + pair + "'");
     set[pair.substr(0, eq)] = pair.substr(eq + 1);
   }
+  if (tool.has("cache") && tool.has("no-cache"))
+    return tool.usage_error("--cache and --no-cache contradict each other: give one");
   if (tool.has("step")) {
     const std::vector<std::string>& names = bake_step_names();
     if (std::find(names.begin(), names.end(), step) == names.end())
@@ -224,6 +235,9 @@ int main(int argc, char** argv) {
     BakeOptions options;
     options.out_dir = out_dir;
     options.jobs = jobs;
+    if (!tool.has("no-cache"))
+      options.cache_dir = tool.has("cache") ? cache_dir : default_bake_cache_folder();
+    options.force = tool.has("force");
     options.keep_going = tool.has("keep-going");
     if (tool.has("step")) options.only_step = step;
     const auto start = std::chrono::steady_clock::now();
