@@ -35,6 +35,13 @@ Status write_outputs(const std::string& out_dir,
     std::error_code error;
     if (!folder.empty()) std::filesystem::create_directories(folder, error);
     if (error) return Status(ErrorKind::kIo, "cannot create the folder: " + error.message());
+    // A file that already holds these bytes (a rerun into the same folder)
+    // is left as it is: no write, no flush, its time stamp kept for make.
+    const uintmax_t size = std::filesystem::file_size(full, error);
+    if (!error && size == bytes.size()) {
+      Result<Bytes> existing = read_file(full);
+      if (existing.is_ok() && existing.value() == bytes) continue;
+    }
     LODBAKE_RETURN_IF_ERROR(staged.stage(full, bytes));
   }
   std::string failed;
