@@ -29,7 +29,7 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA) \
 
 .PHONY: all deps npm-deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
   bench-heldout bench-attributes \
-  format format-check clean
+  format format-check clean bake-sample
 
 all: build
 
@@ -180,6 +180,7 @@ bench: bench-deps build npm-deps
 	  $(SHARED_DATA)/meshes/stanford_bun_zipper.ply
 	$(BUILD)/tests/bench/bench_assets --runs 5 $(ASSET_BENCH_FILES)
 	$(BUILD)/tests/bench/bench_attributes --runs $(BENCH_RUNS) $(ATTRIBUTE_BENCH_FILES)
+	tests/bench/bake_sample.sh $(BUILD)/tools $(SHARED_DATA)
 
 # The attribute benchmark alone (docs/benchmarks.md, "Attributes").
 bench-attributes: build npm-deps
@@ -204,3 +205,10 @@ format-check:
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(BUILD).configure.log $(ASAN_BUILD).configure.log
+
+# The sample recipe over the shared data, every step, into $(BUILD)/baked
+# with its cache beside it (docs/tools.md "lodbake-bake"); a rerun bakes
+# nothing that did not change.
+bake-sample: build
+	$(BUILD)/tools/lodbake-bake samples/shared_data.toml --set data=$(SHARED_DATA) \
+	  --out $(BUILD)/baked --cache $(BUILD)/bake-cache --keep-going

@@ -4,7 +4,9 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <set>
 
@@ -400,7 +402,7 @@ Result<Recipe> parse_recipe(const std::string& file, const std::string& text,
             *inputs_node, "inputs",
             "unknown variable " + unknown + " in '" + glob + "' (give it in [vars] or --set)");
       glob = substitute(glob, recipe.vars);
-      if (glob.front() != '/') glob = recipe.folder + "/" + glob;
+      if (glob.front() != '/' && recipe.folder != ".") glob = recipe.folder + "/" + glob;
     }
   }
   std::set<std::string> allowed = kPlaceholders;
@@ -451,17 +453,32 @@ Result<Recipe> parse_recipe(const std::string& file, const std::string& text,
   return recipe;
 }
 
+namespace {
+
+// A folder glob(3) could not read for another reason than not existing (a
+// missing folder is only a glob that matches nothing).
+thread_local int glob_error = 0;
+int on_glob_error(const char*, int error) {
+  if (error != ENOENT && error != ENOTDIR) glob_error = error;
+  return 0;
+}
+
+}  // namespace
+
 Result<std::vector<std::string>> expand_inputs(const Recipe& recipe,
                                                std::vector<std::string>* warnings) {
   std::set<std::string> found;
   for (const std::string& pattern : recipe.globs) {
     glob_t matches{};
-    const int code = glob(pattern.c_str(), GLOB_ERR, nullptr, &matches);
+    glob_error = 0;
+    const int code = glob(pattern.c_str(), 0, on_glob_error, &matches);
+    if (glob_error != 0 || (code != 0 && code != GLOB_NOMATCH)) {
+      globfree(&matches);
+      return Status(ErrorKind::kIo, "inputs.globs: '" + pattern + "': cannot read a folder: " +
+                                        std::strerror(glob_error != 0 ? glob_error : EIO));
+    }
     if (code == GLOB_NOMATCH) {
       warnings->push_back("inputs.globs: '" + pattern + "' matches no file");
-    } else if (code != 0) {
-      globfree(&matches);
-      return Status(ErrorKind::kIo, "inputs.globs: '" + pattern + "': cannot read a folder");
     } else {
       for (size_t i = 0; i < matches.gl_pathc; ++i)
         found.insert(matches.gl_pathv[i]);

@@ -4,8 +4,9 @@
 # the tool its step stands for writes with the same options (pack,
 # simplify --pm, simplify --lods, hierarchy --sections, fan, pack --draco of
 # the containers), an override changing one input's options, the JSON report
-# listing every step as baked, and the exit codes of a bake where some or
-# all inputs fail.
+# listing every step as baked, one job per input and step (--asset --step, as
+# a workflow engine runs them) giving the same bytes, and the exit codes of a
+# bake where some or all inputs fail.
 #
 #   bake_identity.sh TOOLS DATA WORK
 set -eu
@@ -70,6 +71,25 @@ check() {  # INPUT DIR NAME HIERARCHY_SECTIONS SIMPLIFY_OPTIONS...
 check "$data/meshes/igl_decimated-knight.off" meshes igl_decimated-knight.off vhie --triangles 300
 check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,vtre
 check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre
+
+# One job per input and step, as a workflow engine runs them (package
+# reading the files of the steps it merges): the same bytes as one bake.
+for input in "$data/meshes/igl_decimated-knight.off" "$data/assets/Fox/Fox.gltf"; do
+  for step in pack simplify lods hierarchy fan package; do
+    "$tools/lodbake-bake" "$work/recipe.toml" --out "$work/jobs" --no-cache --quiet \
+      --asset "$input" --step $step > /dev/null
+  done
+done
+diff -r "$work/jobs/meshes/igl_decimated-knight.off" "$work/out/meshes/igl_decimated-knight.off" \
+  > /dev/null || fail "--asset --step jobs differ from the bake (mesh)"
+diff -r "$work/jobs/Fox" "$work/out/Fox" > /dev/null || fail "--asset --step jobs differ (asset)"
+[ ! -e "$work/jobs/meshes/cgal_tetrahedron.off" ] || fail "--asset baked another input"
+code=0
+"$tools/lodbake-bake" "$work/recipe.toml" --out "$work/alone" --no-cache --quiet \
+  --asset "$data/meshes/cgal_tetrahedron.off" --step package 2> "$work/alone.err" || code=$?
+[ "$code" = 9 ] || fail "package without its steps' files: exit $code, not 9"
+grep -q "simplify.lbk: cannot open.*(run step simplify first)" "$work/alone.err" ||
+  fail "package without its steps' files: not said"
 
 # Some inputs fail (a file that is not a mesh): 8 with --keep-going, the
 # others baked; stopped at the first failure (--jobs 1, the largest input

@@ -108,17 +108,20 @@ TEST(BakeRecipe, GlobsExpandSortedOnceAndWarnOnNoMatch) {
   std::filesystem::create_directories(dir);
   for (const char* name : {"c.off", "a.off", "b.ply"})
     std::ofstream(dir / name) << "x";
-  Result<Recipe> r = parse_recipe((dir / "r.toml").string(),
-                                  "[inputs]\nglobs = [\"*.off\", \"a.*\", \"*.stl\"]\n"
-                                  "exclude = [\"c.*\"]\n[steps.pack]\n",
-                                  {});
+  Result<Recipe> r =
+      parse_recipe((dir / "r.toml").string(),
+                   "[inputs]\nglobs = [\"*.off\", \"a.*\", \"*.stl\", \"none/*.off\"]\n"
+                   "exclude = [\"c.*\"]\n[steps.pack]\n",
+                   {});
   ASSERT_TRUE(r.is_ok()) << r.status().message();
   std::vector<std::string> warnings;
   Result<std::vector<std::string>> inputs = expand_inputs(r.value(), &warnings);
   ASSERT_TRUE(inputs.is_ok());
   EXPECT_EQ(inputs.value(), std::vector<std::string>{(dir / "a.off").string()});
-  ASSERT_EQ(warnings.size(), 1u);
+  // A folder that does not exist is a glob matching nothing, not an error.
+  ASSERT_EQ(warnings.size(), 2u);
   EXPECT_NE(warnings[0].find("*.stl' matches no file"), std::string::npos);
+  EXPECT_NE(warnings[1].find("none/*.off' matches no file"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 
