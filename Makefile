@@ -92,7 +92,7 @@ test-sanitize: deps
 # and the CLI cases through CTest: cases that need the codec are left out,
 # the nodraco_ ones (exit code 5 for Draco sections) run instead.
 NODRACO_TOOLS := lodbake-inspect lodbake-pack lodbake-simplify lodbake-hierarchy lodbake-fan \
-  lodbake-strips lodbake-replay
+  lodbake-strips lodbake-replay lodbake-bake
 test-nodraco: deps
 	@cmake -S . -B $(NODRACO_BUILD) $(CMAKE_FLAGS) -DLODBAKE_DRACO_CODEC=OFF -DLODBAKE_BENCHMARKS=OFF \
 	  > $(NODRACO_BUILD).configure.log 2>&1 || { cat $(NODRACO_BUILD).configure.log; exit 1; }
