@@ -233,13 +233,21 @@ Status run_hierarchy(const nlohmann::json& o, const std::string& input, const By
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = hierarchy_meta_options(request);
   if (is_asset(input, bytes)) {
+    // As lodbake-hierarchy: the hierarchy's progressive mesh (with DAGE or
+    // VTRE) carries the asset's wedges.
+    std::map<uint32_t, MeshCornerWedges> corners;
     return build_over_asset(
         input, bytes, std::move(meta), load_options(o),
-        [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+        [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
           LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt b, build_hierarchy_sections(request, mesh));
-          return hierarchy_mesh_sections(std::move(b));
+          return hierarchy_mesh_sections(std::move(b), corners, scene_mesh, mesh);
         },
-        {}, out);
+        [&](const Scene& scene) -> Status {
+          if (!request.dage && !request.vtre) return Status::ok();
+          LODBAKE_ASSIGN_OR_RETURN(corners, asset_corner_wedges(request, scene));
+          return Status::ok();
+        },
+        out);
   }
   LoadedMesh loaded;
   LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));

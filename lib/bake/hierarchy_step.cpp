@@ -10,6 +10,7 @@
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
+#include "formats/sections/wedg.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
@@ -74,7 +75,7 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
   }
   // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
   // share BASE with VHIE (a greedy PM given as input has another base mesh).
-  ProgressiveMesh pm;
+  ProgressiveMesh& pm = out.pm;
   if (request.dage || request.vtre) {
     start = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
@@ -132,10 +133,36 @@ nlohmann::json hierarchy_meta_options(const HierarchyStepOptions& request) {
           {"repair", request.repair}};
 }
 
-MeshSections hierarchy_mesh_sections(HierarchyBuilt&& b) {
+Result<std::map<uint32_t, MeshCornerWedges>> asset_corner_wedges(
+    const HierarchyStepOptions& request, const Scene& scene) {
+  LoadOptions load;
+  load.repair = request.repair;
+  load.strict = request.strict;
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<MeshCornerWedges> all, scene_corner_wedges(scene, load));
+  std::map<uint32_t, MeshCornerWedges> corners;
+  for (MeshCornerWedges& c : all)
+    corners.emplace(c.mesh, std::move(c));
+  return corners;
+}
+
+Result<MeshSections> hierarchy_mesh_sections(HierarchyBuilt&& b,
+                                             const std::map<uint32_t, MeshCornerWedges>& corners,
+                                             uint32_t scene_mesh, const TriangleMesh& mesh) {
   MeshSections out;
-  for (HierarchySection& w : b.sections)
+  for (HierarchySection& w : b.sections) {
+    const bool vspl = std::string(w.tag) == kVsplTag;
     out.sections.emplace_back(w.tag, std::move(w.bytes));
+    if (!vspl) continue;
+    // The corners read from the scene must be over the very mesh the
+    // hierarchy was built on.
+    auto found = corners.find(scene_mesh);
+    if (found == corners.end() || found->second.topology.positions != mesh.positions ||
+        found->second.topology.triangles != mesh.triangles)
+      return runtime_error("the corners read from the scene are not over the mesh built");
+    LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, wedges_of_pm(b.pm, found->second));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(wedges));
+    out.sections.emplace_back(kWedgTag, std::move(wedg));
+  }
   out.counts = b.counts;
   out.report = {{"nodes", b.shape.nodes},
                 {"splits", b.shape.splits},

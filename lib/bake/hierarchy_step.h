@@ -11,12 +11,14 @@
 #include <utility>
 #include <vector>
 
+#include "formats/mesh/progressive_mesh.h"
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/sections/vhie.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/scene/asset_build.h"
+#include "lib/scene/scene_lods.h"
 
 namespace lodbake {
 
@@ -53,6 +55,7 @@ struct HierarchyBuilt {
   std::vector<std::pair<std::string, double>> build_seconds;  // in build order
   nlohmann::json dag_report, vtre_report;
   std::map<std::string, uint64_t> counts;  // META's
+  ProgressiveMesh pm;                      // the hierarchy's own, when DAGE or VTRE are built
 };
 
 Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& request,
@@ -61,7 +64,16 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
 // META's options of a hierarchy container.
 nlohmann::json hierarchy_meta_options(const HierarchyStepOptions& request);
 
-// One asset mesh's group (build_asset()): the built sections and a report.
-MeshSections hierarchy_mesh_sections(HierarchyBuilt&& built);
+// Every mesh's corners with their wedges (scene_corner_wedges()), keyed by
+// scene mesh, for the WEDG of the hierarchy's progressive mesh over an asset.
+Result<std::map<uint32_t, MeshCornerWedges>> asset_corner_wedges(
+    const HierarchyStepOptions& request, const Scene& scene);
+
+// One asset mesh's group (build_asset()): the built sections, with the
+// WEDG of the hierarchy's progressive mesh after its VSPL (the corners read
+// from the scene must be over `mesh`, the mesh built), and a report.
+Result<MeshSections> hierarchy_mesh_sections(HierarchyBuilt&& built,
+                                             const std::map<uint32_t, MeshCornerWedges>& corners,
+                                             uint32_t scene_mesh, const TriangleMesh& mesh);
 
 }  // namespace lodbake

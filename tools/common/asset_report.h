@@ -19,6 +19,10 @@ namespace lodbake::cli {
 inline constexpr char kPositionsOnly[] =
     "the structures hold positions only: the asset's attributes and materials stay in its SCNE "
     "section, not in the levels they refine to (attribute-aware structures: not yet)";
+// lodbake-hierarchy with DAGE or VTRE: their progressive mesh has WEDG.
+inline constexpr char kHierarchyPmOnly[] =
+    "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG); the "
+    "selective fronts of VHIE, DAGE and VTRE hold positions only (not yet)";
 
 // The report of a build over an asset, text or JSON; returns 0.
 int print_asset_build(const Tool& tool, const char* schema, const std::string& input,
@@ -38,6 +42,9 @@ struct AssetRun {
   // The structure carries the asset's attributes (a progressive mesh with
   // WEDG): no kPositionsOnly warning.
   bool attributes = false;
+  // The note in place of kPositionsOnly when the structure keeps the
+  // attributes in part; may be null.
+  const char* partial_note = nullptr;
 };
 
 // A builder's whole run over an asset (`bytes`: the input's content):

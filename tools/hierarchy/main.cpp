@@ -21,6 +21,7 @@
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
+#include "formats/sections/wedg.h"
 #include "formats/support/file_io.h"
 #include "lib/bake/hierarchy_step.h"
 #include "lib/core/sha256.h"
@@ -30,6 +31,7 @@
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/scene/asset_build.h"
+#include "lib/scene/scene_lods.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
 #include "tools/common/asset_report.h"
@@ -65,14 +67,30 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
                kHierarchySchema,
                "building the hierarchies",
                {}};
+  // The hierarchy's progressive mesh (VSPL, written with DAGE or VTRE)
+  // carries the asset's wedges (WEDG): each mesh's corners, read once.
+  std::map<uint32_t, MeshCornerWedges> corners;
+  Status read_corners = Status::ok();
+  if (request.dage || request.vtre) {
+    run.partial_note = kHierarchyPmOnly;
+    run.on_scene = [&](const Scene& scene) {
+      Result<std::map<uint32_t, MeshCornerWedges>> all = asset_corner_wedges(request, scene);
+      if (all.is_ok()) {
+        corners = std::move(all).value();
+      } else {
+        read_corners = all.status();
+      }
+    };
+  }
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = hierarchy_meta_options(request);
-  return run_asset_build(tool, run, std::move(meta), bytes,
-                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-                           LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt b,
-                                                    build_hierarchy_sections(request, mesh));
-                           return hierarchy_mesh_sections(std::move(b));
-                         });
+  return run_asset_build(
+      tool, run, std::move(meta), bytes,
+      [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
+        LODBAKE_RETURN_IF_ERROR(read_corners);
+        LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt b, build_hierarchy_sections(request, mesh));
+        return hierarchy_mesh_sections(std::move(b), corners, scene_mesh, mesh);
+      });
 }
 
 int run(const Tool& tool, const Request& request) {
