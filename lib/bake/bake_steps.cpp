@@ -9,6 +9,7 @@
 #include "lib/bake/hierarchy_step.h"
 #include "lib/bake/pack_step.h"
 #include "lib/bake/simplify_step.h"
+#include "lib/bake/strips_step.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/ingest/meta_input.h"
 #include "lib/meshio/mesh_writers.h"
@@ -304,6 +305,37 @@ Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& b
   return Status::ok();
 }
 
+Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
+                  StepResult* out) {
+  StripsStepOptions request;
+  request.strips_only = o["strips_only"].get<bool>();
+  request.repair = o["repair"] == "repair";
+  request.strict = o["repair"] == "strict";
+  if (is_asset(input, bytes)) {
+    return build_over_asset(
+        input, bytes, strips_meta(request), load_options(o),
+        [&](uint32_t, const TriangleMesh& mesh) { return strips_mesh_sections(request, mesh); }, {},
+        out);
+  }
+  LoadOptions load_with = load_options(o);
+  // Without strips_only the simplification records a progressive mesh.
+  load_with.per_vertex_attributes = !request.strips_only;
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  StripsInput in;
+  in.meta = meta_input(input, loaded);
+  if (request.strips_only) {
+    in.mesh = std::move(loaded.mesh);
+  } else {
+    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(loaded.mesh, nullptr));
+  }
+  LODBAKE_ASSIGN_OR_RETURN(StripsBuilt built, build_strips(request, in));
+  out->report["strips"] = built.strip_stats.strips;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes file, strips_container(request, in, std::move(built)));
+  out->files.emplace_back("", std::move(file));
+  return Status::ok();
+}
+
 // lodbake-pack's repack of the earlier steps' containers, with its META
 // options (tools/pack/main.cpp).
 Status run_package(const StepPlan& step, const std::map<std::string, std::vector<Bytes>>& earlier,
@@ -358,6 +390,8 @@ Result<StepResult> run_bake_step(const StepPlan& step, const std::string& input,
     status = run_hierarchy(o, input, bytes, &out);
   } else if (step.step == "fan") {
     status = run_fan(o, input, bytes, &out);
+  } else if (step.step == "strips") {
+    status = run_strips(o, input, bytes, &out);
   } else if (step.step == "package") {
     status = run_package(step, earlier, &out);
   } else {

@@ -77,13 +77,14 @@ const std::map<std::string, std::vector<KeySpec>>& step_specs() {
         {"degree_weight", Kind::kFloat, 0.0},
         {"boundary_weight", Kind::kFloat, 10.0, 0, kInf},
         {"max_normal_change", Kind::kFloat, 90.0, 0, 180}}},
+      {"strips", {{"strips_only", Kind::kBool, false}}},
       {"package",
        {{"from",
          Kind::kStrings,
          nlohmann::json::array({"simplify", "hierarchy", "fan"}),
          0,
          0,
-         {"pack", "simplify", "hierarchy", "fan"}},
+         {"pack", "simplify", "hierarchy", "fan", "strips"}},
         {"compact", Kind::kBool, true},
         {"draco", Kind::kBool, false},
         {"qp", Kind::kInt, 14, 1, 24},
@@ -219,7 +220,7 @@ Result<nlohmann::json> parse_steps(const toml::table& steps, const std::string& 
     auto spec = step_specs().find(std::string(name.str()));
     if (spec == step_specs().end())
       return error_at(node, step_key,
-                      "unknown step (pack, simplify, lods, hierarchy, fan, package)");
+                      "unknown step (pack, simplify, lods, hierarchy, fan, strips, package)");
     const toml::table* options = node.as_table();
     if (options == nullptr) return error_at(node, step_key, "must be a table");
     nlohmann::json values = nlohmann::json::object();
@@ -299,8 +300,8 @@ Status check_template(const toml::node& node, const std::string& key, const std:
 }  // namespace
 
 const std::vector<std::string>& bake_step_names() {
-  static const std::vector<std::string> names = {"pack",      "simplify", "lods",
-                                                 "hierarchy", "fan",      "package"};
+  static const std::vector<std::string> names = {"pack", "simplify", "lods",   "hierarchy",
+                                                 "fan",  "strips",   "package"};
   return names;
 }
 

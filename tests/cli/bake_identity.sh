@@ -2,7 +2,7 @@
 # lodbake-bake against the tools: a recipe over two small meshes and a glTF
 # asset (written here), every step's files compared byte for byte with what
 # the tool its step stands for writes with the same options (pack,
-# simplify --pm, simplify --lods, hierarchy --sections, fan, pack --draco of
+# simplify --pm, simplify --lods, hierarchy --sections, fan, strips, pack --draco of
 # the containers), an override changing one input's options, the JSON report
 # listing every step as baked, one job per input and step (--asset --step, as
 # a workflow engine runs them) giving the same bytes, and the exit codes of a
@@ -40,12 +40,15 @@ ratios = [0.5, 0.2]
 [steps.hierarchy]
 [steps.fan]
 degree_weight = 1.5
+[steps.strips]
 [steps.package]
 from = ["simplify", "hierarchy"]
 draco = $draco
 qp = 12
 [[override]]
 glob = "*/igl_decimated-knight.off"
+[override.steps.strips]
+strips_only = true
 [override.steps.hierarchy]
 sections = ["vhie"]
 [override.steps.simplify]
@@ -54,11 +57,12 @@ TOML
 "$tools/lodbake-bake" "$work/recipe.toml" --out "$work/out" --no-cache --json --quiet \
   > "$work/report.json"
 grep -q '"schema": "lodbake.bake/1"' "$work/report.json" || fail "no report"
-[ "$(grep -c '"status": "baked"' "$work/report.json")" = 18 ] || fail "not 18 steps baked"
+[ "$(grep -c '"status": "baked"' "$work/report.json")" = 21 ] || fail "not 21 steps baked"
 
-check() {  # INPUT DIR NAME HIERARCHY_SECTIONS SIMPLIFY_OPTIONS...
-  input=$1 out=$work/out/$2/$3 sections=$4 t=$work/tools/$3
-  shift 4
+check() {  # INPUT DIR NAME HIERARCHY_SECTIONS STRIPS_OPTION|- SIMPLIFY_OPTIONS...
+  input=$1 out=$work/out/$2/$3 sections=$4 t=$work/tools/$3 strips=$5
+  [ "$strips" = - ] && strips=
+  shift 5
   "$tools/lodbake-pack" "$input" -o "$t.pack.lbk" --quantize 14 > /dev/null
   same "$t.pack.lbk" "$out/pack.lbk"
   "$tools/lodbake-simplify" "$input" --pm "$t.pm.lbk" --ratio 0.25 "$@" > /dev/null
@@ -70,17 +74,20 @@ check() {  # INPUT DIR NAME HIERARCHY_SECTIONS SIMPLIFY_OPTIONS...
   same "$t.h.lbk" "$out/hierarchy.lbk"
   "$tools/lodbake-fan" "$input" -o "$t.fan.lbk" --degree-weight 1.5 > /dev/null
   same "$t.fan.lbk" "$out/fan.lbk"
+  "$tools/lodbake-strips" "$input" $strips -o "$t.strips.lbk" > /dev/null
+  same "$t.strips.lbk" "$out/strips.lbk"
   "$tools/lodbake-pack" "$t.pm.lbk" "$t.h.lbk" $draco_option -o "$t.pkg.lbk" > /dev/null
   same "$t.pkg.lbk" "$out/package.lbk"
 }
-check "$data/meshes/igl_decimated-knight.off" meshes igl_decimated-knight.off vhie --triangles 300
-check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,vtre
-check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre
+check "$data/meshes/igl_decimated-knight.off" meshes igl_decimated-knight.off vhie --strips-only \
+  --triangles 300
+check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,vtre -
+check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre -
 
 # One job per input and step, as a workflow engine runs them (package
 # reading the files of the steps it merges): the same bytes as one bake.
 for input in "$data/meshes/igl_decimated-knight.off" "$data/assets/Fox/Fox.gltf"; do
-  for step in pack simplify lods hierarchy fan package; do
+  for step in pack simplify lods hierarchy fan strips package; do
     "$tools/lodbake-bake" "$work/recipe.toml" --out "$work/jobs" --no-cache --quiet \
       --asset "$input" --step $step > /dev/null
   done

@@ -47,8 +47,9 @@ TEST(BakeRecipe, ErrorsNameLineAndKey) {
             "line 5: steps.simplify.ratio: must be above 0.0 and at most 1.0");
   EXPECT_EQ(error_of(std::string(kMinimal) + "[steps.hierarchy]\nsections = [\"vhie\", \"x\"]\n"),
             "line 5: steps.hierarchy.sections: each must be one of 'vhie' 'dage' 'vtre', not 'x'");
-  EXPECT_EQ(error_of(std::string(kMinimal) + "[steps.strip]\n"),
-            "line 4: steps.strip: unknown step (pack, simplify, lods, hierarchy, fan, package)");
+  EXPECT_EQ(
+      error_of(std::string(kMinimal) + "[steps.strip]\n"),
+      "line 4: steps.strip: unknown step (pack, simplify, lods, hierarchy, fan, strips, package)");
   EXPECT_EQ(error_of(std::string(kMinimal) + "colour = 1\n"),
             "line 4: steps.pack.colour: unknown key");
   EXPECT_EQ(error_of("repair = \"always\"\n" + std::string(kMinimal)),

@@ -149,8 +149,8 @@ int main(int argc, char** argv) {
   using namespace lodbake::cli;
   Tool tool("lodbake-bake", "RECIPE.toml [options]",
             "Bakes every input a recipe names (globs over meshes and glTF assets) through\n"
-            "its steps: pack, simplify (progressive mesh), lods (LOD chain), hierarchy, fan\n"
-            "and package (the earlier containers merged and recoded), each in-process with\n"
+            "its steps: pack, simplify (progressive mesh), lods (LOD chain), hierarchy, fan,\n"
+            "strips and package (the earlier containers merged and recoded), each in-process with\n"
             "the code its tool runs, so every file is byte for byte what the tool writes with\n"
             "the same options (docs/tools.md \"lodbake-bake\" has the recipe reference).\n"
             "Outputs go to the recipe's path templates under --out, each step's files\n"
@@ -204,7 +204,8 @@ int main(int argc, char** argv) {
     const std::vector<std::string>& names = bake_step_names();
     if (std::find(names.begin(), names.end(), step) == names.end())
       return tool.usage_error(
-          "--step takes pack, simplify, lods, hierarchy, fan or package, not '" + step + "'");
+          "--step takes pack, simplify, lods, hierarchy, fan, strips or package, not '" + step +
+          "'");
   }
   return tool.run([&]() -> int {
     Result<Bytes> text = read_file(recipe_file);
