@@ -170,9 +170,62 @@ Status run_simplify(const nlohmann::json& o, const std::string& input, const Byt
   return Status::ok();
 }
 
+// A chain by errors: one run per error, each what `lodbake-simplify IN -o
+// OUT --error E` writes (a PM recorded to the largest error would not
+// give the smaller ones: the engine's passes are scaled by the limit).
+Status run_lods_by_error(const StepPlan& step, const std::string& input, const Bytes& bytes,
+                         StepResult* out) {
+  const nlohmann::json& o = step.options;
+  const std::vector<double> errors = o["errors"].get<std::vector<double>>();
+  const std::string format = o["format"].get<std::string>();
+  nlohmann::json triangles = nlohmann::json::array();
+  if (is_scene_output("x." + format) && is_scene_source(input, bytes)) {
+    LODBAKE_ASSIGN_OR_RETURN(Scene scene, read_input_asset(input, bytes, out));
+    for (size_t level = 0; level < errors.size(); ++level) {
+      SimplifyStepOptions request = simplify_options(o);
+      SceneLodOptions options;
+      options.simplify = request.options;
+      options.simplify.max_error = errors[level];
+      options.load.repair = request.repair;
+      options.load.strict = request.strict;
+      options.weights = request.weights;
+      LODBAKE_ASSIGN_OR_RETURN(SceneLods lods, simplify_scene(scene, options));
+      SceneWriteReport written;
+      LODBAKE_ASSIGN_OR_RETURN(Bytes glb, write_scene_glb(lods.levels.at(0), &written));
+      for (const std::string& w : written.warnings)
+        out->warnings.push_back("level " + std::to_string(level) + ": " + w);
+      uint64_t level_triangles = 0;
+      for (const MeshLodReport& m : lods.meshes)
+        level_triangles += m.lod_triangles.at(0);
+      triangles.push_back(level_triangles);
+      out->files.emplace_back("", std::move(glb));
+    }
+    out->report["triangles"] = triangles;
+    return Status::ok();
+  }
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  for (size_t level = 0; level < errors.size(); ++level) {
+    SimplifyStepOptions request = simplify_options(o);
+    request.options.max_error = errors[level];
+    LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+    const std::string& path = step.outputs[level];
+    if (drops_attributes(path, result.mesh))
+      out->warnings.push_back("level " + std::to_string(level) +
+                              ": this format cannot store the mesh's normals or texture "
+                              "coordinates");
+    LODBAKE_ASSIGN_OR_RETURN(Bytes file, write_mesh_for_path(path, result.mesh));
+    triangles.push_back(result.mesh.triangle_count());
+    out->files.emplace_back("", std::move(file));
+  }
+  out->report["triangles"] = triangles;
+  return Status::ok();
+}
+
 Status run_lods(const StepPlan& step, const std::string& input, const Bytes& bytes,
                 StepResult* out) {
   const nlohmann::json& o = step.options;
+  if (!o["errors"].is_null()) return run_lods_by_error(step, input, bytes, out);
   SimplifyStepOptions request = simplify_options(o);
   const std::vector<double> ratios = o["ratios"].get<std::vector<double>>();
   const std::string format = o["format"].get<std::string>();

@@ -56,6 +56,7 @@ const std::map<std::string, std::vector<KeySpec>>& step_specs() {
         {"tangent_weight", Kind::kFloat, 0.1, 0, kInf}}},
       {"lods",
        {{"ratios", Kind::kFloats, nlohmann::json::array({0.5, 0.25, 0.1}), 0, 1, {}, true},
+        {"errors", Kind::kFloats, nullptr, 0, kInf},
         {"format", Kind::kString, "glb", 0, 0, {"glb", "obj", "ply", "off"}},
         {"boundary_weight", Kind::kFloat, 10.0, 0, kInf},
         {"lock_border", Kind::kBool, false},
@@ -231,6 +232,8 @@ Result<nlohmann::json> parse_steps(const toml::table& steps, const std::string& 
       if (found == spec->second.end()) return error_at(value, option_key, "unknown key");
       LODBAKE_ASSIGN_OR_RETURN(values[found->key], option_value(*found, value, option_key));
     }
+    if (values.contains("ratios") && values.contains("errors"))
+      return error_at(node, step_key, "give ratios or errors, not both");
     out[std::string(name.str())] = values;
   }
   return out;
@@ -540,8 +543,12 @@ Result<InputPlan> plan_input(const Recipe& recipe, const std::string& input) {
     s.options["repair"] = repair;
     values["step"] = step;
     if (step == "lods") {
+      // A chain by errors (set last, by an override) replaces the ratios.
+      if (!s.options["errors"].is_null()) s.options["ratios"] = nullptr;
+      const nlohmann::json& levels =
+          s.options["errors"].is_null() ? s.options["ratios"] : s.options["errors"];
       values["format"] = s.options["format"].get<std::string>();
-      for (size_t level = 0; level < s.options["ratios"].size(); ++level) {
+      for (size_t level = 0; level < levels.size(); ++level) {
         values["level"] = std::to_string(level);
         s.outputs.push_back(substitute(recipe.lods_output, values));
       }

@@ -2,7 +2,8 @@
 # lodbake-bake against the tools: a recipe over two small meshes and a glTF
 # asset (written here), every step's files compared byte for byte with what
 # the tool its step stands for writes with the same options (pack,
-# simplify --pm, simplify --lods, hierarchy --sections, fan, strips, pack --draco of
+# simplify --pm, simplify --lods (and --error per level of a chain by
+# errors), hierarchy --sections, fan, strips, pack --draco of
 # the containers), an override changing one input's options, the JSON report
 # listing every step as baked, one job per input and step (--asset --step, as
 # a workflow engine runs them) giving the same bytes, and the exit codes of a
@@ -53,21 +54,32 @@ strips_only = true
 sections = ["vhie"]
 [override.steps.simplify]
 triangles = 300
+[[override]]
+glob = "*/Fox.gltf"
+[override.steps.lods]
+errors = [0.002, 0.02]
 TOML
 "$tools/lodbake-bake" "$work/recipe.toml" --out "$work/out" --no-cache --json --quiet \
   > "$work/report.json"
 grep -q '"schema": "lodbake.bake/1"' "$work/report.json" || fail "no report"
 [ "$(grep -c '"status": "baked"' "$work/report.json")" = 21 ] || fail "not 21 steps baked"
 
-check() {  # INPUT DIR NAME HIERARCHY_SECTIONS STRIPS_OPTION|- SIMPLIFY_OPTIONS...
-  input=$1 out=$work/out/$2/$3 sections=$4 t=$work/tools/$3 strips=$5
+check() {  # INPUT DIR NAME HIERARCHY_SECTIONS STRIPS_OPTION|- BY_ERROR SIMPLIFY_OPTIONS...
+  input=$1 out=$work/out/$2/$3 sections=$4 t=$work/tools/$3 strips=$5 by_error=$6
   [ "$strips" = - ] && strips=
-  shift 5
+  shift 6
   "$tools/lodbake-pack" "$input" -o "$t.pack.lbk" --quantize 14 > /dev/null
   same "$t.pack.lbk" "$out/pack.lbk"
   "$tools/lodbake-simplify" "$input" --pm "$t.pm.lbk" --ratio 0.25 "$@" > /dev/null
   same "$t.pm.lbk" "$out/simplify.lbk"
-  "$tools/lodbake-simplify" "$input" --lods 0.5,0.2 -o "$t.lod%d.glb" --no-metrics > /dev/null
+  if [ "$by_error" = yes ]; then
+    # A chain by errors: one run of the tool per error.
+    "$tools/lodbake-simplify" "$input" --error 0.002 -o "$t.lod0.glb" --no-metrics > /dev/null
+    "$tools/lodbake-simplify" "$input" --error 0.02 -o "$t.lod1.glb" --no-metrics > /dev/null
+    cmp -s "$t.lod0.glb" "$t.lod1.glb" && fail "the two errors gave one level"
+  else
+    "$tools/lodbake-simplify" "$input" --lods 0.5,0.2 -o "$t.lod%d.glb" --no-metrics > /dev/null
+  fi
   same "$t.lod0.glb" "$out/lod0.glb"
   same "$t.lod1.glb" "$out/lod1.glb"
   "$tools/lodbake-hierarchy" "$input" -o "$t.h.lbk" --sections "$sections" > /dev/null
@@ -80,9 +92,9 @@ check() {  # INPUT DIR NAME HIERARCHY_SECTIONS STRIPS_OPTION|- SIMPLIFY_OPTIONS.
   same "$t.pkg.lbk" "$out/package.lbk"
 }
 check "$data/meshes/igl_decimated-knight.off" meshes igl_decimated-knight.off vhie --strips-only \
-  --triangles 300
-check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,vtre -
-check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre -
+  no --triangles 300
+check "$data/meshes/cgal_tetrahedron.off" meshes cgal_tetrahedron.off vhie,dage,vtre - no
+check "$data/assets/Fox/Fox.gltf" Fox Fox.gltf vhie,dage,vtre - yes
 
 # One job per input and step, as a workflow engine runs them (package
 # reading the files of the steps it merges): the same bytes as one bake.

@@ -91,6 +91,24 @@ TEST(BakeRecipe, VariablesAndOverrides) {
   EXPECT_EQ(b.value().steps[0].options["placement"], "half");
 }
 
+TEST(BakeRecipe, LodChainByRatiosOrErrors) {
+  EXPECT_EQ(error_of(std::string(kMinimal) + "[steps.lods]\nratios = [0.5]\nerrors = [0.1]\n"),
+            "line 4: steps.lods: give ratios or errors, not both");
+  Result<Recipe> r = parse(std::string(kMinimal) +
+                           "[steps.lods]\nratios = [0.5, 0.25]\n[[override]]\nglob = \"*.ply\"\n"
+                           "[override.steps.lods]\nerrors = [0.01, 0.02, 0.04]\n");
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  Result<InputPlan> off = plan_input(r.value(), "/a.off");
+  Result<InputPlan> ply = plan_input(r.value(), "/a.ply");
+  ASSERT_TRUE(off.is_ok() && ply.is_ok());
+  EXPECT_EQ(off.value().steps[1].outputs.size(), 2u);
+  EXPECT_TRUE(off.value().steps[1].options["errors"].is_null());
+  // The override's chain by errors replaces the ratios: one level per error.
+  EXPECT_EQ(ply.value().steps[1].outputs,
+            (std::vector<std::string>{"a.ply/lod0.glb", "a.ply/lod1.glb", "a.ply/lod2.glb"}));
+  EXPECT_TRUE(ply.value().steps[1].options["ratios"].is_null());
+}
+
 TEST(BakeRecipe, CollidingOutputsAreRefused) {
   Result<Recipe> r = parse(
       "[inputs]\nglobs = [\"*\"]\n[output]\npath = \"{stem}/{step}.lbk\"\n"
