@@ -34,7 +34,9 @@ Status write_outputs(const std::string& out_dir,
     const std::filesystem::path folder = std::filesystem::path(full).parent_path();
     std::error_code error;
     if (!folder.empty()) std::filesystem::create_directories(folder, error);
-    if (error) return Status(ErrorKind::kIo, "cannot create the folder: " + error.message());
+    if (error)
+      return Status(ErrorKind::kIo,
+                    folder.string() + ": cannot create the folder: " + error.message());
     // A file that already holds these bytes (a rerun into the same folder)
     // is left as it is: no write, no flush, its time stamp kept for make.
     const uintmax_t size = std::filesystem::file_size(full, error);
@@ -42,10 +44,13 @@ Status write_outputs(const std::string& out_dir,
       Result<Bytes> existing = read_file(full);
       if (existing.is_ok() && existing.value() == bytes) continue;
     }
-    LODBAKE_RETURN_IF_ERROR(staged.stage(full, bytes));
+    if (Status staged_ok = staged.stage(full, bytes); !staged_ok.is_ok())
+      return Status(staged_ok.kind(), full + ": " + staged_ok.message());
   }
   std::string failed;
-  return staged.commit(&failed);
+  if (Status committed = staged.commit(&failed); !committed.is_ok())
+    return Status(committed.kind(), failed + ": " + committed.message());
+  return Status::ok();
 }
 
 // The files of the steps `only_step` depends on (package), read back from
