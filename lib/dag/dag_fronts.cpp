@@ -150,22 +150,29 @@ std::vector<std::string> DagFronts::check_counters() const {
   return findings;
 }
 
-std::vector<Triangle> dag_cut_triangles(const SplitLineage& lineage, const DagFronts& fronts) {
-  std::vector<Triangle> out;
+std::vector<uint32_t> dag_cut(const SplitLineage& lineage, const DagFronts& fronts) {
+  std::vector<uint32_t> out;
   const size_t splits = lineage.split_count();
   auto alive = [&](size_t t) {
     const uint32_t by = lineage.changed_by[t];
     return by == kNoVertex || !fronts.is_split(by);
   };
-  for (size_t t = 0; t < lineage.created_offsets[0]; ++t) {
-    if (alive(t)) out.push_back(lineage.triangles[t]);
+  for (uint32_t t = 0; t < lineage.created_offsets[0]; ++t) {
+    if (alive(t)) out.push_back(t);
   }
   for (size_t i = 0; i < splits; ++i) {
     if (!fronts.is_split(static_cast<uint32_t>(i))) continue;
-    for (size_t t = lineage.created_offsets[i]; t < lineage.created_offsets[i + 1]; ++t) {
-      if (alive(t)) out.push_back(lineage.triangles[t]);
+    for (uint32_t t = lineage.created_offsets[i]; t < lineage.created_offsets[i + 1]; ++t) {
+      if (alive(t)) out.push_back(t);
     }
   }
+  return out;
+}
+
+std::vector<Triangle> dag_cut_triangles(const SplitLineage& lineage, const DagFronts& fronts) {
+  std::vector<Triangle> out;
+  for (uint32_t t : dag_cut(lineage, fronts))
+    out.push_back(lineage.triangles[t]);
   return out;
 }
 

@@ -77,4 +77,7 @@ class DagFronts {
 /// \pre lineage and fronts come from the same PM (same split count).
 std::vector<Triangle> dag_cut_triangles(const SplitLineage& lineage, const DagFronts& fronts);
 
+/// The same cut as lineage indices (into lineage.triangles, face_slot).
+std::vector<uint32_t> dag_cut(const SplitLineage& lineage, const DagFronts& fronts);
+
 }  // namespace lodbake

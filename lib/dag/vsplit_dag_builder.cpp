@@ -38,6 +38,9 @@ Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm) {
     out.triangles = pm.base.triangles;
     out.triangles.reserve(pm.base.triangles.size() + 8 * splits);
     out.changed_by.assign(out.triangles.size(), kNoVertex);
+    out.face_slot.resize(out.triangles.size());
+    for (size_t t = 0; t < out.face_slot.size(); ++t)
+      out.face_slot[t] = static_cast<uint32_t>(t);
     std::vector<uint32_t> creator(out.triangles.size(), kNoVertex);
     std::vector<uint32_t> slot_triangle(out.triangles.size());
     for (size_t t = 0; t < slot_triangle.size(); ++t)
@@ -81,12 +84,14 @@ Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm) {
         if (creator[old] != kNoVertex) deps.push_back(creator[old]);
         slot_triangle[slot] = static_cast<uint32_t>(out.triangles.size());
         out.triangles.push_back(sim.faces()[slot]);
+        out.face_slot.push_back(slot);
         creator.push_back(split);
         out.changed_by.push_back(kNoVertex);
       }
       for (uint32_t slot : effect.added) {
         slot_triangle.push_back(static_cast<uint32_t>(out.triangles.size()));
         out.triangles.push_back(sim.faces()[slot]);
+        out.face_slot.push_back(slot);
         creator.push_back(split);
         out.changed_by.push_back(kNoVertex);
       }

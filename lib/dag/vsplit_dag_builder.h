@@ -28,6 +28,10 @@ struct SplitLineage {
   /// The split that changes each triangle, or kNoVertex when none does (it
   /// is in the fully refined mesh).
   std::vector<uint32_t> changed_by;
+  /// The progressive mesh's face slot of each triangle (PmRefiner's: base
+  /// triangles, then each split's added faces): a moved face's new version
+  /// keeps its slot, so corners find their wedges (CornerWedges).
+  std::vector<uint32_t> face_slot;
   /// Split i's dependencies before transitive reduction, CSR like
   /// VsplitDag: the creators of the triangles it changes and of the
   /// boundary half-edges it changes (see build_split_lineage()).

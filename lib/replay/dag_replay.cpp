@@ -467,6 +467,17 @@ std::vector<std::string> DagReplay::check() const {
   return problems;
 }
 
+std::vector<std::string> check_dag_wedges(const DagReplay& replay, const CornerWedges& lookup,
+                                          const PmWedges& wedges) {
+  const SplitLineage& lineage = replay.lineage();
+  const std::vector<uint32_t> cut = replay.cut();
+  std::vector<std::array<uint32_t, 3>> corners(cut.size());
+  for (size_t f = 0; f < cut.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      corners[f][k] = lookup.wedge(lineage.face_slot[cut[f]], lineage.triangles[cut[f]][k]);
+  return corner_wedge_problems(corners, wedges);
+}
+
 double cut_accuracy(const std::vector<Triangle>& reference, const std::vector<Triangle>& other) {
   if (reference.empty()) return 1;
   const std::vector<Triangle> a = sorted_canonical(reference);

@@ -16,6 +16,7 @@
 #include "formats/mesh/vsplit_dag.h"
 #include "formats/support/status.h"
 #include "lib/dag/dag_fronts.h"
+#include "lib/simplify/wedge_replay.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/replay/camera_path.h"
 
@@ -100,6 +101,9 @@ class DagReplay {
   /// The current cut's triangles (vertex ids of the PM: base vertices, then
   /// split i's new vertex as base_vertex_count + i).
   std::vector<Triangle> cut_triangles() const { return dag_cut_triangles(lineage_, fronts_); }
+  /// The same cut as indices into lineage().
+  std::vector<uint32_t> cut() const { return dag_cut(lineage_, fronts_); }
+  const SplitLineage& lineage() const { return lineage_; }
 
   /// Problems of the current cut, empty when its triangles form an
   /// edge-manifold, consistently oriented triangulation without repeated
@@ -247,6 +251,12 @@ class DagReplay {
   double near_distance_ = 0;
   bool back_face_ = true;
 };
+
+/// The current cut's corner wedges (an asset's PM with WEDG: `lookup` over
+/// the same PM as `replay`): every corner has one, a face's three belong to
+/// one primitive (corner_wedge_problems()). One line per problem.
+std::vector<std::string> check_dag_wedges(const DagReplay& replay, const CornerWedges& lookup,
+                                          const PmWedges& wedges);
 
 /// The share of `reference`'s triangles that `other` also has, in [0, 1]
 /// (1 when `reference` has none): the paper's accuracy of a traversal

@@ -3,9 +3,12 @@
 // that every mode names a violation the same way.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "formats/mesh/pm_wedges.h"
 #include "formats/mesh/triangle_mesh.h"
 #include "lib/check/mesh_check.h"
 
@@ -26,5 +29,12 @@ std::vector<std::string> triangulation_problems(const TriangleMesh& mesh);
 /// so the orientation, kept), then sorted: two triangle lists describe the
 /// same oriented triangles exactly when these are equal.
 std::vector<Triangle> sorted_canonical(std::vector<Triangle> triangles);
+
+/// What --validate asks of a mesh's corner wedges (`corners`, per
+/// triangle): every corner has one (kNoVertex: none) and a face's three
+/// belong to one primitive of the asset's mesh. One line per kind of
+/// problem, with its count and first face; empty when there is none.
+std::vector<std::string> corner_wedge_problems(
+    const std::vector<std::array<uint32_t, 3>>& corners, const PmWedges& wedges);
 
 }  // namespace lodbake

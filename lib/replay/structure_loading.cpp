@@ -119,6 +119,14 @@ Result<DagStructure> load_dag_structure(const Container& decoded, uint32_t group
     LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
     LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, decode_dage(dage->data, dage->size));
     out.dag = std::make_unique<VsplitDag>(std::move(dag));
+    if (const Section* wedg = decoded.find(kWedgTag, group)) {
+      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
+      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
+      Result<CornerWedges> lookup = CornerWedges::create(*out.pm, *out.wedges);
+      if (!lookup.is_ok())
+        return Status(lookup.status().kind(), "section WEDG: " + lookup.status().message());
+      out.lookup.emplace(std::move(lookup).value());
+    }
     return out;
   });
 }

@@ -57,9 +57,14 @@ Result<VhierStructure> load_vhier_structure(const Container& decoded, uint32_t g
 
 /// Mode dag: the progressive mesh (BASE + VSPL) and its split DAG (DAGE).
 /// DagReplay::create() over them is the mode's own step.
+/// With WEDG in the group (an asset's hierarchy), also the corner wedges
+/// of every cut (CornerWedges over the PM; a WEDG that does not replay
+/// with the PM fails the load).
 struct DagStructure {
   std::unique_ptr<ProgressiveMesh> pm;
   std::unique_ptr<VsplitDag> dag;
+  std::unique_ptr<PmWedges> wedges;
+  std::optional<CornerWedges> lookup;
 };
 Result<DagStructure> load_dag_structure(const Container& decoded, uint32_t group);
 

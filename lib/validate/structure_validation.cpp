@@ -375,10 +375,22 @@ void check_dag(const Container& decoded, uint32_t group, bool with_hierarchy, Fi
   auto cut_problems = [&] {
     TriangleMesh mesh;
     mesh.positions.assign(pm.base.vertex_count() + pm.splits.size(), Vec3f{0, 0, 0});
-    mesh.triangles = dag_cut_triangles(lineage.value(), fronts);
+    const std::vector<uint32_t> cut = dag_cut(lineage.value(), fronts);
+    std::vector<std::array<uint32_t, 3>> corners;
+    for (uint32_t t : cut) {
+      mesh.triangles.push_back(lineage.value().triangles[t]);
+      if (!loaded.value().lookup) continue;
+      std::array<uint32_t, 3>& c = corners.emplace_back();
+      for (int k = 0; k < 3; ++k)
+        c[k] = loaded.value().lookup->wedge(lineage.value().face_slot[t], mesh.triangles.back()[k]);
+    }
     std::vector<std::string> problems = fronts.check_counters();
     for (std::string& p : triangulation_problems(mesh))
       problems.push_back(std::move(p));
+    if (loaded.value().lookup) {
+      for (std::string& p : corner_wedge_problems(corners, *loaded.value().wedges))
+        problems.push_back(std::move(p));
+    }
     return problems;
   };
   for (int side = 0; side < 2; ++side) {

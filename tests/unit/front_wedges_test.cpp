@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "lib/dag/dag_fronts.h"
+#include "lib/dag/vsplit_dag_builder.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/scene/scene_lods.h"
@@ -165,6 +167,67 @@ TEST_P(FrontWedgesTest, ViewDependentFrontsAreTexturedAndTheFinestIsTheInput) {
     std::sort(ours.begin(), ours.end());
     std::sort(theirs.begin(), theirs.end());
     EXPECT_EQ(ours, theirs) << "mesh " << meshes[i];
+  }
+}
+
+// The split DAG over the same progressive mesh: its cuts are made of the
+// lineage's triangles, each a face slot whose corners the PM's levels have.
+TEST_P(FrontWedgesTest, DagCutsAreTexturedAndTheFinestIsTheInput) {
+  const Scene scene = read_asset(kAssets + GetParam());
+  std::vector<uint32_t> meshes;
+  for (const Built& b : build_all(scene, &meshes)) {
+    Result<VsplitDag> dag = build_vsplit_dag(b.pm);
+    ASSERT_TRUE(dag.is_ok()) << dag.status().message();
+    Result<SplitLineage> lineage = build_split_lineage(b.pm);
+    ASSERT_TRUE(lineage.is_ok());
+    Result<CornerWedges> lookup = CornerWedges::create(b.pm, b.wedges);
+    ASSERT_TRUE(lookup.is_ok());
+    Result<DagFronts> fronts = DagFronts::create(dag.value());
+    ASSERT_TRUE(fronts.is_ok());
+    auto cut_corners = [&] {
+      std::vector<std::array<uint32_t, 4>> out;
+      for (uint32_t t : dag_cut(lineage.value(), fronts.value()))
+        for (int k = 0; k < 3; ++k)
+          out.push_back({lineage.value().triangles[t][k],
+                         lookup.value().wedge(lineage.value().face_slot[t],
+                                              lineage.value().triangles[t][k]),
+                         0, 0});
+      return out;
+    };
+    std::mt19937 random(9);
+    for (int round = 0; round < 6; ++round) {
+      for (int k = 0; k < 300; ++k) {
+        const auto node = static_cast<uint32_t>(random() % dag.value().node_count());
+        if (fronts.value().can_split(node)) {
+          ASSERT_TRUE(fronts.value().split(node).is_ok());
+        } else if (fronts.value().can_collapse(node)) {
+          ASSERT_TRUE(fronts.value().collapse(node).is_ok());
+        }
+      }
+      for (const std::array<uint32_t, 4>& c : cut_corners())
+        ASSERT_NE(c[1], kNoVertex) << "a corner at vertex " << c[0] << " has no wedge";
+    }
+    // Every node split: the fully refined PM's corners.
+    for (bool progress = true; progress;) {
+      progress = false;
+      for (uint32_t node = 0; node < dag.value().node_count(); ++node) {
+        if (!fronts.value().can_split(node)) continue;
+        ASSERT_TRUE(fronts.value().split(node).is_ok());
+        progress = true;
+      }
+    }
+    Result<WedgeRefiner> full = WedgeRefiner::create(b.pm, b.wedges);
+    ASSERT_TRUE(full.is_ok());
+    ASSERT_TRUE(full.value().refine_to(b.pm.full_vertex_count()).is_ok());
+    std::vector<std::array<uint32_t, 4>> theirs;
+    const TriangleMesh& m = full.value().mesh();
+    for (size_t f = 0; f < m.triangles.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        theirs.push_back({m.triangles[f][k], full.value().corners()[f][k], 0, 0});
+    std::vector<std::array<uint32_t, 4>> ours = cut_corners();
+    std::sort(ours.begin(), ours.end());
+    std::sort(theirs.begin(), theirs.end());
+    EXPECT_EQ(ours, theirs);
   }
 }
 

@@ -142,6 +142,14 @@ struct FanState {
   std::optional<FanReplay> replay;
 };
 
+// An asset's structure whose fronts carry wedges: the report says so (and
+// --validate checks every corner).
+void note_wedges(Session* session, const PmWedges& wedges) {
+  session->structure["wedges"] = wedges.wedge_count();
+  session->structure_text +=
+      ", " + std::to_string(wedges.wedge_count()) + " wedges (every corner's checked)";
+}
+
 Result<Session> load_vhier(const OpenedContainer& file, const Request& request) {
   LODBAKE_ASSIGN_OR_RETURN(uint32_t group, structure_group(file, ReplayStructure::kVhier));
   const Section& base = *file.find(kBaseTag, group);
@@ -175,11 +183,7 @@ Result<Session> load_vhier(const OpenedContainer& file, const Request& request) 
   if (request.validate)
     session.cross = prepare_cross_check(file, group, base, state->h.get(), nullptr, nullptr);
   std::shared_ptr<CrossCheckState> cross = session.cross;
-  if (state->front) {
-    session.structure["wedges"] = state->wedges->wedge_count();
-    session.structure_text +=
-        ", " + std::to_string(state->wedges->wedge_count()) + " wedges (every corner's checked)";
-  }
+  if (state->front) note_wedges(&session, *state->wedges);
   session.check = [state, cross] {
     std::vector<std::string> problems = check_vhier_mesh(*state->refiner);
     if (state->front) {
@@ -228,6 +232,7 @@ Result<Session> load_dag(const OpenedContainer& file, const Request& request) {
   session.structure_text = std::to_string(dag.node_count()) + " nodes, " +
                            std::to_string(dag.edge_count()) + " edges, " +
                            std::to_string(pm.base.triangle_count()) + " base triangles";
+  if (state->loaded.lookup) note_wedges(&session, *state->loaded.wedges);
   for (DagTraversal t : traversals)
     session.lanes.push_back(dag_traversal_name(t));
   const DagReplayOptions options = request.dag;
@@ -275,6 +280,11 @@ Result<Session> load_dag(const OpenedContainer& file, const Request& request) {
       const std::string lane = std::string(dag_traversal_name(traversals[i])) + " traversal: ";
       for (const std::string& p : state->lanes[i].check())
         problems.push_back(lane + p);
+      if (state->loaded.lookup) {
+        for (const std::string& p :
+             check_dag_wedges(state->lanes[i], *state->loaded.lookup, *state->loaded.wedges))
+          problems.push_back(lane + p);
+      }
       if (cross && cross->check) {
         std::vector<uint8_t> flags = cross->check->dag_splits(state->lanes[i].fronts());
         const bool own = cross->check->close(&flags);
