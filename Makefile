@@ -12,7 +12,7 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config ccache xz-utils \
   libcgal-dev libeigen3-dev libopenmesh-dev libdraco-dev libboost-program-options-dev \
   nlohmann-json3-dev libssl-dev zlib1g-dev \
   libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev gnuplot-nox \
-  help2man dpkg-dev file
+  help2man dpkg-dev file libtomlplusplus-dev libtbb-dev
 FUZZ_PACKAGES := clang libclang-rt-14-dev
 # Peers the benchmarks run as subprocesses: OpenMesh-mkbalancedpm
 # (bench_hierarchy) and OpenMesh-Analyzer, the VDPM analyzer (bench_pack's
@@ -29,7 +29,7 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA) \
 
 .PHONY: all deps npm-deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
   bench-heldout bench-attributes \
-  format format-check clean install package
+  format format-check clean install package bake-sample
 
 all: build
 
@@ -92,7 +92,7 @@ test-sanitize: deps
 # and the CLI cases through CTest: cases that need the codec are left out,
 # the nodraco_ ones (exit code 5 for Draco sections) run instead.
 NODRACO_TOOLS := lodbake-inspect lodbake-pack lodbake-simplify lodbake-hierarchy lodbake-fan \
-  lodbake-strips lodbake-replay lodbake_man_pages
+  lodbake-strips lodbake-replay lodbake_man_pages lodbake-bake
 test-nodraco: deps
 	@cmake -S . -B $(NODRACO_BUILD) $(CMAKE_FLAGS) -DLODBAKE_DRACO_CODEC=OFF -DLODBAKE_BENCHMARKS=OFF \
 	  > $(NODRACO_BUILD).configure.log 2>&1 || { cat $(NODRACO_BUILD).configure.log; exit 1; }
@@ -180,6 +180,7 @@ bench: bench-deps build npm-deps
 	  $(SHARED_DATA)/meshes/stanford_bun_zipper.ply
 	$(BUILD)/tests/bench/bench_assets --runs 5 $(ASSET_BENCH_FILES)
 	$(BUILD)/tests/bench/bench_attributes --runs $(BENCH_RUNS) $(ATTRIBUTE_BENCH_FILES)
+	tests/bench/bake_sample.sh $(BUILD)/tools $(SHARED_DATA)
 
 # The attribute benchmark alone (docs/benchmarks.md, "Attributes").
 bench-attributes: build npm-deps
@@ -214,3 +215,10 @@ format-check:
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(BUILD).configure.log $(ASAN_BUILD).configure.log
+
+# The sample recipe over the shared data, every step, into $(BUILD)/baked
+# with its cache beside it (docs/tools.md "lodbake-bake"); a rerun bakes
+# nothing that did not change.
+bake-sample: build
+	$(BUILD)/tools/lodbake-bake samples/shared_data.toml --set data=$(SHARED_DATA) \
+	  --out $(BUILD)/baked --cache $(BUILD)/bake-cache --keep-going

@@ -124,6 +124,7 @@ Result<Bytes> read_resource(const SceneResources& resources, const std::string& 
                                                       : resources.folder + "/" + relative;
   if (resolved_path != nullptr) *resolved_path = path;
   auto bytes = read_file(path);
+  if (resources.on_read) resources.on_read(path, bytes.is_ok() ? &bytes.value() : nullptr);
   if (!bytes.is_ok()) {
     return Status(bytes.status().kind(),
                   "file " + dracoio::shown(name) + " cannot be read: " + bytes.status().message());

@@ -26,6 +26,10 @@ struct SceneResources {
   // URIs resolve inside `folder`'s tree: no absolute path, no ".." out of
   // it, no scheme but data:. True lifts the confinement (--allow-outside).
   bool allow_outside = false;
+  // Called with the path of every file read through these resources and its
+  // bytes (null when it cannot be read), so that a caller can tell what an
+  // asset depends on (lodbake-bake's content cache); may be empty.
+  std::function<void(const std::string& path, const Bytes* bytes)> on_read;
 };
 
 // The file `uri` (a glTF URI, percent-encoded; or an OBJ/MTL file name) names,

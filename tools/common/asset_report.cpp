@@ -11,17 +11,6 @@
 
 namespace lodbake::cli {
 
-MetaInput asset_meta_input(const std::string& path, const Bytes& bytes) {
-  if (starts_with_container_magic(bytes.data(), bytes.size())) {
-    Result<OpenedContainer> opened = open_container(bytes);
-    if (opened.is_ok())
-      if (std::optional<MetaInput> input = container_meta_input(opened.value())) return *input;
-  }
-  const size_t slash = path.find_last_of('/');
-  return MetaInput{to_valid_utf8(slash == std::string::npos ? path : path.substr(slash + 1)),
-                   sha256_hex(bytes.data(), bytes.size()), bytes.size()};
-}
-
 int print_asset_build(const Tool& tool, const char* schema, const std::string& input,
                       const std::string& output, const AssetBuild& built) {
   if (tool.json()) {

@@ -8,6 +8,7 @@
 
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
+#include "lib/ingest/meta_input.h"
 #include "lib/scene/asset_build.h"
 #include "tools/common/cli.h"
 
@@ -23,11 +24,6 @@ inline constexpr char kHierarchyPmOnly[] =
     "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG), and so do "
     "VHIE's selective fronts and DAGE's cuts; VTRE trees and streamed fronts hold positions "
     "only (not yet)";
-
-// META's input for an asset: a container's own record of its input (so all
-// the containers of one asset merge), else the file's base name, SHA-256
-// and size.
-MetaInput asset_meta_input(const std::string& path, const Bytes& bytes);
 
 // The report of a build over an asset, text or JSON; returns 0.
 int print_asset_build(const Tool& tool, const char* schema, const std::string& input,

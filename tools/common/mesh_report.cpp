@@ -17,14 +17,6 @@ std::string format_float(float value) {
   return std::string(buffer, result.ptr);
 }
 
-std::string to_valid_utf8(const std::string& text) {
-  // nlohmann's replace handler implements the substitution; reading the
-  // dumped string back undoes the JSON escaping.
-  std::string quoted =
-      nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  return nlohmann::json::parse(quoted).get<std::string>();
-}
-
 nlohmann::json to_json(const Vec3f& v) {
   return nlohmann::json::array({v[0], v[1], v[2]});
 }
@@ -174,14 +166,6 @@ std::optional<int> check_quantize_bits(const Tool& tool, int bits) {
   return tool.usage_error("--quantize takes " + std::to_string(kMinQuantizationBits) + " to " +
                           std::to_string(kMaxQuantizationBits) + " bits, not " +
                           std::to_string(bits));
-}
-
-MetaInput meta_input(const std::string& path, const LoadedMesh& loaded) {
-  // Containers of one input stay mergeable: a container names its input.
-  if (loaded.original_input) return *loaded.original_input;
-  size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  return MetaInput{to_valid_utf8(name), loaded.sha256, loaded.file_bytes};
 }
 
 bool is_container_input(const std::string& path, const Bytes* bytes) {

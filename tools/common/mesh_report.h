@@ -10,6 +10,8 @@
 #include "formats/sections/meta.h"
 #include "lib/check/mesh_check.h"
 #include "lib/ingest/load_mesh.h"
+// meta_input() and to_valid_utf8(), which the tools share with lodbake-bake.
+#include "lib/ingest/meta_input.h"
 #include "lib/meshio/import_report.h"
 #include "lib/repair/mesh_repair.h"
 #include "tools/common/cli.h"
@@ -36,10 +38,6 @@ void print_import_notes(const Tool& tool, const std::string& file, const ImportR
 // repair, "repair: A, B" (or "repair: nothing to repair") for --repair.
 std::string repair_note(const RepairReport& report, bool by_default);
 
-// `text` with every byte that is not part of valid UTF-8 replaced by U+FFFD,
-// for strings that must be valid UTF-8 (META) but come from file names.
-std::string to_valid_utf8(const std::string& text);
-
 // Whether a tool's input is a lodbake container rather than a mesh: its
 // magic bytes, or a `.lbk` name (so that a container whose header is broken
 // gets the container reader's error, not "cannot tell the mesh format").
@@ -53,11 +51,6 @@ bool is_container_input(const std::string& path, const Bytes* bytes = nullptr);
 // 0, or the exit code after printing the error.
 int load_input(const Tool& tool, const std::string& path, const LoadOptions& options,
                LoadedMesh* loaded);
-
-// META's record of the input: its base name (so the same input baked from
-// another folder gives the same bytes; bytes that are not UTF-8 become
-// U+FFFD), size and SHA-256.
-MetaInput meta_input(const std::string& path, const LoadedMesh& loaded);
 
 // Checks a --quantize BITS value (1..30 bits, formats/support/quantization.h)
 // when the option was given; the usage error's exit code otherwise.

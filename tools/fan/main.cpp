@@ -19,6 +19,7 @@
 #include "formats/sections/rfin.h"
 #include "formats/sections/vhie.h"
 #include "formats/support/file_io.h"
+#include "lib/bake/fan_step.h"
 #include "lib/fanmerge/fan_build.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/refinement_data.h"
@@ -33,13 +34,10 @@ namespace {
 
 constexpr const char* kFanSchema = "lodbake.fan/1";
 
-struct Request {
+struct Request : FanStepOptions {
   std::string input;
   std::string output;
-  bool repair = false;
-  bool strict = false;
   bool compare = false;
-  FanBuildOptions options;
 };
 
 // The figures --compare puts side by side, defined alike for both
@@ -134,47 +132,6 @@ void print_comparison(const HierarchyFigures& fan, const HierarchyFigures& balan
   std::fflush(stdout);
 }
 
-// What one fan build made: the sections after META (BASE, the mesh itself,
-// and FANH), META's counts and the report's figures.
-struct FanBuilt {
-  FanBuildResult result;
-  FanhStats stats;
-  double seconds = 0;
-  Bytes base, fanh;
-  std::map<std::string, uint64_t> counts;
-};
-
-// The fan-merge hierarchy of one mesh, for a mesh input and for each mesh of
-// an asset alike.
-Result<FanBuilt> build_fan(const FanBuildOptions& options, const TriangleMesh& mesh) {
-  FanBuilt out;
-  const auto start = std::chrono::steady_clock::now();
-  LODBAKE_ASSIGN_OR_RETURN(out.result, build_fan_hierarchy(mesh, options));
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.stats = fanh_stats(out.result.hierarchy);
-  out.counts = {{"vertices", mesh.vertex_count()},
-                {"triangles", mesh.triangle_count()},
-                {"fan_internal_nodes", out.result.hierarchy.internal_count()},
-                {"coarsest_vertices", out.result.stats.output_vertices},
-                {"coarsest_triangles", out.result.stats.output_triangles}};
-  LODBAKE_ASSIGN_OR_RETURN(out.base, encode_base(mesh, BaseEncodeOptions()));
-  LODBAKE_ASSIGN_OR_RETURN(out.fanh, encode_fanh(out.result.hierarchy));
-  return out;
-}
-
-MetaSection fan_meta(const Request& request) {
-  const FanBuildOptions& o = request.options;
-  MetaSection meta = make_meta("lodbake-fan");
-  meta.options = {{"degree_weight", o.degree_weight},
-                  {"boundary_weight", o.boundary_weight},
-                  {"max_normal_change_degrees", o.max_normal_change_degrees},
-                  {"repair", request.repair}};
-  if (o.target_vertices) meta.options["vertices"] = *o.target_vertices;
-  if (o.target_ratio) meta.options["ratio"] = *o.target_ratio;
-  if (o.max_error) meta.options["error"] = *o.max_error;
-  return meta;
-}
-
 Result<Bytes> fan_container(const Request& request, const LoadedMesh& loaded, const FanBuilt& built,
                             nlohmann::json* sections) {
   MetaSection meta = fan_meta(request);
@@ -206,12 +163,7 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   return run_asset_build(tool, run, fan_meta(request), bytes,
                          [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
                            LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
-                           MeshSections out;
-                           out.sections.emplace_back(kBaseTag, std::move(b.base));
-                           out.sections.emplace_back(kFanhTag, std::move(b.fanh));
-                           out.counts = b.counts;
-                           out.report = b.counts;
-                           return out;
+                           return fan_mesh_sections(std::move(b));
                          });
 }
 

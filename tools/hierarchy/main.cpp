@@ -23,6 +23,7 @@
 #include "formats/sections/vtre.h"
 #include "formats/sections/wedg.h"
 #include "formats/support/file_io.h"
+#include "lib/bake/hierarchy_step.h"
 #include "lib/core/sha256.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/hierarchy/balanced_build.h"
@@ -42,29 +43,9 @@ namespace {
 
 constexpr const char* kHierarchySchema = "lodbake.hierarchy/1";
 
-struct Request {
+struct Request : HierarchyStepOptions {
   std::string input;
   std::string output;
-  std::string sections = "vhie,dage,vtre";
-  bool vhie = false;  // the parsed --sections
-  bool dage = false;
-  bool vtre = false;
-  bool repair = false;
-  bool strict = false;
-  BalancedBuildOptions options;
-};
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// One section to write: its tag, payload and what its bytes-per-item figure
-// divides by (the required flag is the registry's, as for every writer).
-struct Written {
-  const char* tag;
-  Bytes bytes;
-  const char* per_what;  // "node", "split" or nullptr
-  uint64_t per_count;
 };
 
 // The input mesh and what META says about it.
@@ -74,114 +55,6 @@ struct Input {
   std::string source = "mesh";  // or "progressive mesh"
   nlohmann::json repairs;       // of a mesh input
 };
-
-// What one build made, besides its sections: for the reports.
-struct Built {
-  std::vector<Written> sections;  // BASE first (META is the caller's)
-  HierarchyShape shape;
-  BalancedBuildStats stats;
-  TriangleMesh base;
-  std::vector<std::pair<std::string, double>> build_seconds;  // in build order
-  nlohmann::json dag_report, vtre_report;
-  std::map<std::string, uint64_t> counts;  // META's
-  ProgressiveMesh pm;                      // the hierarchy's own, when DAGE or VTRE are built
-};
-
-// The hierarchy and the sections --sections asks for, from one mesh.
-Result<Built> build_structures(const Request& request, const TriangleMesh& mesh) {
-  using Clock = std::chrono::steady_clock;
-  Built out;
-  Clock::time_point start = Clock::now();
-  LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built,
-                           build_balanced_hierarchy(mesh, request.options));
-  out.build_seconds.emplace_back("hierarchy", seconds_since(start));
-  const VertexHierarchy& h = built.hierarchy;
-  out.shape = hierarchy_shape(h);
-  out.stats = built.stats;
-  const HierarchyShape& shape = out.shape;
-  std::vector<Written>& sections = out.sections;
-  if (request.vhie) {
-    start = Clock::now();
-    LODBAKE_ASSIGN_OR_RETURN(std::vector<NodeRefinement> refinement,
-                             compute_refinement_data(h, mesh));
-    out.build_seconds.emplace_back("refinement", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes vhie, encode_vhie(h));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes rfin, encode_rfin(h, refinement));
-    sections.push_back({kVhieTag, std::move(vhie), "node", shape.nodes});
-    sections.push_back({kRfinTag, std::move(rfin), "split", shape.splits});
-  }
-  // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
-  // share BASE with VHIE (a greedy PM given as input has another base mesh).
-  ProgressiveMesh& pm = out.pm;
-  if (request.dage || request.vtre) {
-    start = Clock::now();
-    LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
-    out.build_seconds.emplace_back("progressive_mesh", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
-    sections.push_back({kVsplTag, std::move(vspl), "split", pm.splits.size()});
-  }
-  if (request.dage) {
-    start = Clock::now();
-    LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, build_vsplit_dag(pm));
-    out.build_seconds.emplace_back("dag", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes dage, encode_dage(dag));
-    LODBAKE_ASSIGN_OR_RETURN(DageSummary summary, read_dage_summary(dage.data(), dage.size()));
-    out.dag_report = {{"nodes", summary.node_count},
-                      {"edges", summary.edge_count},
-                      {"roots", summary.root_count},
-                      {"leaves", summary.leaf_count}};
-    sections.push_back({kDageTag, std::move(dage), "node", dag.node_count()});
-  }
-  if (request.vtre) {
-    start = Clock::now();
-    LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, build_vertex_trees(pm));
-    out.build_seconds.emplace_back("vertex_trees", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes vtre, encode_vtre(trees));
-    const VtreRecordSizes rec = vtre_record_sizes(trees);
-    auto bytes_per = [](uint64_t bits, uint64_t count) {
-      return count == 0 ? nlohmann::json(nullptr)
-                        : nlohmann::json(static_cast<double>(bits) / 8.0 / count);
-    };
-    out.vtre_report = {{"nodes", trees.node_count()},
-                       {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
-                       {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
-                       {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
-    sections.push_back({kVtreTag, std::move(vtre), "node", trees.node_count()});
-  }
-  out.counts = {
-      {"vertices", h.base.vertex_count()},     {"triangles", h.base.triangle_count()},
-      {"hierarchy_nodes", shape.nodes},        {"hierarchy_depth", shape.depth},
-      {"input_vertices", mesh.vertex_count()}, {"input_triangles", mesh.triangle_count()}};
-  if (request.dage || request.vtre) {
-    out.counts["splits"] = pm.splits.size();
-    out.counts["full_vertices"] = pm.full_vertex_count();
-    out.counts["full_triangles"] = full_triangle_count(pm.base.triangle_count(), pm.splits);
-  }
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(h.base, BaseEncodeOptions()));
-  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes), nullptr, 0});
-  out.base = std::move(built.hierarchy.base);
-  return out;
-}
-
-nlohmann::json meta_options(const Request& request) {
-  return {{"sections", request.sections},
-          {"boundary_weight", request.options.boundary_weight},
-          {"max_normal_change_degrees", request.options.max_normal_change_degrees},
-          {"repair", request.repair}};
-}
-
-// The WEDG section of a mesh's hierarchy PM: the corners read from the
-// scene must be over the very mesh the hierarchy was built on.
-Result<Bytes> hierarchy_wedges(const std::map<uint32_t, MeshCornerWedges>& corners,
-                               uint32_t scene_mesh, const TriangleMesh& mesh,
-                               const ProgressiveMesh& pm) {
-  auto found = corners.find(scene_mesh);
-  if (found == corners.end() || found->second.topology.positions != mesh.positions ||
-      found->second.topology.triangles != mesh.triangles)
-    return runtime_error("the corners read from the scene are not over the mesh built");
-  LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, wedges_of_pm(pm, found->second));
-  return encode_wedg(wedges);
-}
 
 // An asset (is_asset(): glTF, an OBJ with materials, a container with
 // SCNE, ...): the hierarchy of every mesh, each in its group, beside the
@@ -201,39 +74,22 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   if (request.dage || request.vtre) {
     run.partial_note = kHierarchyPmOnly;
     run.on_scene = [&](const Scene& scene) {
-      LoadOptions load;
-      load.repair = request.repair;
-      load.strict = request.strict;
-      Result<std::vector<MeshCornerWedges>> all = scene_corner_wedges(scene, load);
-      if (!all.is_ok()) {
+      Result<std::map<uint32_t, MeshCornerWedges>> all = asset_corner_wedges(request, scene);
+      if (all.is_ok()) {
+        corners = std::move(all).value();
+      } else {
         read_corners = all.status();
-        return;
       }
-      for (MeshCornerWedges& c : all.value())
-        corners.emplace(c.mesh, std::move(c));
     };
   }
   MetaSection meta = make_meta("lodbake-hierarchy");
-  meta.options = meta_options(request);
+  meta.options = hierarchy_meta_options(request);
   return run_asset_build(
       tool, run, std::move(meta), bytes,
       [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
         LODBAKE_RETURN_IF_ERROR(read_corners);
-        LODBAKE_ASSIGN_OR_RETURN(Built b, build_structures(request, mesh));
-        MeshSections out;
-        for (Written& w : b.sections) {
-          const bool vspl = std::string(w.tag) == kVsplTag;
-          out.sections.emplace_back(w.tag, std::move(w.bytes));
-          if (!vspl) continue;
-          LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, hierarchy_wedges(corners, scene_mesh, mesh, b.pm));
-          out.sections.emplace_back(kWedgTag, std::move(wedg));
-        }
-        out.counts = b.counts;
-        out.report = {{"nodes", b.shape.nodes},
-                      {"splits", b.shape.splits},
-                      {"depth", b.shape.depth},
-                      {"base_triangles", b.base.triangle_count()}};
-        return out;
+        LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt b, build_hierarchy_sections(request, mesh));
+        return hierarchy_mesh_sections(std::move(b), corners, scene_mesh, mesh);
       });
 }
 
@@ -276,18 +132,18 @@ int run(const Tool& tool, const Request& request) {
   }
 
   Progress progress(tool, "building the hierarchy");
-  Result<Built> made = build_structures(request, in.mesh);
+  Result<HierarchyBuilt> made = build_hierarchy_sections(request, in.mesh);
   if (!made.is_ok()) return tool.fail(request.input, made.status());
-  Built& b = made.value();
+  HierarchyBuilt& b = made.value();
   const HierarchyShape& shape = b.shape;
-  std::vector<Written>& sections = b.sections;
+  std::vector<HierarchySection>& sections = b.sections;
   const std::vector<std::pair<std::string, double>>& build_seconds = b.build_seconds;
   const nlohmann::json& dag_report = b.dag_report;
   const nlohmann::json& vtre_report = b.vtre_report;
   const TriangleMesh& base = b.base;
 
   MetaSection meta = make_meta("lodbake-hierarchy");
-  meta.options = meta_options(request);
+  meta.options = hierarchy_meta_options(request);
   meta.input = in.meta;
   meta.counts = b.counts;
   Result<Bytes> meta_bytes = encode_meta(meta);
@@ -297,7 +153,7 @@ int run(const Tool& tool, const Request& request) {
   nlohmann::json section_report = nlohmann::json::object();
   std::ostringstream per;
   per.precision(3);
-  for (const Written& w : sections) {
+  for (const HierarchySection& w : sections) {
     nlohmann::json entry = {{"bytes", w.bytes.size()}};
     if (w.per_what != nullptr) {
       // Per-item figures are null (JSON) / omitted (text) without items.
@@ -314,7 +170,7 @@ int run(const Tool& tool, const Request& request) {
     section_report[w.tag] = entry;
   }
   ContainerWriter writer;
-  for (Written& w : sections) {
+  for (HierarchySection& w : sections) {
     Status added = writer.add_known_section(w.tag, std::move(w.bytes));
     if (!added.is_ok()) return tool.fail(request.output, added);
   }
@@ -429,22 +285,8 @@ int main(int argc, char** argv) {
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;
   if (request.output.empty()) return tool.usage_error("missing -o OUT.lbk");
-  std::stringstream list(request.sections);
-  std::string item;
-  while (std::getline(list, item, ',')) {
-    if (item == "vhie") {
-      request.vhie = true;
-    } else if (item == "dage") {
-      request.dage = true;
-    } else if (item == "vtre") {
-      request.vtre = true;
-    } else if (item != "meta" && item != "base") {
-      return tool.usage_error("--sections: '" + item +
-                              "' is not a section lodbake-hierarchy builds (vhie, dage, vtre)");
-    }
-  }
-  if (!request.vhie && !request.dage && !request.vtre)
-    return tool.usage_error("--sections must include vhie, dage or vtre");
+  if (Status parsed = parse_hierarchy_sections(&request); !parsed.is_ok())
+    return tool.usage_error(parsed.message());
   // As in lodbake-simplify, but for 0, which would refuse every collapse.
   if (!(request.options.max_normal_change_degrees > 0 &&
         request.options.max_normal_change_degrees <= 180))

@@ -20,6 +20,7 @@
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "formats/support/quantization.h"
+#include "lib/bake/pack_step.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/pack/pack_containers.h"
 #include "lib/scene/scene_io.h"
@@ -184,22 +185,9 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   LoadedMesh loaded;
   if (int code = load_input(tool, input, load, &loaded); code != 0) return code;
 
-  MetaSection meta = make_meta("lodbake-pack");
-  meta.options = {
-      {"repair", options.repair},
-      {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
-                                                   : nlohmann::json(options.quantize_bits)}};
-  meta.input = meta_input(input, loaded);
-  meta.counts = {{"vertices", loaded.mesh.vertex_count()},
-                 {"triangles", loaded.mesh.triangle_count()}};
-  Result<Bytes> meta_bytes = encode_meta(meta);
-  if (!meta_bytes.is_ok()) return tool.fail(input, meta_bytes.status());
-
   BaseEncodeOptions encoding;
   encoding.quantize = options.quantize_bits != 0;
   if (encoding.quantize) encoding.bits = options.quantize_bits;
-  Result<Bytes> base_bytes = encode_base(loaded.mesh, encoding);
-  if (!base_bytes.is_ok()) return tool.fail(input, base_bytes.status());
   nlohmann::json report = {{"schema", kPackSchema},
                            {"input", input},
                            {"output", options.output},
@@ -215,18 +203,16 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
                               {"error_bound", q.value().error_bound}};
   }
 
-  ContainerWriter writer;
-  size_t meta_size = meta_bytes.value().size();
-  size_t base_size = base_bytes.value().size();
-  Status added = writer.add_known_section(kMetaTag, std::move(meta_bytes).value());
-  if (added.is_ok()) added = writer.add_known_section(kBaseTag, std::move(base_bytes).value());
-  if (!added.is_ok()) return tool.fail(options.output, added);
-  Result<Bytes> file = writer.finish();
-  if (!file.is_ok()) return tool.fail(options.output, file.status());
-  Status written = write_file_atomic(options.output, file.value());
+  Result<PackedMesh> packed =
+      pack_mesh(loaded.mesh, meta_input(input, loaded), options.repair, options.quantize_bits);
+  if (!packed.is_ok()) return tool.fail(input, packed.status());
+  const Bytes& file = packed.value().file;
+  const uint64_t meta_size = packed.value().meta_bytes;
+  const uint64_t base_size = packed.value().base_bytes;
+  Status written = write_file_atomic(options.output, file);
   if (!written.is_ok()) return tool.fail(options.output, written);
 
-  report["bytes"] = file.value().size();
+  report["bytes"] = file.size();
   report["sections"] = {{"META", meta_size}, {"BASE", base_size}};
   report["counts"] = {{"vertices", loaded.mesh.vertex_count()},
                       {"triangles", loaded.mesh.triangle_count()}};
@@ -234,8 +220,8 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
     tool.print_json(report);
   } else {
     std::cout << "wrote " << options.output << ": " << loaded.mesh.vertex_count() << " vertices, "
-              << loaded.mesh.triangle_count() << " triangles, " << file.value().size()
-              << " bytes (META " << meta_size << ", BASE " << base_size << ")\n";
+              << loaded.mesh.triangle_count() << " triangles, " << file.size() << " bytes (META "
+              << meta_size << ", BASE " << base_size << ")\n";
     if (report.contains("quantization"))
       std::cout << "quantized positions to " << encoding.bits << " bits, largest error "
                 << report["quantization"]["max_error"].get<double>() << "\n";
@@ -255,10 +241,7 @@ int pack_asset(const Tool& tool, const std::string& input, const Bytes& bytes,
   print_import_notes(tool, input, report);
 
   MetaSection meta = make_meta("lodbake-pack");
-  meta.options = {
-      {"repair", false},
-      {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
-                                                   : nlohmann::json(options.quantize_bits)}};
+  meta.options = pack_meta_options(false, options.quantize_bits);
   meta.input = asset_meta_input(input, bytes);
   BaseEncodeOptions encoding;
   encoding.quantize = options.quantize_bits != 0;

@@ -19,6 +19,7 @@
 #include "formats/sections/vspl.h"
 #include "formats/sections/wedg.h"
 #include "formats/support/file_io.h"
+#include "lib/bake/simplify_step.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/meshio/mesh_writers.h"
 #include "lib/metrics/surface_distance.h"
@@ -38,19 +39,13 @@ namespace {
 
 constexpr const char* kSimplifySchema = "lodbake.simplify/1";
 
-struct Request {
+struct Request : SimplifyStepOptions {
   std::string input;
   std::string output;  // mesh file, or a pattern with %d for --lods
   std::string pm_output;
-  std::string placement = "half";
   std::string lods;            // "0.5,0.25,0.1" as given
   std::vector<double> ratios;  // parsed --lods
-  bool repair = false;
-  bool strict = false;
-  int quantize_bits = 0;
   bool metrics = true;
-  SimplifyOptions options;
-  AttributeWeights weights;   // assets only
   std::string weight_option;  // the first weight option given, for the usage error
 };
 
@@ -139,70 +134,14 @@ Status stage_mesh(StagedOutputs* outputs, const std::string& path, const Triangl
   return outputs->stage(path, bytes);
 }
 
-nlohmann::json pm_meta_options(const Request& request) {
-  nlohmann::json options = {
-      {"placement", request.placement},
-      {"boundary_weight", request.options.boundary_weight},
-      {"lock_border", request.options.lock_border},
-      {"max_normal_change_degrees", request.options.max_normal_change_degrees},
-      {"permissive", request.options.permissive},
-      {"repair", request.repair},
-      {"quantize_bits", request.quantize_bits == 0 ? nlohmann::json(nullptr)
-                                                   : nlohmann::json(request.quantize_bits)}};
-  // Only when on (the factor only when not the default), so that files made
-  // without them keep their bytes.
-  if (request.options.height_guard) options["height_guard"] = true;
-  if (request.options.height_guard &&
-      request.options.height_guard_factor != kDefaultHeightGuardFactor)
-    options["height_guard_factor"] = request.options.height_guard_factor;
-  if (request.options.target_ratio) options["ratio"] = *request.options.target_ratio;
-  if (request.options.target_triangles) options["triangles"] = *request.options.target_triangles;
-  if (request.options.max_error) options["error"] = *request.options.max_error;
-  return options;
-}
-
-// A progressive mesh's sections (BASE + VSPL, quantized with --quantize)
-// and META's counts, for a mesh input and for each mesh of an asset alike.
-struct PmSections {
-  Bytes base, vspl;
-  std::map<std::string, uint64_t> counts;
-};
-
-Result<PmSections> pm_sections(const Request& request, const ProgressiveMesh& pm) {
-  PmSections out;
-  out.counts = {{"vertices", pm.base.vertex_count()},
-                {"triangles", pm.base.triangle_count()},
-                {"splits", pm.splits.size()},
-                {"full_vertices", pm.full_vertex_count()},
-                {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)}};
-  BaseEncodeOptions base_encoding;
-  VsplEncodeOptions vspl_encoding;
-  base_encoding.quantize = vspl_encoding.quantize = request.quantize_bits != 0;
-  if (request.quantize_bits != 0) base_encoding.bits = vspl_encoding.bits = request.quantize_bits;
-  LODBAKE_ASSIGN_OR_RETURN(out.base, encode_base(pm.base, base_encoding));
-  LODBAKE_ASSIGN_OR_RETURN(out.vspl, encode_vspl(pm, vspl_encoding));
-  return out;
-}
-
 Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
                            const ProgressiveMesh& pm, nlohmann::json* report) {
-  MetaSection meta = make_meta("lodbake-simplify");
-  meta.options = pm_meta_options(request);
-  meta.input = meta_input(request.input, loaded);
-  LODBAKE_ASSIGN_OR_RETURN(PmSections sections, pm_sections(request, pm));
-  meta.counts = sections.counts;
-  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
-  (*report)["pm"] = {{"file", request.pm_output},
-                     {"splits", pm.splits.size()},
-                     {"sections",
-                      {{"META", meta_bytes.size()},
-                       {"BASE", sections.base.size()},
-                       {"VSPL", sections.vspl.size()}}}};
-  ContainerWriter writer;
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, std::move(sections.base)));
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kVsplTag, std::move(sections.vspl)));
-  return writer.finish();
+  std::map<std::string, uint64_t> sizes;
+  LODBAKE_ASSIGN_OR_RETURN(
+      Bytes file, pm_container_bytes(request, meta_input(request.input, loaded), pm, &sizes));
+  (*report)["pm"] = {
+      {"file", request.pm_output}, {"splits", pm.splits.size()}, {"sections", sizes}};
+  return file;
 }
 
 // --pm on an asset (glTF, or a container with SCNE): every mesh's
@@ -219,31 +158,16 @@ int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
                {},
                /*attributes=*/true};
   // Each mesh's progressive mesh with its wedges, recorded once the asset
-  // is read: --triangles is the asset's budget, shared by its meshes in
-  // proportion to their size (as -o ASSET.glb shares it).
+  // is read.
   std::map<uint32_t, MeshPm> pms;
   Status recorded = Status::ok();
   run.on_scene = [&](const Scene& scene) {
-    SceneLodOptions options;
-    options.simplify = request.options;
-    options.load.repair = request.repair;
-    options.load.strict = request.strict;
-    options.weights = request.weights;
-    const uint64_t triangles = summarize_scene(scene).triangles;
-    if (request.options.target_triangles && triangles > 0) {
-      const double ratio = std::min(1.0, static_cast<double>(*request.options.target_triangles) /
-                                             static_cast<double>(triangles));
-      if (!options.simplify.target_ratio || ratio < *options.simplify.target_ratio)
-        options.simplify.target_ratio = ratio;
-    }
-    options.simplify.target_triangles.reset();
-    Result<std::vector<MeshPm>> all = scene_progressive_meshes(scene, options);
-    if (!all.is_ok()) {
+    Result<std::map<uint32_t, MeshPm>> all = asset_progressive_meshes(request, scene);
+    if (all.is_ok()) {
+      pms = std::move(all).value();
+    } else {
       recorded = all.status();
-      return;
     }
-    for (MeshPm& m : all.value())
-      pms.emplace(m.mesh, std::move(m));
   };
   return run_asset_build(
       tool, run, std::move(meta), bytes,
@@ -252,18 +176,7 @@ int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
         auto found = pms.find(scene_mesh);
         if (found == pms.end())
           return runtime_error("mesh " + std::to_string(scene_mesh) + " has no progressive mesh");
-        const MeshPm& m = found->second;
-        LODBAKE_ASSIGN_OR_RETURN(PmSections pm, pm_sections(request, m.pm));
-        LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(m.wedges));
-        MeshSections out;
-        out.sections.emplace_back(kBaseTag, std::move(pm.base));
-        out.sections.emplace_back(kVsplTag, std::move(pm.vspl));
-        out.sections.emplace_back(kWedgTag, std::move(wedg));
-        out.counts = pm.counts;
-        out.report = pm.counts;
-        out.report["wedges"] = m.wedges.wedge_count();
-        out.report["target_reached"] = !m.blocked.has_value();
-        return out;
+        return asset_pm_sections(request, found->second);
       });
 }
 

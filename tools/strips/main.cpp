@@ -17,6 +17,7 @@
 #include "formats/sections/strp.h"
 #include "formats/sections/vspl.h"
 #include "formats/support/file_io.h"
+#include "lib/bake/strips_step.h"
 #include "lib/core/sha256.h"
 #include "lib/ingest/container_mesh.h"
 #include "lib/ingest/load_mesh.h"
@@ -32,36 +33,18 @@
 namespace lodbake::cli {
 namespace {
 
+using Input = StripsInput;
+
 constexpr const char* kStripsSchema = "lodbake.strips/1";
 
-struct Request {
+struct Request : StripsStepOptions {
   std::string input;
   std::string output;
-  bool strips_only = false;
-  bool repair = false;
-  bool strict = false;
 };
-
-// The paper's in-memory SETS sizes (Table 2), for the report.
-struct PaperFigure {
-  const char* model;
-  uint64_t triangles;
-  double megabytes;
-};
-constexpr PaperFigure kPaperFigures[] = {
-    {"Cow", 5804, 0.338}, {"Bunny", 69451, 4.150}, {"Phone", 165963, 9.832}};
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-// What the input gives: a mesh (strips-only), or a progressive mesh.
-struct Input {
-  MetaInput meta;
-  TriangleMesh mesh;                  // strips-only: the mesh the strips index
-  std::optional<ProgressiveMesh> pm;  // full mode
-  nlohmann::json report;
-};
 
 int load_container_input(const Tool& tool, const Request& request, Input* in) {
   Result<Bytes> bytes = read_file(request.input);
@@ -93,17 +76,6 @@ int load_container_input(const Tool& tool, const Request& request, Input* in) {
   return 0;
 }
 
-// The progressive mesh the strips' graph follows: QEM half-edge collapses
-// as far as legal.
-Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress) {
-  SimplifyOptions options;
-  options.record_pm = true;
-  options.placement = Placement::kHalf;
-  options.progress = std::move(progress);
-  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult simplified, simplify(mesh, options));
-  return std::move(*simplified.pm);
-}
-
 int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
   LoadOptions load;
   load.repair = request.repair;
@@ -129,109 +101,6 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
   return 0;
 }
 
-nlohmann::json strip_stats_json(const StripifyStats& s) {
-  return {{"triangles", s.triangles},
-          {"strips", s.strips},
-          {"indices", s.indices},
-          {"swaps", s.swaps},
-          {"skipped_degenerate", s.skipped_degenerate},
-          {"indices_per_triangle", s.indices_per_triangle()}};
-}
-
-// What one build made: the sections after META, META's counts, and the
-// report's "strips", "sets" and "sections".
-struct StripsBuilt {
-  std::vector<std::pair<std::string, Bytes>> sections;
-  std::map<std::string, uint64_t> counts;
-  nlohmann::json report = nlohmann::json::object();
-  StripifyStats strip_stats;
-  uint64_t stripped_vertices = 0, stripped_triangles = 0;
-};
-
-// The strips (and without --strips-only the SETS graph) of one input, for a
-// mesh or container input and for each mesh of an asset alike.
-Result<StripsBuilt> build_strips(const Request& request, const Input& in) {
-  StripsBuilt out;
-  const TriangleMesh* stripped = &in.mesh;
-  TriangleMesh full;
-  if (in.pm) {
-    LODBAKE_ASSIGN_OR_RETURN(full, mesh_at_lod(*in.pm, in.pm->full_vertex_count()));
-    stripped = &full;
-  }
-  out.stripped_vertices = stripped->vertex_count();
-  out.stripped_triangles = stripped->triangle_count();
-  StripifyStats& strip_stats = out.strip_stats;
-  auto start = std::chrono::steady_clock::now();
-  LODBAKE_ASSIGN_OR_RETURN(TriangleStrips strips, stripify(*stripped, &strip_stats));
-  out.report["strips"] = strip_stats_json(strip_stats);
-  out.report["strips"]["seconds"] = seconds_since(start);
-
-  if (request.strips_only) {
-    LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(in.mesh, BaseEncodeOptions()));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes strp, encode_strp(strips));
-    out.report["sections"] = {{"BASE", base.size()}, {"STRP", strp.size()}};
-    out.sections.emplace_back(kBaseTag, std::move(base));
-    out.sections.emplace_back(kStrpTag, std::move(strp));
-    out.counts = {{"vertices", in.mesh.vertex_count()},
-                  {"triangles", in.mesh.triangle_count()},
-                  {"strips", strip_stats.strips},
-                  {"strip_indices", strip_stats.indices}};
-    return out;
-  }
-  const ProgressiveMesh& pm = *in.pm;
-  SetsBuildStats sets_stats;
-  start = std::chrono::steady_clock::now();
-  LODBAKE_ASSIGN_OR_RETURN(SetsGraph g, build_sets(strips, pm, &sets_stats));
-  const double build_seconds = seconds_since(start);
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes sets, encode_sets(g));
-  out.report["sets"] = {{"lods", g.lod_count},
-                        {"nodes", g.node_count()},
-                        {"arcs", g.arc_count()},
-                        {"successors", g.successors.size()},
-                        {"beginnings", g.beginning_lod.size()},
-                        {"strip_updates", sets_stats.strip_updates},
-                        {"removed_indices", sets_stats.removed_indices},
-                        {"emptied_strips", sets_stats.emptied_strips},
-                        {"seconds", build_seconds},
-                        {"bytes", sets.size()}};
-  nlohmann::json paper = nlohmann::json::array();
-  for (const PaperFigure& f : kPaperFigures)
-    paper.push_back({{"model", f.model}, {"triangles", f.triangles}, {"megabytes", f.megabytes}});
-  out.report["sets"]["paper_in_memory"] = paper;
-  out.report["sections"] = {{"BASE", base.size()}, {"VSPL", vspl.size()}, {"SETS", sets.size()}};
-  out.sections.emplace_back(kBaseTag, std::move(base));
-  out.sections.emplace_back(kVsplTag, std::move(vspl));
-  out.sections.emplace_back(kSetsTag, std::move(sets));
-  out.counts = {{"vertices", pm.base.vertex_count()},
-                {"triangles", pm.base.triangle_count()},
-                {"splits", pm.splits.size()},
-                {"full_vertices", pm.full_vertex_count()},
-                {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)},
-                {"strips", strip_stats.strips},
-                {"lods", g.lod_count}};
-  return out;
-}
-
-MetaSection strips_meta(const Request& request) {
-  MetaSection meta = make_meta("lodbake-strips");
-  meta.options = {{"strips_only", request.strips_only}, {"repair", request.repair}};
-  return meta;
-}
-
-Result<Bytes> finish_container(const Request& request, const Input& in, StripsBuilt built) {
-  MetaSection meta = strips_meta(request);
-  meta.input = in.meta;
-  meta.counts = built.counts;
-  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
-  ContainerWriter writer;
-  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
-  for (auto& [tag, bytes] : built.sections)
-    LODBAKE_RETURN_IF_ERROR(writer.add_known_section(tag, std::move(bytes)));
-  return writer.finish();
-}
-
 // An asset (glTF, or a container with SCNE): every mesh's strips (and
 // graph over its own progressive mesh), each in its group beside the scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
@@ -244,18 +113,7 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
                {}};
   return run_asset_build(tool, run, strips_meta(request), bytes,
                          [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-                           Input in;
-                           if (request.strips_only) {
-                             in.mesh = mesh;
-                           } else {
-                             LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(mesh, nullptr));
-                           }
-                           LODBAKE_ASSIGN_OR_RETURN(StripsBuilt b, build_strips(request, in));
-                           MeshSections out;
-                           out.sections = std::move(b.sections);
-                           out.counts = b.counts;
-                           out.report = b.counts;
-                           return out;
+                           return strips_mesh_sections(request, mesh);
                          });
 }
 
@@ -282,7 +140,7 @@ int run(const Tool& tool, const Request& request) {
   const uint64_t stripped_vertices = built.value().stripped_vertices;
   const uint64_t stripped_triangles = built.value().stripped_triangles;
   report.update(built.value().report);
-  Result<Bytes> container = finish_container(request, in, std::move(built).value());
+  Result<Bytes> container = strips_container(request, in, std::move(built).value());
   if (!container.is_ok()) return tool.fail(request.output, container.status());
   Status written = write_file_atomic(request.output, container.value());
   if (!written.is_ok()) return tool.fail(request.output, written);

@@ -1,0 +1,462 @@
+#include "lib/bake/bake_steps.h"
+
+#include <algorithm>
+
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/meta.h"
+#include "lib/bake/fan_step.h"
+#include "lib/bake/hierarchy_step.h"
+#include "lib/bake/pack_step.h"
+#include "lib/bake/simplify_step.h"
+#include "lib/bake/strips_step.h"
+#include "lib/ingest/load_mesh.h"
+#include "lib/ingest/meta_input.h"
+#include "lib/meshio/mesh_writers.h"
+#include "lib/pack/pack_containers.h"
+#include "lib/scene/scene_io.h"
+#include "lib/scene/scene_lods.h"
+#include "lib/scene/scene_pack.h"
+#include "lib/simplify/lod_chain.h"
+
+namespace lodbake {
+namespace {
+
+LoadOptions load_options(const nlohmann::json& options) {
+  LoadOptions load;
+  load.repair = options["repair"] == "repair";
+  load.strict = options["repair"] == "strict";
+  load.drop_unreferenced = true;
+  return load;
+}
+
+// Loads a mesh input as the tools' load_input() does; its notes and
+// warnings go to the step's warnings.
+Status load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
+            LoadedMesh* loaded, StepResult* out) {
+  LODBAKE_RETURN_IF_ERROR(load_mesh_bytes(input, bytes, options, loaded));
+  for (const std::string& warning : loaded->import.warnings)
+    out->warnings.push_back(warning);
+  const MeshCheckReport& check =
+      loaded->check_after_repair ? *loaded->check_after_repair : loaded->check;
+  for (MeshProblem problem : kAllMeshProblems) {
+    if (problem == MeshProblem::kUnreferencedVertices) continue;
+    if (check.count(problem) != 0)
+      out->warnings.push_back("kept as it is: " + check.describe(problem));
+  }
+  if (loaded->repair) out->report["repaired"] = true;
+  return Status::ok();
+}
+
+Result<Scene> read_input_asset(const std::string& input, const Bytes& bytes, StepResult* out) {
+  ImportReport imported;
+  LODBAKE_ASSIGN_OR_RETURN(Scene scene, read_asset(input, bytes, SceneResources{}, &imported));
+  for (const std::string& warning : imported.warnings)
+    out->warnings.push_back(warning);
+  return scene;
+}
+
+// A builder's run over an asset, as tools/common's run_asset_build().
+Status build_over_asset(const std::string& input, const Bytes& bytes, MetaSection meta,
+                        const LoadOptions& load, const MeshBuilder& build,
+                        const std::function<Status(const Scene&)>& on_scene, StepResult* out) {
+  LODBAKE_ASSIGN_OR_RETURN(Scene scene, read_input_asset(input, bytes, out));
+  if (on_scene) LODBAKE_RETURN_IF_ERROR(on_scene(scene));
+  LoadOptions asset_load;
+  asset_load.repair = load.repair;
+  asset_load.strict = load.strict;
+  meta.input = asset_meta_input(input, bytes);
+  LODBAKE_ASSIGN_OR_RETURN(AssetBuild built,
+                           build_asset(scene, std::move(meta), asset_load, build));
+  for (const std::string& warning : built.warnings)
+    out->warnings.push_back(warning);
+  out->report["groups"] = built.groups.size();
+  out->files.emplace_back("", std::move(built.file));
+  return Status::ok();
+}
+
+Status run_pack(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
+                StepResult* out) {
+  const int quantize = o["quantize"].get<int>();
+  if (is_asset(input, bytes)) {
+    ImportReport imported;
+    LODBAKE_ASSIGN_OR_RETURN(Scene scene,
+                             read_scene_bytes(input, bytes, SceneResources{}, &imported));
+    for (const std::string& warning : imported.warnings)
+      out->warnings.push_back(warning);
+    MetaSection meta = make_meta("lodbake-pack");
+    meta.options = pack_meta_options(false, quantize);
+    meta.input = asset_meta_input(input, bytes);
+    BaseEncodeOptions encoding;
+    encoding.quantize = quantize != 0;
+    if (encoding.quantize) encoding.bits = quantize;
+    LODBAKE_ASSIGN_OR_RETURN(ScenePackResult packed, pack_scene(scene, meta, encoding));
+    for (const std::string& warning : packed.warnings)
+      out->warnings.push_back(warning);
+    out->files.emplace_back("", std::move(packed.file));
+    return Status::ok();
+  }
+  const LoadOptions load_with = load_options(o);
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  LODBAKE_ASSIGN_OR_RETURN(PackedMesh packed, pack_mesh(loaded.mesh, meta_input(input, loaded),
+                                                        load_with.repair, quantize));
+  out->report["triangles"] = loaded.mesh.triangle_count();
+  out->files.emplace_back("", std::move(packed.file));
+  return Status::ok();
+}
+
+// The simplifier's options shared by the simplify and lods steps.
+SimplifyStepOptions simplify_options(const nlohmann::json& o) {
+  SimplifyStepOptions s;
+  s.repair = o["repair"] == "repair";
+  s.strict = o["repair"] == "strict";
+  s.options.boundary_weight = o["boundary_weight"].get<double>();
+  s.options.lock_border = o["lock_border"].get<bool>();
+  s.options.max_normal_change_degrees = o["max_normal_change"].get<double>();
+  s.options.permissive = o["permissive"].get<bool>();
+  if (o.contains("placement")) {
+    s.placement = o["placement"].get<std::string>();
+    s.options.placement = s.placement == "optimal" ? Placement::kOptimal : Placement::kHalf;
+    s.options.height_guard = o["height_guard"].get<bool>() || !o["height_guard_factor"].is_null();
+    if (!o["height_guard_factor"].is_null())
+      s.options.height_guard_factor = o["height_guard_factor"].get<double>();
+    if (!o["ratio"].is_null()) s.options.target_ratio = o["ratio"].get<double>();
+    if (!o["triangles"].is_null()) s.options.target_triangles = o["triangles"].get<uint64_t>();
+    if (!o["error"].is_null()) s.options.max_error = o["error"].get<double>();
+    s.quantize_bits = o["quantize"].get<int>();
+    s.weights.normal = o["normal_weight"].get<double>();
+    s.weights.texcoord = o["uv_weight"].get<double>();
+    s.weights.color = o["color_weight"].get<double>();
+    s.weights.tangent = o["tangent_weight"].get<double>();
+  }
+  return s;
+}
+
+Status run_simplify(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
+                    StepResult* out) {
+  SimplifyStepOptions request = simplify_options(o);
+  if (request.options.height_guard && request.options.placement != Placement::kHalf)
+    return Status(ErrorKind::kUsage, "steps.simplify: height_guard needs placement 'half'");
+  if (is_asset(input, bytes)) {
+    MetaSection meta = make_meta("lodbake-simplify");
+    meta.options = pm_meta_options(request);
+    std::map<uint32_t, MeshPm> pms;
+    return build_over_asset(
+        input, bytes, std::move(meta), load_options(o),
+        [&](uint32_t scene_mesh, const TriangleMesh&) -> Result<MeshSections> {
+          auto found = pms.find(scene_mesh);
+          if (found == pms.end())
+            return runtime_error("mesh " + std::to_string(scene_mesh) + " has no progressive mesh");
+          return asset_pm_sections(request, found->second);
+        },
+        [&](const Scene& scene) -> Status {
+          LODBAKE_ASSIGN_OR_RETURN(pms, asset_progressive_meshes(request, scene));
+          return Status::ok();
+        },
+        out);
+  }
+  LoadOptions load_with = load_options(o);
+  load_with.per_vertex_attributes = true;
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  request.options.record_pm = true;
+  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+  LODBAKE_ASSIGN_OR_RETURN(
+      Bytes file, pm_container_bytes(request, meta_input(input, loaded), *result.pm, nullptr));
+  out->report["triangles"] = result.mesh.triangle_count();
+  out->report["splits"] = result.pm->splits.size();
+  out->files.emplace_back("", std::move(file));
+  return Status::ok();
+}
+
+// A chain by errors: one run per error, each what `lodbake-simplify IN -o
+// OUT --error E` writes (a PM recorded to the largest error would not
+// give the smaller ones: the engine's passes are scaled by the limit).
+Status run_lods_by_error(const StepPlan& step, const std::string& input, const Bytes& bytes,
+                         StepResult* out) {
+  const nlohmann::json& o = step.options;
+  const std::vector<double> errors = o["errors"].get<std::vector<double>>();
+  const std::string format = o["format"].get<std::string>();
+  nlohmann::json triangles = nlohmann::json::array();
+  if (is_scene_output("x." + format) && is_scene_source(input, bytes)) {
+    LODBAKE_ASSIGN_OR_RETURN(Scene scene, read_input_asset(input, bytes, out));
+    for (size_t level = 0; level < errors.size(); ++level) {
+      SimplifyStepOptions request = simplify_options(o);
+      SceneLodOptions options;
+      options.simplify = request.options;
+      options.simplify.max_error = errors[level];
+      options.load.repair = request.repair;
+      options.load.strict = request.strict;
+      options.weights = request.weights;
+      LODBAKE_ASSIGN_OR_RETURN(SceneLods lods, simplify_scene(scene, options));
+      SceneWriteReport written;
+      LODBAKE_ASSIGN_OR_RETURN(Bytes glb, write_scene_glb(lods.levels.at(0), &written));
+      for (const std::string& w : written.warnings)
+        out->warnings.push_back("level " + std::to_string(level) + ": " + w);
+      uint64_t level_triangles = 0;
+      for (const MeshLodReport& m : lods.meshes)
+        level_triangles += m.lod_triangles.at(0);
+      triangles.push_back(level_triangles);
+      out->files.emplace_back("", std::move(glb));
+    }
+    out->report["triangles"] = triangles;
+    return Status::ok();
+  }
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  for (size_t level = 0; level < errors.size(); ++level) {
+    SimplifyStepOptions request = simplify_options(o);
+    request.options.max_error = errors[level];
+    LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+    const std::string& path = step.outputs[level];
+    if (drops_attributes(path, result.mesh))
+      out->warnings.push_back("level " + std::to_string(level) +
+                              ": this format cannot store the mesh's normals or texture "
+                              "coordinates");
+    LODBAKE_ASSIGN_OR_RETURN(Bytes file, write_mesh_for_path(path, result.mesh));
+    triangles.push_back(result.mesh.triangle_count());
+    out->files.emplace_back("", std::move(file));
+  }
+  out->report["triangles"] = triangles;
+  return Status::ok();
+}
+
+Status run_lods(const StepPlan& step, const std::string& input, const Bytes& bytes,
+                StepResult* out) {
+  const nlohmann::json& o = step.options;
+  if (!o["errors"].is_null()) return run_lods_by_error(step, input, bytes, out);
+  SimplifyStepOptions request = simplify_options(o);
+  const std::vector<double> ratios = o["ratios"].get<std::vector<double>>();
+  const std::string format = o["format"].get<std::string>();
+  if (is_scene_output("x." + format) && is_scene_source(input, bytes)) {
+    LODBAKE_ASSIGN_OR_RETURN(Scene scene, read_input_asset(input, bytes, out));
+    SceneLodOptions options;
+    options.simplify = request.options;
+    options.load.repair = request.repair;
+    options.load.strict = request.strict;
+    options.weights = request.weights;
+    options.ratios = ratios;
+    LODBAKE_ASSIGN_OR_RETURN(SceneLods lods, simplify_scene(scene, options));
+    for (size_t level = 0; level < lods.levels.size(); ++level) {
+      SceneWriteReport written;
+      LODBAKE_ASSIGN_OR_RETURN(Bytes glb, write_scene_glb(lods.levels[level], &written));
+      for (const std::string& w : written.warnings)
+        out->warnings.push_back("level " + std::to_string(level) + ": " + w);
+      out->files.emplace_back("", std::move(glb));
+    }
+    return Status::ok();
+  }
+  LoadOptions load_with = load_options(o);
+  load_with.per_vertex_attributes = true;
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  request.options.target_ratio = *std::min_element(ratios.begin(), ratios.end());
+  request.options.record_pm = true;
+  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+  std::vector<uint64_t> targets;
+  for (double r : ratios)
+    targets.push_back(static_cast<uint64_t>(r * static_cast<double>(loaded.mesh.triangle_count())));
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<TriangleMesh> lods, extract_lods(*result.pm, targets));
+  nlohmann::json triangles = nlohmann::json::array();
+  for (size_t level = 0; level < lods.size(); ++level) {
+    const std::string& path = step.outputs[level];
+    if (drops_attributes(path, lods[level]))
+      out->warnings.push_back("level " + std::to_string(level) +
+                              ": this format cannot store the mesh's normals or texture "
+                              "coordinates");
+    LODBAKE_ASSIGN_OR_RETURN(Bytes file, write_mesh_for_path(path, lods[level]));
+    triangles.push_back(lods[level].triangle_count());
+    out->files.emplace_back("", std::move(file));
+  }
+  out->report["triangles"] = triangles;
+  return Status::ok();
+}
+
+Status run_hierarchy(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
+                     StepResult* out) {
+  HierarchyStepOptions request;
+  request.sections.clear();
+  for (const nlohmann::json& s : o["sections"])
+    request.sections += (request.sections.empty() ? "" : ",") + s.get<std::string>();
+  LODBAKE_RETURN_IF_ERROR(parse_hierarchy_sections(&request));
+  request.repair = o["repair"] == "repair";
+  request.strict = o["repair"] == "strict";
+  request.options.boundary_weight = o["boundary_weight"].get<double>();
+  request.options.max_normal_change_degrees = o["max_normal_change"].get<double>();
+  MetaSection meta = make_meta("lodbake-hierarchy");
+  meta.options = hierarchy_meta_options(request);
+  if (is_asset(input, bytes)) {
+    // As lodbake-hierarchy: the hierarchy's progressive mesh (with DAGE or
+    // VTRE) carries the asset's wedges.
+    std::map<uint32_t, MeshCornerWedges> corners;
+    return build_over_asset(
+        input, bytes, std::move(meta), load_options(o),
+        [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
+          LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt b, build_hierarchy_sections(request, mesh));
+          return hierarchy_mesh_sections(std::move(b), corners, scene_mesh, mesh);
+        },
+        [&](const Scene& scene) -> Status {
+          if (!request.dage && !request.vtre) return Status::ok();
+          LODBAKE_ASSIGN_OR_RETURN(corners, asset_corner_wedges(request, scene));
+          return Status::ok();
+        },
+        out);
+  }
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  loaded.mesh.normals = MeshAttribute();
+  loaded.mesh.texcoords = MeshAttribute();
+  LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt built, build_hierarchy_sections(request, loaded.mesh));
+  meta.input = meta_input(input, loaded);
+  meta.counts = built.counts;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+  ContainerWriter writer;
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
+  for (HierarchySection& s : built.sections)
+    LODBAKE_RETURN_IF_ERROR(writer.add_known_section(s.tag, std::move(s.bytes)));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes file, writer.finish());
+  out->report["nodes"] = built.shape.nodes;
+  out->files.emplace_back("", std::move(file));
+  return Status::ok();
+}
+
+Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
+               StepResult* out) {
+  FanStepOptions request;
+  request.repair = o["repair"] == "repair";
+  request.strict = o["repair"] == "strict";
+  request.options.degree_weight = o["degree_weight"].get<double>();
+  request.options.boundary_weight = o["boundary_weight"].get<double>();
+  request.options.max_normal_change_degrees = o["max_normal_change"].get<double>();
+  if (!o["ratio"].is_null()) request.options.target_ratio = o["ratio"].get<double>();
+  if (!o["vertices"].is_null()) request.options.target_vertices = o["vertices"].get<uint64_t>();
+  if (!o["error"].is_null()) request.options.max_error = o["error"].get<double>();
+  if (is_asset(input, bytes)) {
+    return build_over_asset(
+        input, bytes, fan_meta(request), load_options(o),
+        [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+          LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
+          return fan_mesh_sections(std::move(b));
+        },
+        {}, out);
+  }
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  LODBAKE_ASSIGN_OR_RETURN(FanBuilt built, build_fan(request.options, loaded.mesh));
+  MetaSection meta = fan_meta(request);
+  meta.input = meta_input(input, loaded);
+  meta.counts = built.counts;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
+  ContainerWriter writer;
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kMetaTag, std::move(meta_bytes)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kBaseTag, std::move(built.base)));
+  LODBAKE_RETURN_IF_ERROR(writer.add_known_section(kFanhTag, std::move(built.fanh)));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes file, writer.finish());
+  out->report["internal_nodes"] = built.stats.internal_nodes;
+  out->files.emplace_back("", std::move(file));
+  return Status::ok();
+}
+
+Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
+                  StepResult* out) {
+  StripsStepOptions request;
+  request.strips_only = o["strips_only"].get<bool>();
+  request.repair = o["repair"] == "repair";
+  request.strict = o["repair"] == "strict";
+  if (is_asset(input, bytes)) {
+    return build_over_asset(
+        input, bytes, strips_meta(request), load_options(o),
+        [&](uint32_t, const TriangleMesh& mesh) { return strips_mesh_sections(request, mesh); }, {},
+        out);
+  }
+  LoadOptions load_with = load_options(o);
+  // Without strips_only the simplification records a progressive mesh.
+  load_with.per_vertex_attributes = !request.strips_only;
+  LoadedMesh loaded;
+  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  StripsInput in;
+  in.meta = meta_input(input, loaded);
+  if (request.strips_only) {
+    in.mesh = std::move(loaded.mesh);
+  } else {
+    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(loaded.mesh, nullptr));
+  }
+  LODBAKE_ASSIGN_OR_RETURN(StripsBuilt built, build_strips(request, in));
+  out->report["strips"] = built.strip_stats.strips;
+  LODBAKE_ASSIGN_OR_RETURN(Bytes file, strips_container(request, in, std::move(built)));
+  out->files.emplace_back("", std::move(file));
+  return Status::ok();
+}
+
+// lodbake-pack's repack of the earlier steps' containers, with its META
+// options (tools/pack/main.cpp).
+Status run_package(const StepPlan& step, const std::map<std::string, std::vector<Bytes>>& earlier,
+                   StepResult* out) {
+  const nlohmann::json& o = step.options;
+  std::vector<PackInput> inputs;
+  for (const nlohmann::json& from : o["from"]) {
+    auto found = earlier.find(from.get<std::string>());
+    if (found == earlier.end() || found->second.empty())
+      return runtime_error("steps.package: step '" + from.get<std::string>() + "' made no file");
+    inputs.push_back({from.get<std::string>(), found->second.front()});
+  }
+  RepackOptions options;
+  options.quantize_bits = o["quantize"].get<int>();
+  options.error_bits = o["error_bits"].get<int>();
+  options.compact = o["compact"].get<bool>();
+  options.draco = o["draco"].get<bool>();
+  options.draco_options.quantization_bits = o["qp"].get<int>();
+  options.draco_options.compression_level = o["cl"].get<int>();
+  nlohmann::json meta_options = {
+      {"draco", options.draco},
+      {"compact", options.compact},
+      {"quantize_bits", options.quantize_bits == 0 ? nlohmann::json(nullptr)
+                                                   : nlohmann::json(options.quantize_bits)},
+      {"drop", options.drop},
+      {"keep", options.keep}};
+  if (options.draco)
+    meta_options["draco_options"] = {{"qp", o["qp"].get<int>()}, {"cl", o["cl"].get<int>()}};
+  if (options.error_bits != 0) meta_options["error_bits"] = options.error_bits;
+  size_t failed = inputs.size();
+  LODBAKE_ASSIGN_OR_RETURN(PackResult packed,
+                           repack_containers(inputs, options, meta_options, &failed));
+  out->report["sections"] = packed.sections.size();
+  out->files.emplace_back("", std::move(packed.file));
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<StepResult> run_bake_step(const StepPlan& step, const std::string& input, const Bytes& bytes,
+                                 const std::map<std::string, std::vector<Bytes>>& earlier) {
+  StepResult out;
+  const nlohmann::json& o = step.options;
+  Status status = Status::ok();
+  if (step.step == "pack") {
+    status = run_pack(o, input, bytes, &out);
+  } else if (step.step == "simplify") {
+    status = run_simplify(o, input, bytes, &out);
+  } else if (step.step == "lods") {
+    status = run_lods(step, input, bytes, &out);
+  } else if (step.step == "hierarchy") {
+    status = run_hierarchy(o, input, bytes, &out);
+  } else if (step.step == "fan") {
+    status = run_fan(o, input, bytes, &out);
+  } else if (step.step == "strips") {
+    status = run_strips(o, input, bytes, &out);
+  } else if (step.step == "package") {
+    status = run_package(step, earlier, &out);
+  } else {
+    status = Status(ErrorKind::kUsage, "unknown step '" + step.step + "'");
+  }
+  LODBAKE_RETURN_IF_ERROR(status);
+  if (out.files.size() != step.outputs.size())
+    return runtime_error("step " + step.step + " made " + std::to_string(out.files.size()) +
+                         " files for " + std::to_string(step.outputs.size()) + " outputs");
+  for (size_t i = 0; i < out.files.size(); ++i)
+    out.files[i].first = step.outputs[i];
+  return out;
+}
+
+}  // namespace lodbake

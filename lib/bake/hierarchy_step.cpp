@@ -1,0 +1,174 @@
+#include "lib/bake/hierarchy_step.h"
+
+#include <chrono>
+#include <sstream>
+
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/dage.h"
+#include "formats/sections/rfin.h"
+#include "formats/sections/vhie.h"
+#include "formats/sections/vspl.h"
+#include "formats/sections/vtre.h"
+#include "formats/sections/wedg.h"
+#include "lib/dag/vsplit_dag_builder.h"
+#include "lib/hierarchy/hierarchy_to_pm.h"
+#include "lib/hierarchy/refinement_data.h"
+#include "lib/simplify/pm_replay.h"
+#include "lib/vtrees/vertex_tree_builder.h"
+
+namespace lodbake {
+
+Status parse_hierarchy_sections(HierarchyStepOptions* options) {
+  options->vhie = options->dage = options->vtre = false;
+  std::stringstream list(options->sections);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    if (item == "vhie") {
+      options->vhie = true;
+    } else if (item == "dage") {
+      options->dage = true;
+    } else if (item == "vtre") {
+      options->vtre = true;
+    } else if (item != "meta" && item != "base") {
+      return Status(ErrorKind::kUsage,
+                    "--sections: '" + item +
+                        "' is not a section lodbake-hierarchy builds (vhie, dage, vtre)");
+    }
+  }
+  if (!options->vhie && !options->dage && !options->vtre)
+    return Status(ErrorKind::kUsage, "--sections must include vhie, dage or vtre");
+  return Status::ok();
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+// The hierarchy and the sections --sections asks for, from one mesh.
+Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& request,
+                                                const TriangleMesh& mesh) {
+  using Clock = std::chrono::steady_clock;
+  HierarchyBuilt out;
+  Clock::time_point start = Clock::now();
+  LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built,
+                           build_balanced_hierarchy(mesh, request.options));
+  out.build_seconds.emplace_back("hierarchy", seconds_since(start));
+  const VertexHierarchy& h = built.hierarchy;
+  out.shape = hierarchy_shape(h);
+  out.stats = built.stats;
+  const HierarchyShape& shape = out.shape;
+  std::vector<HierarchySection>& sections = out.sections;
+  if (request.vhie) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(std::vector<NodeRefinement> refinement,
+                             compute_refinement_data(h, mesh));
+    out.build_seconds.emplace_back("refinement", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes vhie, encode_vhie(h));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes rfin, encode_rfin(h, refinement));
+    sections.push_back({kVhieTag, std::move(vhie), "node", shape.nodes});
+    sections.push_back({kRfinTag, std::move(rfin), "split", shape.splits});
+  }
+  // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
+  // share BASE with VHIE (a greedy PM given as input has another base mesh).
+  ProgressiveMesh& pm = out.pm;
+  if (request.dage || request.vtre) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
+    out.build_seconds.emplace_back("progressive_mesh", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
+    sections.push_back({kVsplTag, std::move(vspl), "split", pm.splits.size()});
+  }
+  if (request.dage) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, build_vsplit_dag(pm));
+    out.build_seconds.emplace_back("dag", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes dage, encode_dage(dag));
+    LODBAKE_ASSIGN_OR_RETURN(DageSummary summary, read_dage_summary(dage.data(), dage.size()));
+    out.dag_report = {{"nodes", summary.node_count},
+                      {"edges", summary.edge_count},
+                      {"roots", summary.root_count},
+                      {"leaves", summary.leaf_count}};
+    sections.push_back({kDageTag, std::move(dage), "node", dag.node_count()});
+  }
+  if (request.vtre) {
+    start = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, build_vertex_trees(pm));
+    out.build_seconds.emplace_back("vertex_trees", seconds_since(start));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes vtre, encode_vtre(trees));
+    const VtreRecordSizes rec = vtre_record_sizes(trees);
+    auto bytes_per = [](uint64_t bits, uint64_t count) {
+      return count == 0 ? nlohmann::json(nullptr)
+                        : nlohmann::json(static_cast<double>(bits) / 8.0 / count);
+    };
+    out.vtre_report = {{"nodes", trees.node_count()},
+                       {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
+                       {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
+                       {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
+    sections.push_back({kVtreTag, std::move(vtre), "node", trees.node_count()});
+  }
+  out.counts = {
+      {"vertices", h.base.vertex_count()},     {"triangles", h.base.triangle_count()},
+      {"hierarchy_nodes", shape.nodes},        {"hierarchy_depth", shape.depth},
+      {"input_vertices", mesh.vertex_count()}, {"input_triangles", mesh.triangle_count()}};
+  if (request.dage || request.vtre) {
+    out.counts["splits"] = pm.splits.size();
+    out.counts["full_vertices"] = pm.full_vertex_count();
+    out.counts["full_triangles"] = full_triangle_count(pm.base.triangle_count(), pm.splits);
+  }
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(h.base, BaseEncodeOptions()));
+  sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes), nullptr, 0});
+  out.base = std::move(built.hierarchy.base);
+  return out;
+}
+
+nlohmann::json hierarchy_meta_options(const HierarchyStepOptions& request) {
+  return {{"sections", request.sections},
+          {"boundary_weight", request.options.boundary_weight},
+          {"max_normal_change_degrees", request.options.max_normal_change_degrees},
+          {"repair", request.repair}};
+}
+
+Result<std::map<uint32_t, MeshCornerWedges>> asset_corner_wedges(
+    const HierarchyStepOptions& request, const Scene& scene) {
+  LoadOptions load;
+  load.repair = request.repair;
+  load.strict = request.strict;
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<MeshCornerWedges> all, scene_corner_wedges(scene, load));
+  std::map<uint32_t, MeshCornerWedges> corners;
+  for (MeshCornerWedges& c : all)
+    corners.emplace(c.mesh, std::move(c));
+  return corners;
+}
+
+Result<MeshSections> hierarchy_mesh_sections(HierarchyBuilt&& b,
+                                             const std::map<uint32_t, MeshCornerWedges>& corners,
+                                             uint32_t scene_mesh, const TriangleMesh& mesh) {
+  MeshSections out;
+  for (HierarchySection& w : b.sections) {
+    const bool vspl = std::string(w.tag) == kVsplTag;
+    out.sections.emplace_back(w.tag, std::move(w.bytes));
+    if (!vspl) continue;
+    // The corners read from the scene must be over the very mesh the
+    // hierarchy was built on.
+    auto found = corners.find(scene_mesh);
+    if (found == corners.end() || found->second.topology.positions != mesh.positions ||
+        found->second.topology.triangles != mesh.triangles)
+      return runtime_error("the corners read from the scene are not over the mesh built");
+    LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, wedges_of_pm(b.pm, found->second));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(wedges));
+    out.sections.emplace_back(kWedgTag, std::move(wedg));
+  }
+  out.counts = b.counts;
+  out.report = {{"nodes", b.shape.nodes},
+                {"splits", b.shape.splits},
+                {"depth", b.shape.depth},
+                {"base_triangles", b.base.triangle_count()}};
+  return out;
+}
+
+}  // namespace lodbake

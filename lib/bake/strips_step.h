@@ -1,0 +1,68 @@
+// The strips step, shared by lodbake-strips and lodbake-bake so that both
+// write the same bytes: triangle strips of a mesh (--strips-only: BASE +
+// STRP) or strips and the SETS graph over a progressive mesh (BASE + VSPL +
+// SETS), META's options and the container.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "formats/mesh/progressive_mesh.h"
+#include "formats/mesh/triangle_mesh.h"
+#include "formats/sections/meta.h"
+#include "formats/support/file_io.h"
+#include "formats/support/status.h"
+#include "lib/scene/asset_build.h"
+#include "lib/strips/stripify.h"
+
+namespace lodbake {
+
+struct StripsStepOptions {
+  bool strips_only = false;
+  bool repair = false;
+  bool strict = false;
+};
+
+// What the input gives: a mesh (strips-only), or a progressive mesh.
+struct StripsInput {
+  MetaInput meta;
+  TriangleMesh mesh;                  // strips-only: the mesh the strips index
+  std::optional<ProgressiveMesh> pm;  // full mode
+  nlohmann::json report;
+};
+
+// What one build made: the sections after META, META's counts, and the
+// report's "strips", "sets" and "sections".
+struct StripsBuilt {
+  std::vector<std::pair<std::string, Bytes>> sections;
+  std::map<std::string, uint64_t> counts;
+  nlohmann::json report = nlohmann::json::object();
+  StripifyStats strip_stats;
+  uint64_t stripped_vertices = 0, stripped_triangles = 0;
+};
+
+// The progressive mesh the strips' graph follows: QEM half-edge collapses
+// as far as legal.
+Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress);
+
+// The strips (and without strips_only the SETS graph) of one input, for a
+// mesh or container input and for each mesh of an asset alike.
+Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsInput& in);
+
+MetaSection strips_meta(const StripsStepOptions& request);
+
+// META (strips_meta(), in.meta, the counts) and the built sections.
+Result<Bytes> strips_container(const StripsStepOptions& request, const StripsInput& in,
+                               StripsBuilt built);
+
+// One asset mesh's group (build_asset()).
+Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
+                                          const TriangleMesh& mesh);
+
+}  // namespace lodbake
