@@ -12,7 +12,7 @@
 // share an edge that two triangles use in opposite directions, and never
 // merges two fans that only touch at a point or meet at an edge of three
 // or more triangles.
-#include "lib/dracoio/mesh_weld.h"
+#include "lib/scene/mesh_weld.h"
 
 #include <algorithm>
 #include <cstring>
@@ -21,7 +21,6 @@
 #include <utility>
 
 namespace lodbake {
-namespace dracoio {
 namespace {
 
 struct PositionKey {
@@ -207,5 +206,4 @@ TriangleMesh weld_vertices(RawMesh raw, WeldMode mode, uint64_t* welded) {
   return mesh;
 }
 
-}  // namespace dracoio
 }  // namespace lodbake
