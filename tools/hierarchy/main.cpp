@@ -171,13 +171,7 @@ nlohmann::json meta_options(const Request& request) {
 // SCNE, ...): the hierarchy of every mesh, each in its group, beside the
 // scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  AssetRun run{request.input,
-               request.output,
-               request.repair,
-               request.strict,
-               kHierarchySchema,
-               "building the hierarchies",
-               {}};
+  const AssetRun run = asset_run(request, kHierarchySchema, "building the hierarchies");
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = meta_options(request);
   return run_asset_build(tool, run, std::move(meta), bytes,
