@@ -11,7 +11,8 @@ SHARED_DATA ?= $(abspath ../shared/data)
 DEBIAN_PACKAGES := cmake make g++ pkg-config ccache xz-utils \
   libcgal-dev libeigen3-dev libopenmesh-dev libdraco-dev libboost-program-options-dev \
   nlohmann-json3-dev libssl-dev zlib1g-dev \
-  libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev gnuplot-nox
+  libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev gnuplot-nox \
+  help2man dpkg-dev file
 FUZZ_PACKAGES := clang libclang-rt-14-dev
 # Peers the benchmarks run as subprocesses: OpenMesh-mkbalancedpm
 # (bench_hierarchy) and OpenMesh-Analyzer, the VDPM analyzer (bench_pack's
@@ -28,7 +29,7 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA) \
 
 .PHONY: all deps npm-deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
   bench-heldout bench-attributes \
-  format format-check clean
+  format format-check clean install package
 
 all: build
 
@@ -91,7 +92,7 @@ test-sanitize: deps
 # and the CLI cases through CTest: cases that need the codec are left out,
 # the nodraco_ ones (exit code 5 for Draco sections) run instead.
 NODRACO_TOOLS := lodbake-inspect lodbake-pack lodbake-simplify lodbake-hierarchy lodbake-fan \
-  lodbake-strips lodbake-replay
+  lodbake-strips lodbake-replay lodbake_man_pages
 test-nodraco: deps
 	@cmake -S . -B $(NODRACO_BUILD) $(CMAKE_FLAGS) -DLODBAKE_DRACO_CODEC=OFF -DLODBAKE_BENCHMARKS=OFF \
 	  > $(NODRACO_BUILD).configure.log 2>&1 || { cat $(NODRACO_BUILD).configure.log; exit 1; }
@@ -194,6 +195,16 @@ bench-heldout: bench-deps build
 	  --height-guard-factor 3 $(HELDOUT_MESHES)
 	$(BUILD)/tests/bench/bench_simplify --runs 1 --peers lodbake,cgal --markdown \
 	  --placement optimal $(HELDOUT_MESHES)
+
+# The tools, man pages, headers, libraries, CMake package and lodbake.pc
+# under PREFIX (docs/install.md); `sudo make install` for a system prefix.
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# Debian packages lodbake and lodbake-dev into $(BUILD)/packages (CPack).
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -12,6 +12,7 @@
 
 #include "formats/scene/accessor_values.h"
 #include "lib/scene/scene_topology.h"
+#include "lib/simplify/pm_wedge_assignment.h"
 #include "lib/simplify/wedge_pm.h"
 
 namespace lodbake {
@@ -535,6 +536,40 @@ Result<std::vector<MeshPm>> scene_progressive_meshes(const Scene& scene,
     out.push_back(std::move(pm));
   }
   return out;
+}
+
+Result<std::vector<MeshCornerWedges>> scene_corner_wedges(const Scene& scene,
+                                                          const LoadOptions& load) {
+  SceneLodOptions options;
+  options.load = load;
+  std::vector<MeshCornerWedges> out;
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    LODBAKE_ASSIGN_OR_RETURN(std::unique_ptr<PreparedMesh> prepared,
+                             prepare(scene.meshes[m], m, options));
+    if (!prepared) continue;
+    MeshCornerWedges corners;
+    corners.mesh = m;
+    corners.topology = std::move(prepared->loaded.mesh);
+    corners.corner_wedge = std::move(prepared->wedges.corner_wedge);
+    corners.wedge_point = std::move(prepared->wedges.wedge_point);
+    corners.wedge_primitive = prepared->builder.wedge_primitive();
+    corners.wedge_vertex = prepared->builder.wedge_vertex();
+    out.push_back(std::move(corners));
+  }
+  return out;
+}
+
+Result<PmWedges> wedges_of_pm(const ProgressiveMesh& pm, const MeshCornerWedges& corners) {
+  if (pm.full_vertex_count() != corners.topology.vertex_count())
+    return runtime_error(mesh_name(corners.mesh) + ": the progressive mesh has " +
+                         std::to_string(pm.full_vertex_count()) + " vertices, the mesh " +
+                         std::to_string(corners.topology.vertex_count()));
+  Result<PmWedges> wedges =
+      assign_pm_wedges(pm, corners.topology.triangles, corners.corner_wedge, corners.wedge_point);
+  if (!wedges.is_ok()) return in_mesh(corners.mesh, wedges.status());
+  wedges.value().wedge_primitive = corners.wedge_primitive;
+  wedges.value().wedge_vertex = corners.wedge_vertex;
+  return wedges;
 }
 
 Result<std::vector<ScenePrimitive>> primitives_at_level(

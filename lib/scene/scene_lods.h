@@ -84,6 +84,28 @@ struct MeshPm {
   std::optional<CollapseBlocks> blocked;  // the base stopped above the target
 };
 
+// A mesh's corners as the builders see it: the welded, repaired topology
+// build_asset() gives a MeshBuilder, and each corner's wedge, a (primitive,
+// vertex) pair of the scene mesh. What a structure built over the topology
+// alone (the balanced hierarchy's progressive mesh) takes its wedges from.
+struct MeshCornerWedges {
+  uint32_t mesh = 0;
+  TriangleMesh topology;
+  std::vector<std::array<uint32_t, 3>> corner_wedge;  // per triangle of topology
+  std::vector<uint32_t> wedge_point;                  // per wedge, a vertex of topology
+  std::vector<uint32_t> wedge_primitive;
+  std::vector<uint32_t> wedge_vertex;
+};
+
+// One per mesh with triangles, in mesh order; fails as simplify_scene().
+Result<std::vector<MeshCornerWedges>> scene_corner_wedges(const Scene& scene,
+                                                          const LoadOptions& load);
+
+// The wedges of `pm`, a progressive mesh over `corners.topology` (its
+// input_vertex naming topology vertices), by assign_pm_wedges()'s rule,
+// the wedge table filled.
+Result<PmWedges> wedges_of_pm(const ProgressiveMesh& pm, const MeshCornerWedges& corners);
+
 // Needs every mesh's point_of_vertex filled. Fails with the mesh's number
 // when a mesh cannot be simplified (kInvalidInput for a mesh the engine
 // cannot take, naming its problem).

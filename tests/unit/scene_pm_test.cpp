@@ -15,6 +15,8 @@
 #include "formats/sections/open_container.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/wedg.h"
+#include "lib/hierarchy/balanced_build.h"
+#include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/scene/asset_build.h"
 #include "lib/scene/scene_io.h"
 #include "lib/scene/scene_levels.h"
@@ -67,35 +69,87 @@ std::vector<std::string> canonical(const std::vector<ScenePrimitive>& primitives
 
 class ScenePm : public testing::TestWithParam<std::string> {};
 
+// Every tenth of the way a level with the input's materials; fully refined,
+// the input's triangles with every corner's values; back down, the base's
+// wedges.
+void expect_textured_levels(const SceneMesh& mesh, uint32_t m, const ProgressiveMesh& pm,
+                            const PmWedges& wedges) {
+  Result<WedgeRefiner> refiner = WedgeRefiner::create(pm, wedges);
+  ASSERT_TRUE(refiner.is_ok()) << refiner.status().message();
+  const size_t splits = pm.splits.size();
+  for (int step = 0; step <= 10; ++step) {
+    ASSERT_TRUE(refiner.value().refine_to(pm.base.vertex_count() + splits * step / 10).is_ok());
+    Result<std::vector<ScenePrimitive>> level =
+        primitives_at_level(mesh, refiner.value().mesh(), refiner.value().corners(), wedges);
+    ASSERT_TRUE(level.is_ok()) << level.status().message();
+    for (const ScenePrimitive& prim : level.value()) {
+      ASSERT_TRUE(prim.indices.has_value());
+      for (uint32_t i : *prim.indices)
+        ASSERT_LT(i, prim.vertex_count());
+    }
+    if (step < 10) continue;
+    EXPECT_EQ(canonical(level.value()), canonical(mesh.primitives)) << "mesh " << m;
+  }
+  ASSERT_TRUE(refiner.value().refine_to(pm.base.vertex_count()).is_ok());
+  EXPECT_EQ(refiner.value().corners(), wedges.base);
+}
+
 TEST_P(ScenePm, FullRefinementGivesEveryCornerBackAndEveryLevelIsTextured) {
   const Scene scene = read_asset(kAssets + GetParam());
   SceneLodOptions options;
   Result<std::vector<MeshPm>> pms = scene_progressive_meshes(scene, options);
   ASSERT_TRUE(pms.is_ok()) << pms.status().message();
   ASSERT_FALSE(pms.value().empty());
-  for (const MeshPm& m : pms.value()) {
-    const SceneMesh& mesh = scene.meshes[m.mesh];
-    Result<WedgeRefiner> refiner = WedgeRefiner::create(m.pm, m.wedges);
-    ASSERT_TRUE(refiner.is_ok()) << refiner.status().message();
-    // Every tenth of the way, a level with the same materials.
-    const size_t splits = m.pm.splits.size();
-    for (int step = 0; step <= 10; ++step) {
-      ASSERT_TRUE(refiner.value().refine_to(m.pm.base.vertex_count() + splits * step / 10).is_ok());
-      Result<std::vector<ScenePrimitive>> level =
-          primitives_at_level(mesh, refiner.value().mesh(), refiner.value().corners(), m.wedges);
-      ASSERT_TRUE(level.is_ok()) << level.status().message();
-      for (const ScenePrimitive& prim : level.value()) {
-        ASSERT_TRUE(prim.indices.has_value());
-        for (uint32_t i : *prim.indices)
-          ASSERT_LT(i, prim.vertex_count());
-      }
-      if (step < 10) continue;
-      // Fully refined: the input's triangles, every corner's values.
-      EXPECT_EQ(canonical(level.value()), canonical(mesh.primitives)) << "mesh " << m.mesh;
-    }
-    // And back down: collapsing undoes the splits' wedges too.
-    ASSERT_TRUE(refiner.value().refine_to(m.pm.base.vertex_count()).is_ok());
-    EXPECT_EQ(refiner.value().corners(), m.wedges.base);
+  for (const MeshPm& m : pms.value())
+    expect_textured_levels(scene.meshes[m.mesh], m.mesh, m.pm, m.wedges);
+}
+
+// The balanced hierarchy's progressive mesh knows nothing of attributes;
+// its wedges are assigned afterwards (lib/simplify/pm_wedge_assignment.h).
+TEST_P(ScenePm, TheHierarchysProgressiveMeshGetsWedgesThatGiveEveryCornerBack) {
+  const Scene scene = read_asset(kAssets + GetParam());
+  Result<std::vector<MeshCornerWedges>> corners = scene_corner_wedges(scene, LoadOptions());
+  ASSERT_TRUE(corners.is_ok()) << corners.status().message();
+  ASSERT_FALSE(corners.value().empty());
+  for (const MeshCornerWedges& c : corners.value()) {
+    Result<BalancedHierarchy> h = build_balanced_hierarchy(c.topology, BalancedBuildOptions());
+    ASSERT_TRUE(h.is_ok()) << h.status().message();
+    Result<ProgressiveMesh> pm = hierarchy_to_progressive_mesh(h.value().hierarchy);
+    ASSERT_TRUE(pm.is_ok()) << pm.status().message();
+    Result<PmWedges> wedges = wedges_of_pm(pm.value(), c);
+    ASSERT_TRUE(wedges.is_ok()) << wedges.status().message();
+    expect_textured_levels(scene.meshes[c.mesh], c.mesh, pm.value(), wedges.value());
+  }
+}
+
+void expect_assigned_wedges_are_recorded(const Scene& scene, const SceneLodOptions& options) {
+  Result<std::vector<MeshPm>> pms = scene_progressive_meshes(scene, options);
+  ASSERT_TRUE(pms.is_ok()) << pms.status().message();
+  Result<std::vector<MeshCornerWedges>> corners = scene_corner_wedges(scene, options.load);
+  ASSERT_TRUE(corners.is_ok()) << corners.status().message();
+  ASSERT_EQ(pms.value().size(), corners.value().size());
+  for (size_t i = 0; i < pms.value().size(); ++i) {
+    const MeshPm& m = pms.value()[i];
+    Result<PmWedges> assigned = wedges_of_pm(m.pm, corners.value()[i]);
+    ASSERT_TRUE(assigned.is_ok()) << assigned.status().message();
+    EXPECT_EQ(assigned.value().base, m.wedges.base) << "mesh " << m.mesh;
+    EXPECT_EQ(assigned.value().added, m.wedges.added) << "mesh " << m.mesh;
+    EXPECT_EQ(assigned.value().moved, m.wedges.moved) << "mesh " << m.mesh;
+    EXPECT_EQ(assigned.value().wedge_home, m.wedges.wedge_home) << "mesh " << m.mesh;
+  }
+}
+
+// Two paths that must agree: the wedge engine records its wedges as it
+// collapses; assigning them afterwards to the PM it recorded, by the rule
+// of pm_wedge_assignment.h, gives the same records, with seams locked and
+// with --permissive.
+TEST_P(ScenePm, AssignedWedgesAreTheEnginesOwn) {
+  const Scene scene = read_asset(kAssets + GetParam());
+  for (bool permissive : {false, true}) {
+    SCOPED_TRACE(permissive ? "permissive" : "seams locked");
+    SceneLodOptions options;
+    options.simplify.permissive = permissive;
+    expect_assigned_wedges_are_recorded(scene, options);
   }
 }
 

@@ -76,7 +76,8 @@ int run_asset_build(const Tool& tool, const AssetRun& run, MetaSection meta, con
   if (!written.is_ok()) return tool.fail(run.output, written);
   for (const std::string& warning : built.value().warnings)
     tool.warn(run.output, warning);
-  if (!run.attributes) tool.info(run.output, kPositionsOnly);
+  if (!run.attributes)
+    tool.info(run.output, run.partial_note != nullptr ? run.partial_note : kPositionsOnly);
   return print_asset_build(tool, run.schema, run.input, run.output, built.value());
 }
 

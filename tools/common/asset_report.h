@@ -18,6 +18,10 @@ namespace lodbake::cli {
 inline constexpr char kPositionsOnly[] =
     "the structures hold positions only: the asset's attributes and materials stay in its SCNE "
     "section, not in the levels they refine to (attribute-aware structures: not yet)";
+// lodbake-hierarchy with DAGE or VTRE: their progressive mesh has WEDG.
+inline constexpr char kHierarchyPmOnly[] =
+    "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG); the "
+    "selective fronts of VHIE, DAGE and VTRE hold positions only (not yet)";
 
 // META's input for an asset: a container's own record of its input (so all
 // the containers of one asset merge), else the file's base name, SHA-256
@@ -42,6 +46,9 @@ struct AssetRun {
   // The structure carries the asset's attributes (a progressive mesh with
   // WEDG): no kPositionsOnly warning.
   bool attributes = false;
+  // The note in place of kPositionsOnly when the structure keeps the
+  // attributes in part; may be null.
+  const char* partial_note = nullptr;
 };
 
 // The AssetRun of a builder's request: every builder's Request names its

@@ -21,6 +21,7 @@
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
+#include "formats/sections/wedg.h"
 #include "formats/support/file_io.h"
 #include "lib/core/sha256.h"
 #include "lib/dag/vsplit_dag_builder.h"
@@ -29,6 +30,7 @@
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/ingest/load_mesh.h"
 #include "lib/scene/asset_build.h"
+#include "lib/scene/scene_lods.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
 #include "tools/common/asset_report.h"
@@ -82,6 +84,7 @@ struct Built {
   std::vector<std::pair<std::string, double>> build_seconds;  // in build order
   nlohmann::json dag_report, vtre_report;
   std::map<std::string, uint64_t> counts;  // META's
+  ProgressiveMesh pm;                      // the hierarchy's own, when DAGE or VTRE are built
 };
 
 // The hierarchy and the sections --sections asks for, from one mesh.
@@ -109,7 +112,7 @@ Result<Built> build_structures(const Request& request, const TriangleMesh& mesh)
   }
   // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
   // share BASE with VHIE (a greedy PM given as input has another base mesh).
-  ProgressiveMesh pm;
+  ProgressiveMesh& pm = out.pm;
   if (request.dage || request.vtre) {
     start = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
@@ -167,26 +170,65 @@ nlohmann::json meta_options(const Request& request) {
           {"repair", request.repair}};
 }
 
+// The WEDG section of a mesh's hierarchy PM: the corners read from the
+// scene must be over the very mesh the hierarchy was built on.
+Result<Bytes> hierarchy_wedges(const std::map<uint32_t, MeshCornerWedges>& corners,
+                               uint32_t scene_mesh, const TriangleMesh& mesh,
+                               const ProgressiveMesh& pm) {
+  auto found = corners.find(scene_mesh);
+  if (found == corners.end() || found->second.topology.positions != mesh.positions ||
+      found->second.topology.triangles != mesh.triangles)
+    return runtime_error("the corners read from the scene are not over the mesh built");
+  LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, wedges_of_pm(pm, found->second));
+  return encode_wedg(wedges);
+}
+
 // An asset (is_asset(): glTF, an OBJ with materials, a container with
 // SCNE, ...): the hierarchy of every mesh, each in its group, beside the
 // scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  const AssetRun run = asset_run(request, kHierarchySchema, "building the hierarchies");
+  AssetRun run = asset_run(request, kHierarchySchema, "building the hierarchies");
+  // The hierarchy's progressive mesh (VSPL, written with DAGE or VTRE)
+  // carries the asset's wedges (WEDG): each mesh's corners, read once.
+  std::map<uint32_t, MeshCornerWedges> corners;
+  Status read_corners = Status::ok();
+  if (request.dage || request.vtre) {
+    run.partial_note = kHierarchyPmOnly;
+    run.on_scene = [&](const Scene& scene) {
+      LoadOptions load;
+      load.repair = request.repair;
+      load.strict = request.strict;
+      Result<std::vector<MeshCornerWedges>> all = scene_corner_wedges(scene, load);
+      if (!all.is_ok()) {
+        read_corners = all.status();
+        return;
+      }
+      for (MeshCornerWedges& c : all.value())
+        corners.emplace(c.mesh, std::move(c));
+    };
+  }
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = meta_options(request);
-  return run_asset_build(tool, run, std::move(meta), bytes,
-                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-                           LODBAKE_ASSIGN_OR_RETURN(Built b, build_structures(request, mesh));
-                           MeshSections out;
-                           for (Written& w : b.sections)
-                             out.sections.emplace_back(w.tag, std::move(w.bytes));
-                           out.counts = b.counts;
-                           out.report = {{"nodes", b.shape.nodes},
-                                         {"splits", b.shape.splits},
-                                         {"depth", b.shape.depth},
-                                         {"base_triangles", b.base.triangle_count()}};
-                           return out;
-                         });
+  return run_asset_build(
+      tool, run, std::move(meta), bytes,
+      [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
+        LODBAKE_RETURN_IF_ERROR(read_corners);
+        LODBAKE_ASSIGN_OR_RETURN(Built b, build_structures(request, mesh));
+        MeshSections out;
+        for (Written& w : b.sections) {
+          const bool vspl = std::string(w.tag) == kVsplTag;
+          out.sections.emplace_back(w.tag, std::move(w.bytes));
+          if (!vspl) continue;
+          LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, hierarchy_wedges(corners, scene_mesh, mesh, b.pm));
+          out.sections.emplace_back(kWedgTag, std::move(wedg));
+        }
+        out.counts = b.counts;
+        out.report = {{"nodes", b.shape.nodes},
+                      {"splits", b.shape.splits},
+                      {"depth", b.shape.depth},
+                      {"base_triangles", b.base.triangle_count()}};
+        return out;
+      });
 }
 
 int run(const Tool& tool, const Request& request) {
