@@ -74,7 +74,7 @@ Status SelectiveRefiner::start_at_base() {
       return invalid_input("base triangle " + std::to_string(f) +
                            " has an out-of-range or repeated vertex index");
     }
-    add_face(t);
+    add_face(t, static_cast<uint32_t>(f));
   }
   return Status::ok();
 }
@@ -140,16 +140,18 @@ bool SelectiveRefiner::is_boundary_vertex(uint32_t v) const {
   return ring.size() != vertex_faces_[v].size();
 }
 
-uint32_t SelectiveRefiner::add_face(const Triangle& t) {
+uint32_t SelectiveRefiner::add_face(const Triangle& t, uint32_t origin) {
   uint32_t f;
   if (!free_faces_.empty()) {
     f = free_faces_.back();
     free_faces_.pop_back();
     faces_[f] = t;
+    face_origin_[f] = origin;
     face_alive_[f] = 1;
   } else {
     f = static_cast<uint32_t>(faces_.size());
     faces_.push_back(t);
+    face_origin_.push_back(origin);
     face_alive_.push_back(1);
   }
   for (uint32_t v : t)
@@ -258,8 +260,9 @@ Status SelectiveRefiner::split(uint32_t s) {
   active_[s] = 0;
   active_[left] = active_[right] = 1;
   ++front_size_;
-  if (plan.cl != kNoNode) add_face({left, right, plan.cl});
-  if (plan.cr != kNoNode) add_face({right, left, plan.cr});
+  const auto wing = static_cast<uint32_t>(h_->base.triangles.size() + 2 * size_t{s});
+  if (plan.cl != kNoNode) add_face({left, right, plan.cl}, wing);
+  if (plan.cr != kNoNode) add_face({right, left, plan.cr}, wing + 1);
   return Status::ok();
 }
 
@@ -410,6 +413,15 @@ std::vector<Triangle> SelectiveRefiner::triangles() const {
   out.reserve(live_faces_);
   for (size_t f = 0; f < faces_.size(); ++f) {
     if (face_alive_[f]) out.push_back(faces_[f]);
+  }
+  return out;
+}
+
+std::vector<uint32_t> SelectiveRefiner::face_origins() const {
+  std::vector<uint32_t> out;
+  out.reserve(live_faces_);
+  for (size_t f = 0; f < faces_.size(); ++f) {
+    if (face_alive_[f]) out.push_back(face_origin_[f]);
   }
   return out;
 }

@@ -82,6 +82,12 @@ class SelectiveRefiner {
 
   /// The current mesh's faces over node indices, in face-slot order.
   std::vector<Triangle> triangles() const;
+  /// Where each face of triangles() comes from, in the same order: base
+  /// triangle i is i; the faces node s's split adds are base + 2 s (the
+  /// left wing, (left, right, AA(cut_left))) and base + 2 s + 1 (the right
+  /// wing), base = the base mesh's triangle count. A face keeps its origin
+  /// while its corners move, as a progressive mesh's face slot does.
+  std::vector<uint32_t> face_origins() const;
   /// The current mesh with the front's nodes as vertices (ascending node
   /// order; (*vertex_node)[i] is vertex i's node when not null).
   TriangleMesh current_mesh(std::vector<uint32_t>* vertex_node = nullptr) const;
@@ -100,7 +106,7 @@ class SelectiveRefiner {
   uint32_t face_with_prev(uint32_t v, uint32_t prev) const;
   bool is_boundary_vertex(uint32_t v) const;
   void neighbours(uint32_t v, std::vector<uint32_t>* out) const;
-  uint32_t add_face(const Triangle& t);
+  uint32_t add_face(const Triangle& t, uint32_t origin);
   void remove_face(uint32_t f);
   void rename(uint32_t from, uint32_t to);
 
@@ -110,6 +116,7 @@ class SelectiveRefiner {
   std::vector<uint8_t> active_;
   size_t front_size_ = 0;
   std::vector<Triangle> faces_;
+  std::vector<uint32_t> face_origin_;
   std::vector<uint8_t> face_alive_;
   std::vector<uint32_t> free_faces_;
   size_t live_faces_ = 0;

@@ -12,6 +12,7 @@
 #include "formats/sections/vhie.h"
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
+#include "formats/sections/wedg.h"
 
 namespace lodbake {
 namespace {
@@ -97,6 +98,16 @@ Result<VhierStructure> load_vhier_structure(const Container& decoded, uint32_t g
     LODBAKE_ASSIGN_OR_RETURN(out.data, decode_rfin(rfin->data, rfin->size, *out.h));
     LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner refiner, SelectiveRefiner::create(*out.h));
     out.refiner.emplace(std::move(refiner));
+    const Section* wedg = decoded.find(kWedgTag, group);
+    if (wedg != nullptr && decoded.find(kVsplTag, group) != nullptr) {
+      LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
+      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
+      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
+      Result<FrontWedges> front = FrontWedges::create(*out.h, *out.pm, *out.wedges);
+      if (!front.is_ok())
+        return Status(front.status().kind(), "section WEDG: " + front.status().message());
+      out.front.emplace(std::move(front).value());
+    }
     return out;
   });
 }

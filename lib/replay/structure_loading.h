@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "formats/mesh/fan_hierarchy.h"
+#include "formats/mesh/pm_wedges.h"
 #include "formats/mesh/progressive_mesh.h"
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/mesh/vertex_hierarchy.h"
@@ -23,6 +24,7 @@
 #include "formats/sections/rfin.h"
 #include "formats/sections/sets.h"
 #include "formats/support/status.h"
+#include "lib/hierarchy/front_wedges.h"
 #include "lib/hierarchy/selective_refiner.h"
 #include "lib/replay/fan_replay.h"
 #include "lib/replay/stream_server.h"
@@ -40,10 +42,16 @@ Result<uint32_t> structure_group(const OpenedContainer& file, ReplayStructure ki
 
 /// Mode vhier: BASE + VHIE + RFIN, and a SelectiveRefiner at the base mesh.
 /// The hierarchy is on the heap so that the refiner's pointer survives moves.
+/// With VSPL and WEDG in the group (an asset's hierarchy), also the
+/// wedges of every front: the VSPL must then be the hierarchy's own
+/// progressive mesh (FrontWedges::create()), or the load fails.
 struct VhierStructure {
   std::unique_ptr<VertexHierarchy> h;
   std::vector<NodeRefinement> data;
   std::optional<SelectiveRefiner> refiner;
+  std::unique_ptr<ProgressiveMesh> pm;  // with wedges only
+  std::unique_ptr<PmWedges> wedges;
+  std::optional<FrontWedges> front;
 };
 Result<VhierStructure> load_vhier_structure(const Container& decoded, uint32_t group);
 

@@ -57,4 +57,20 @@ std::vector<std::string> check_vhier_mesh(const SelectiveRefiner& refiner) {
   return problems;
 }
 
+std::vector<std::string> check_vhier_wedges(const SelectiveRefiner& refiner,
+                                            const FrontWedges& front, const PmWedges& wedges) {
+  Result<std::vector<std::array<uint32_t, 3>>> corners = front.corners(refiner);
+  if (!corners.is_ok()) return {corners.status().message()};
+  size_t mixed = 0, first = 0;
+  for (size_t f = 0; f < corners.value().size(); ++f) {
+    const std::array<uint32_t, 3>& c = corners.value()[f];
+    const uint32_t p = wedges.wedge_primitive[c[0]];
+    if (p == wedges.wedge_primitive[c[1]] && p == wedges.wedge_primitive[c[2]]) continue;
+    if (mixed++ == 0) first = f;
+  }
+  if (mixed == 0) return {};
+  return {std::to_string(mixed) + " faces have corners of two primitives, first face " +
+          std::to_string(first)};
+}
+
 }  // namespace lodbake

@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "formats/mesh/pm_wedges.h"
 #include "formats/mesh/vertex_hierarchy.h"
 #include "formats/support/status.h"
+#include "lib/hierarchy/front_wedges.h"
 #include "lib/hierarchy/selective_refiner.h"
 #include "lib/replay/camera_path.h"
 
@@ -44,5 +46,11 @@ Result<VhierFrameStats> adapt_vhier_frame(SelectiveRefiner* refiner, const Verte
 /// indices or duplicate triangles, and the refiner's counters (front size,
 /// triangle count) agree with it. Each entry is one line.
 std::vector<std::string> check_vhier_mesh(const SelectiveRefiner& refiner);
+
+/// The current mesh's attributes: every corner has a wedge
+/// (FrontWedges::corners()) and a face's three wedges belong to one
+/// primitive of the asset's mesh (one material). One line per problem.
+std::vector<std::string> check_vhier_wedges(const SelectiveRefiner& refiner,
+                                            const FrontWedges& front, const PmWedges& wedges);
 
 }  // namespace lodbake

@@ -183,6 +183,13 @@ void check_vhier(const Container& decoded, uint32_t group, Findings* f) {
   const VertexHierarchy& h = *loaded.value().h;
   SelectiveRefiner& r = *loaded.value().refiner;
   if (!f->none(kVhieTag, who, "the base mesh", check_vhier_mesh(r))) return;
+  // An asset's hierarchy: every corner of the base and finest fronts has a
+  // wedge of one primitive.
+  auto wedge_problems = [&loaded, &r] {
+    const VhierStructure& l = loaded.value();
+    return l.front ? check_vhier_wedges(r, *l.front, *l.wedges) : std::vector<std::string>();
+  };
+  if (!f->none(kWedgTag, who, "the base mesh's corners", wedge_problems())) return;
   // Children come after their parent: one pass splits down to the leaves.
   for (uint32_t node = 0; node < h.node_count(); ++node) {
     if (h.is_leaf(node) || !r.is_active(node)) continue;
@@ -198,6 +205,7 @@ void check_vhier(const Container& decoded, uint32_t group, Findings* f) {
                       " active nodes, not the " + std::to_string(leaves) + " leaves");
   }
   if (!f->none(kVhieTag, who, "the finest mesh", check_vhier_mesh(r))) return;
+  if (!f->none(kWedgTag, who, "the finest mesh's corners", wedge_problems())) return;
   if (!f->none(kVhieTag, who, "the finest mesh", wing_problems(h, r.triangles()))) return;
   const Status s = r.collapse_to_base();
   if (!s.is_ok()) return f->add(kVhieTag, who, "collapsing back to the roots: " + s.message());
@@ -457,8 +465,7 @@ void check_strp(const Container& decoded, uint32_t group, Findings* f) {
   if (!strips.is_ok()) return f->add(kStrpTag, "--extract", strips.status().message());
   Result<TriangleMesh> out = mesh_from_strips(strips.value(), mesh.value());
   if (!out.is_ok()) return f->add(kStrpTag, "--extract", out.status().message());
-  f->none(kStrpTag, "--extract", "the strips' mesh",
-          triangulation_problems(out.value()));
+  f->none(kStrpTag, "--extract", "the strips' mesh", triangulation_problems(out.value()));
 }
 
 }  // namespace

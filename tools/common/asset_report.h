@@ -20,8 +20,9 @@ inline constexpr char kPositionsOnly[] =
     "section, not in the levels they refine to (attribute-aware structures: not yet)";
 // lodbake-hierarchy with DAGE or VTRE: their progressive mesh has WEDG.
 inline constexpr char kHierarchyPmOnly[] =
-    "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG); the "
-    "selective fronts of VHIE, DAGE and VTRE hold positions only (not yet)";
+    "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG), and so do "
+    "VHIE's selective fronts; DAGE cuts, VTRE trees and streamed fronts hold positions only "
+    "(not yet)";
 
 // META's input for an asset: a container's own record of its input (so all
 // the containers of one asset merge), else the file's base name, SHA-256

@@ -175,8 +175,17 @@ Result<Session> load_vhier(const OpenedContainer& file, const Request& request) 
   if (request.validate)
     session.cross = prepare_cross_check(file, group, base, state->h.get(), nullptr, nullptr);
   std::shared_ptr<CrossCheckState> cross = session.cross;
+  if (state->front) {
+    session.structure["wedges"] = state->wedges->wedge_count();
+    session.structure_text +=
+        ", " + std::to_string(state->wedges->wedge_count()) + " wedges (every corner's checked)";
+  }
   session.check = [state, cross] {
     std::vector<std::string> problems = check_vhier_mesh(*state->refiner);
+    if (state->front) {
+      for (std::string& p : check_vhier_wedges(*state->refiner, *state->front, *state->wedges))
+        problems.push_back(std::move(p));
+    }
     if (cross && cross->check) {
       std::vector<uint8_t> flags = cross->check->refiner_splits(*state->refiner);
       const bool own = cross->check->close(&flags);
