@@ -47,4 +47,22 @@ Mat4 trs_matrix(const double* translation, const double* rotation, const double*
   return m;
 }
 
+Mat4 local_matrix(const SceneNode& node) {
+  if (node.matrix) return *node.matrix;
+  return trs_matrix(node.translation ? node.translation->data() : nullptr,
+                    node.rotation ? node.rotation->data() : nullptr,
+                    node.scale ? node.scale->data() : nullptr);
+}
+
+bool is_identity(const Mat4& m) {
+  return m == identity_matrix();
+}
+
+double linear_determinant(const Mat4& m) {
+  auto a = [&m](int r, int c) { return m[static_cast<size_t>(c) * 4 + static_cast<size_t>(r)]; };
+  return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) -
+         a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
+         a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
+}
+
 }  // namespace lodbake

@@ -235,54 +235,6 @@ Result<TriangleMesh> mesh_from_draco(const draco::Mesh& mesh, ImportReport* repo
   return out;
 }
 
-Result<RawMesh> raw_mesh_from_draco(const draco::Mesh& mesh, int64_t position_id, int64_t normal_id,
-                                    int64_t texcoord_id) {
-  LODBAKE_RETURN_IF_ERROR(check_faces(mesh));
-  RawMesh raw;
-  const uint32_t num_points = mesh.num_points();
-  struct Wanted {
-    int64_t id;
-    uint32_t components;
-    std::vector<float>* out;
-    const char* name;
-  };
-  std::vector<float> xyz;
-  const Wanted wanted[] = {{position_id, 3, &xyz, "POSITION"},
-                           {normal_id, 3, &raw.normals, "NORMAL"},
-                           {texcoord_id, 2, &raw.texcoords, "TEXCOORD_0"}};
-  for (const Wanted& w : wanted) {
-    if (w.id < 0) continue;
-    const draco::PointAttribute* att =
-        w.id > 0xFFFFFFFFll ? nullptr : mesh.GetAttributeByUniqueId(static_cast<uint32_t>(w.id));
-    if (att == nullptr) {
-      return invalid_input(std::string("KHR_draco_mesh_compression: ") + w.name + " attribute id " +
-                           str(static_cast<uint64_t>(w.id)) + " is not in the Draco data");
-    }
-    if (att->num_components() != w.components) {
-      return invalid_input(std::string("KHR_draco_mesh_compression: ") + w.name + " has " +
-                           str(att->num_components()) + " components, " + str(w.components) +
-                           " expected");
-    }
-    LODBAKE_RETURN_IF_ERROR(check_mapping(*att, num_points));
-    w.out->resize(size_t{num_points} * w.components);
-    for (uint32_t p = 0; p < num_points; ++p) {
-      LODBAKE_RETURN_IF_ERROR(
-          read_value(*att, value_of(*att, p), w.components, &(*w.out)[size_t{p} * w.components]));
-    }
-  }
-  raw.positions.resize(num_points);
-  for (size_t p = 0; p < raw.positions.size(); ++p) {
-    raw.positions[p] = {xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]};
-  }
-  raw.triangles.resize(mesh.num_faces());
-  for (uint32_t f = 0; f < mesh.num_faces(); ++f) {
-    const auto& face = mesh.face(draco::FaceIndex(f));
-    for (int k = 0; k < 3; ++k)
-      raw.triangles[f][k] = face[k].value();
-  }
-  return raw;
-}
-
 Status check_mesh_for_export(const TriangleMesh& mesh) {
   const size_t v = mesh.positions.size();
   if (mesh.triangles.empty()) return invalid_input("the mesh has no triangles");

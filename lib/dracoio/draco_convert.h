@@ -8,7 +8,6 @@
 #include "draco/mesh/mesh.h"
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
-#include "lib/dracoio/mesh_weld.h"
 #include "lib/meshio/import_report.h"
 
 namespace lodbake {
@@ -21,13 +20,6 @@ namespace dracoio {
 // otherwise. Other attributes and metadata are listed in `report->notes`.
 // Every face and mapping index is range-checked.
 Result<TriangleMesh> mesh_from_draco(const draco::Mesh& mesh, ImportReport* report);
-
-// A Draco-compressed glTF primitive (KHR_draco_mesh_compression) as a raw
-// glTF primitive: one vertex per Draco point. `normal_id` / `texcoord_id`
-// are Draco attribute unique ids, or -1 when the primitive has none;
-// texcoords are returned as stored (glTF orientation).
-Result<RawMesh> raw_mesh_from_draco(const draco::Mesh& mesh, int64_t position_id, int64_t normal_id,
-                                    int64_t texcoord_id);
 
 // A TriangleMesh as a draco::Mesh for the glTF encoder. Per-vertex
 // attributes map one to one; per-corner ones make one Draco point per

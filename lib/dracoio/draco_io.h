@@ -18,9 +18,11 @@
 
 namespace lodbake {
 
-// glTF 2.0 (.gltf with embedded buffers or data: URIs) and GLB: all triangle
-// primitives of the default scene, node transforms applied, merged into one
-// mesh; normals and TEXCOORD_0 carried when present. Vertices with exactly
+// glTF 2.0 (.gltf with embedded buffers or data: URIs) and GLB: the scene
+// read_gltf_scene() reads, flattened by flatten_scene()
+// (lib/scene/scene_flatten.h): all triangle primitives of the default scene,
+// node transforms applied, merged into one mesh; normals and TEXCOORD_0
+// carried when present. Vertices with exactly
 // equal positions are welded (report->welded_vertices), except that a file
 // lodbake wrote is welded as its asset.extras.lodbake_weld says, so that it
 // reads back as written; attributes that then disagree become per-corner.
@@ -29,8 +31,9 @@ namespace lodbake {
 // skipped with one note each. External (non data:) buffer URIs are read
 // through `resources` (read_resource(), confined to its folder); with the
 // default, memory only, they are refused (kUnsupported).
-// EXT_meshopt_compression bufferViews are decoded. report->format is "gltf"
-// or "glb".
+// KHR_draco_mesh_compression, EXT_meshopt_compression, KHR_mesh_quantization
+// and sparse accessors are decoded as the scene reader decodes them.
+// report->format is "gltf" or "glb".
 Result<TriangleMesh> parse_gltf(const uint8_t* data, size_t size, ImportReport* report,
                                 const SceneResources& resources = SceneResources());
 

@@ -62,8 +62,8 @@ std::string str(uint64_t v) {
 }
 
 // Required extensions the scene reader decodes or carries, and those that
-// do not change geometry (the same list parse_gltf accepts, plus meshopt,
-// which the document loader decodes, and instancing, which is carried).
+// do not change geometry (flatten_scene() accepts the same list but
+// instancing, which it does not apply).
 bool scene_required_ok(const std::string& name) {
   return name == kDraco || name == kMeshopt || name == kInstancing ||
          name == "KHR_mesh_quantization" || name == "KHR_texture_transform" ||
@@ -492,10 +492,10 @@ Status SceneReader::read_scenes() {
   LODBAKE_ASSIGN_OR_RETURN(const int64_t chosen,
                            dracoio::member_index(doc_.root, "scene", count, "scene", "glTF"));
   scene_.default_scene = static_cast<int32_t>(chosen);
-  std::vector<uint8_t> is_child(scene_.nodes.size(), 0);
-  for (const SceneNode& n : scene_.nodes) {
-    for (uint32_t c : n.children)
-      is_child[c] = 1;
+  std::vector<int64_t> parent(scene_.nodes.size(), -1);
+  for (size_t p = 0; p < scene_.nodes.size(); ++p) {
+    for (uint32_t c : scene_.nodes[p].children)
+      parent[c] = static_cast<int64_t>(p);
   }
   for (size_t s = 0; s < count; ++s) {
     const std::string where = "scene " + str(s);
@@ -510,7 +510,10 @@ Status SceneReader::read_scenes() {
         LODBAKE_ASSIGN_OR_RETURN(const int64_t node,
                                  dracoio::as_index(value, scene_.nodes.size(), "node", where));
         const uint32_t n = static_cast<uint32_t>(node);
-        if (is_child[n]) return invalid_input(where + " lists node " + str(n) + ", a child");
+        if (parent[n] >= 0) {
+          return invalid_input(where + " lists node " + str(n) + ", which is a child of node " +
+                               str(static_cast<uint64_t>(parent[n])));
+        }
         if (!listed.insert(n).second) {
           return invalid_input(where + " lists node " + str(n) + " twice");
         }

@@ -77,14 +77,6 @@ Point to_point(const Vec3d& p) {
   return Point(p[0], p[1], p[2]);
 }
 
-// The node's local transform: its matrix, else T * R * S.
-Mat4 local_transform(const SceneNode& node) {
-  if (node.matrix) return *node.matrix;
-  return trs_matrix(node.translation ? node.translation->data() : nullptr,
-                    node.rotation ? node.rotation->data() : nullptr,
-                    node.scale ? node.scale->data() : nullptr);
-}
-
 Vec3d transform_point(const Mat4& m, const Vec3d& p) {
   return {m[0] * p[0] + m[4] * p[1] + m[8] * p[2] + m[12],
           m[1] * p[0] + m[5] * p[1] + m[9] * p[2] + m[13],
@@ -179,7 +171,7 @@ Result<std::vector<std::pair<uint32_t, Mat4>>> instances_of(const Scene& scene, 
                            " is reached twice (a cycle or two parents)");
     reached[index] = 1;
     const SceneNode& node = scene.nodes[index];
-    const Mat4 world = multiply(parent, local_transform(node));
+    const Mat4 world = multiply(parent, local_matrix(node));
     if (node.mesh >= 0) {
       if (static_cast<size_t>(node.mesh) >= scene.meshes.size())
         return invalid_input(std::string(name) + ": node " + std::to_string(index) + " uses mesh " +

@@ -9,8 +9,8 @@ namespace lodbake {
 // same or different primitives) are one point exactly when their POSITION
 // elements are bit-for-bit equal (same component type, normalization and
 // bytes). Points are numbered in first-seen order over primitives, then
-// vertices. A primitive without POSITION has no vertices here. Defined in
-// lib/dracoio (scene_points.cpp), which every scene reader links.
+// vertices. A primitive without POSITION has no vertices here. In
+// lodbake_scene_flatten, which every scene reader links.
 void weld_mesh_points(SceneMesh* mesh);
 
 }  // namespace lodbake

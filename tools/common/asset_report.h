@@ -48,6 +48,21 @@ struct AssetRun {
   const char* partial_note = nullptr;
 };
 
+// The AssetRun of a builder's request: every builder's Request names its
+// input, output, --repair and --strict alike; the rest is left at its
+// default for the caller to set.
+template <typename Request>
+AssetRun asset_run(const Request& request, const char* schema, const char* progress) {
+  AssetRun run;
+  run.input = request.input;
+  run.output = request.output;
+  run.repair = request.repair;
+  run.strict = request.strict;
+  run.schema = schema;
+  run.progress = progress;
+  return run;
+}
+
 // A builder's whole run over an asset (`bytes`: the input's content):
 // reads it, builds every mesh with `build` (build_asset()), writes the
 // container, warns (kPositionsOnly once) and reports. `meta` gives the tool

@@ -153,14 +153,8 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   // The comparison is a table for one mesh; on an asset, compare a mesh
   // extracted from it.
   if (request.compare) return tool.usage_error("--compare applies to a single mesh, not an asset");
-  AssetRun run{request.input,
-               request.output,
-               request.repair,
-               request.strict,
-               kFanSchema,
-               "building the fan hierarchies",
-               {}};
-  return run_asset_build(tool, run, fan_meta(request), bytes,
+  return run_asset_build(tool, asset_run(request, kFanSchema, "building the fan hierarchies"),
+                         fan_meta(request), bytes,
                          [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
                            LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
                            return fan_mesh_sections(std::move(b));

@@ -60,13 +60,7 @@ struct Input {
 // SCNE, ...): the hierarchy of every mesh, each in its group, beside the
 // scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  AssetRun run{request.input,
-               request.output,
-               request.repair,
-               request.strict,
-               kHierarchySchema,
-               "building the hierarchies",
-               {}};
+  AssetRun run = asset_run(request, kHierarchySchema, "building the hierarchies");
   // The hierarchy's progressive mesh (VSPL, written with DAGE or VTRE)
   // carries the asset's wedges (WEDG): each mesh's corners, read once.
   std::map<uint32_t, MeshCornerWedges> corners;

@@ -149,14 +149,9 @@ Result<Bytes> pm_container(const Request& request, const LoadedMesh& loaded,
 int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
   MetaSection meta = make_meta("lodbake-simplify");
   meta.options = pm_meta_options(request);
-  AssetRun run{request.input,
-               request.pm_output,
-               request.repair,
-               request.strict,
-               kSimplifySchema,
-               "simplifying",
-               {},
-               /*attributes=*/true};
+  AssetRun run = asset_run(request, kSimplifySchema, "simplifying");
+  run.output = request.pm_output;
+  run.attributes = true;
   // Each mesh's progressive mesh with its wedges, recorded once the asset
   // is read.
   std::map<uint32_t, MeshPm> pms;

@@ -104,14 +104,8 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
 // An asset (glTF, or a container with SCNE): every mesh's strips (and
 // graph over its own progressive mesh), each in its group beside the scene.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  AssetRun run{request.input,
-               request.output,
-               request.repair,
-               request.strict,
-               kStripsSchema,
-               "building the strips",
-               {}};
-  return run_asset_build(tool, run, strips_meta(request), bytes,
+  return run_asset_build(tool, asset_run(request, kStripsSchema, "building the strips"),
+                         strips_meta(request), bytes,
                          [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
                            return strips_mesh_sections(request, mesh);
                          });

@@ -12,41 +12,29 @@
 // share an edge that two triangles use in opposite directions, and never
 // merges two fans that only touch at a point or meet at an edge of three
 // or more triangles.
-#include "lib/dracoio/mesh_weld.h"
+#include "lib/scene/mesh_weld.h"
 
 #include <algorithm>
 #include <cstring>
 #include <numeric>
-#include <unordered_map>
 #include <utility>
 
+#include "lib/scene/exact_key_numbering.h"
+
 namespace lodbake {
-namespace dracoio {
 namespace {
 
-struct PositionKey {
+// A position as an exact key: -0 and +0 compare equal as floats, so they
+// weld too; any other value by its bits.
+ExactKey key_of(const Vec3f& p) {
   uint32_t bits[3];
-  bool operator==(const PositionKey& o) const {
-    return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
-  }
-};
-
-struct PositionKeyHash {
-  size_t operator()(const PositionKey& k) const {
-    uint64_t h = 1469598103934665603ull;
-    for (uint32_t b : k.bits)
-      h = (h ^ b) * 1099511628211ull;
-    return static_cast<size_t>(h ^ (h >> 29));
-  }
-};
-
-PositionKey key_of(const Vec3f& p) {
-  PositionKey key;
   for (int i = 0; i < 3; ++i) {
-    // -0 and +0 compare equal as floats, so they weld too.
     const float value = p[i] == 0.0f ? 0.0f : p[i];
-    std::memcpy(&key.bits[i], &value, sizeof(float));
+    std::memcpy(&bits[i], &value, sizeof(float));
   }
+  ExactKey key;
+  key.lo = bits[0] | uint64_t{bits[1]} << 32;
+  key.hi = bits[2];
   return key;
 }
 
@@ -83,11 +71,13 @@ MeshAttribute weld_attribute(std::vector<float> raw_values, uint32_t components,
 // Raw vertex -> the first raw vertex with a bit-equal position key.
 std::vector<uint32_t> first_at_position(const std::vector<Vec3f>& positions) {
   std::vector<uint32_t> first(positions.size());
-  // Lookup only: the output order comes from the raw order, never from the map.
-  std::unordered_map<PositionKey, uint32_t, PositionKeyHash> index;
-  index.reserve(positions.size());
-  for (size_t i = 0; i < positions.size(); ++i)
-    first[i] = index.emplace(key_of(positions[i]), static_cast<uint32_t>(i)).first->second;
+  std::vector<uint32_t> first_of_point;  // by point number, in first-seen order
+  ExactKeyNumbering points(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const uint32_t point = points.number(key_of(positions[i]));
+    if (point == first_of_point.size()) first_of_point.push_back(static_cast<uint32_t>(i));
+    first[i] = first_of_point[point];
+  }
   return first;
 }
 
@@ -207,5 +197,4 @@ TriangleMesh weld_vertices(RawMesh raw, WeldMode mode, uint64_t* welded) {
   return mesh;
 }
 
-}  // namespace dracoio
 }  // namespace lodbake

@@ -1,6 +1,6 @@
-// Internal to lib/dracoio: the mesh as glTF and Draco primitives store it
-// (every attribute per vertex, seams stored as duplicated vertices) and the
-// welding that turns it into a TriangleMesh.
+// The mesh as glTF primitives store it (every attribute per vertex, seams
+// stored as duplicated vertices) and the welding that turns it into a
+// TriangleMesh: what flatten_scene() (scene_flatten.h) merges a scene into.
 #pragma once
 
 #include <cstdint>
@@ -9,9 +9,8 @@
 #include "formats/mesh/triangle_mesh.h"
 
 namespace lodbake {
-namespace dracoio {
 
-// One vertex per glTF vertex (Draco point); normals and texcoords, when not
+// One vertex per glTF vertex; normals and texcoords, when not
 // empty, hold 3 and 2 floats per vertex.
 struct RawMesh {
   std::vector<Vec3f> positions;
@@ -47,5 +46,4 @@ enum class WeldMode {
 // `*welded` to the number of vertices merged away.
 TriangleMesh weld_vertices(RawMesh raw, WeldMode mode, uint64_t* welded);
 
-}  // namespace dracoio
 }  // namespace lodbake
