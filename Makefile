@@ -12,7 +12,7 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config ccache xz-utils \
   libcgal-dev libeigen3-dev libopenmesh-dev libdraco-dev libboost-program-options-dev \
   nlohmann-json3-dev libssl-dev zlib1g-dev \
   libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev gnuplot-nox \
-  help2man dpkg-dev file libtomlplusplus-dev libtbb-dev
+  help2man dpkg-dev file libtomlplusplus-dev libtbb-dev snakemake
 FUZZ_PACKAGES := clang libclang-rt-14-dev
 # Peers the benchmarks run as subprocesses: OpenMesh-mkbalancedpm
 # (bench_hierarchy) and OpenMesh-Analyzer, the VDPM analyzer (bench_pack's
