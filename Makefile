@@ -18,6 +18,8 @@ FUZZ_PACKAGES := clang libclang-rt-14-dev
 # (bench_hierarchy) and OpenMesh-Analyzer, the VDPM analyzer (bench_pack's
 # .spm anchor). Without them those rows are left out with a note.
 BENCH_PACKAGES := libopenmesh-apps
+# make test-cluster: a single-node Slurm on loopback for the Snakemake workflow.
+CLUSTER_PACKAGES := slurm-wlm munge
 
 # Node tools the tests and benchmarks run (tests/npm/package.json: Khronos's
 # gltf-validator, gltfpack, @gltf-transform/cli), installed from the committed
@@ -29,7 +31,7 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release -DLODBAKE_SHARED_DATA=$(SHARED_DATA) \
 
 .PHONY: all deps npm-deps fuzz-deps bench-deps configure build run test test-sanitize test-nodraco fuzz fuzz-run bench \
   bench-heldout bench-attributes \
-  format format-check clean install package bake-sample
+  format format-check clean install package bake-sample test-cluster
 
 all: build
 
@@ -222,3 +224,11 @@ clean:
 bake-sample: build
 	$(BUILD)/tools/lodbake-bake samples/shared_data.toml --set data=$(SHARED_DATA) \
 	  --out $(BUILD)/baked --cache $(BUILD)/bake-cache --keep-going
+
+# The Snakemake workflow submitted through workflow/profiles/slurm to a
+# single-node Slurm this target starts on loopback (munged, slurmctld, slurmd
+# under $(BUILD)/test-cluster, stopped at the end), its files compared with
+# lodbake-bake's; names the stage that failed otherwise. Needs root (slurmd).
+test-cluster: build
+	@$(MAKE) --no-print-directory deps DEBIAN_PACKAGES="$(DEBIAN_PACKAGES) $(CLUSTER_PACKAGES)"
+	tests/cluster/slurm_workflow.sh $(BUILD)/tools . $(SHARED_DATA) $(abspath $(BUILD))/test-cluster

@@ -15,26 +15,7 @@ command -v snakemake > /dev/null || { echo "snakemake_workflow: snakemake missin
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "snakemake_workflow: $*" >&2; exit 1; }
 
-cat > "$work/recipe.toml" <<'TOML'
-[inputs]
-globs = ["{src}/samples/elephant.off", "{data}/assets/Fox/Fox.gltf", "{data}/meshes/c3d_spot.obj"]
-[output]
-path = "{stem}/{step}.lbk"
-lods = "{stem}/lod{level}.{format}"
-[steps.pack]
-[steps.simplify]
-ratio = 0.5
-[steps.lods]
-ratios = [0.5, 0.25]
-[steps.hierarchy]
-[steps.fan]
-[steps.strips]
-[steps.package]
-from = ["simplify", "hierarchy", "fan"]
-[[override]]
-glob = "*/Fox/*"
-skip = ["fan"]
-TOML
+cp "$src/tests/cli/bake/workflow.toml" "$work/recipe.toml"
 
 # Snakemake keeps its state in .snakemake/ of its working folder: the work folder.
 cd "$work"
