@@ -54,6 +54,17 @@ nlohmann::json input_fingerprint(const std::string& input, const Bytes& bytes) {
   return print;
 }
 
+std::vector<std::string> referenced_files(const std::string& input,
+                                          const nlohmann::json& fingerprint) {
+  std::vector<std::string> files;
+  for (const nlohmann::json& resource : fingerprint["resources"]) {
+    if (resource[1].is_null()) continue;  // missing: nothing to watch yet
+    const std::string path = resource[0].get<std::string>();
+    files.push_back(path.empty() || path[0] == '/' ? path : folder_of(input) + "/" + path);
+  }
+  return files;
+}
+
 std::string step_key(const nlohmann::json& fingerprint, const StepPlan& step,
                      const std::vector<std::string>& merged) {
   // The output names' extensions choose writers (lods), so they count; the

@@ -25,6 +25,12 @@ namespace lodbake {
 // changes the key). Reads the asset to find them.
 nlohmann::json input_fingerprint(const std::string& input, const Bytes& bytes);
 
+// The files of `fingerprint`'s resources that exist, as paths from where
+// `input` is named (joined to its folder): what a workflow engine must
+// watch besides the input itself (lodbake-bake --list prints them).
+std::vector<std::string> referenced_files(const std::string& input,
+                                          const nlohmann::json& fingerprint);
+
 // The key of `step` of an input with `fingerprint`; `merged` holds the keys
 // of the steps a package step merges, in its order (empty otherwise).
 std::string step_key(const nlohmann::json& fingerprint, const StepPlan& step,

@@ -4,8 +4,9 @@
 # skipped for one input by an override), run by Snakemake with --cores 2 into
 # one folder and by lodbake-bake into another (recipe variables given
 # through --config set=...): the same files, byte for byte.
-# Then a rerun has nothing to do, and a changed simplify ratio reruns only
-# each input's simplify and the package that merges it.
+# Then a rerun has nothing to do, a touched buffer of the glTF asset reruns
+# that asset's steps alone, and a changed simplify ratio reruns only each
+# input's simplify and the package that merges it.
 # Exit 77 (skipped) when snakemake is not installed.
 #
 #   snakemake_workflow.sh TOOLS SOURCE DATA WORK
@@ -16,6 +17,12 @@ rm -rf "$work" && mkdir -p "$work"
 fail() { echo "snakemake_workflow: $*" >&2; exit 1; }
 
 cp "$src/tests/cli/bake/workflow.toml" "$work/recipe.toml"
+# A copy of the inputs of {data}, whose buffer the test touches.
+mkdir -p "$work/data/assets" "$work/data/meshes"
+cp -r "$data/assets/Fox" "$work/data/assets/"
+cp "$data/meshes/c3d_spot.obj" "$work/data/meshes/"
+chmod -R u+w "$work/data"
+data=$work/data
 
 # Snakemake keeps its state in .snakemake/ of its working folder: the work folder.
 cd "$work"
@@ -39,6 +46,17 @@ done < bake.files
 
 snake --dry-run > rerun.log 2>&1 || { cat rerun.log; fail "dry rerun failed"; }
 grep -q "Nothing to be done" rerun.log || { cat rerun.log; fail "a rerun would bake again"; }
+
+# A touched buffer of the asset: its steps alone (6, fan skipped).
+touch data/assets/Fox/Fox.bin
+snake --dry-run --quiet > touched.log 2>&1 || { cat touched.log; fail "dry run after a touch failed"; }
+jobs=$(grep -E '^[a-z]+_[0-9]+ ' touched.log | sed 's/ .*//' | sort | tr '\n' ' ')
+fox=$("$tools/lodbake-bake" recipe.toml --set "src=$src" --set "data=$data" --list \
+  | grep -n '"input"' | grep -n Fox.gltf | cut -d: -f1)
+index=$((fox - 1))
+[ "$jobs" = "hierarchy_$index lods_$index pack_$index package_$index simplify_$index strips_$index " ] \
+  || { cat touched.log; fail "a touched Fox.bin runs: $jobs"; }
+snake > touched-run.log 2>&1 || { cat touched-run.log; fail "the rerun after a touch failed"; }
 
 # A changed ratio: simplify of each input and the package merging it.
 sed -i 's/^ratio = 0.5$/ratio = 0.4/' recipe.toml

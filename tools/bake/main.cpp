@@ -109,7 +109,13 @@ nlohmann::json plan_json(const std::vector<InputPlan>& plans) {
     nlohmann::json steps = nlohmann::json::array();
     for (const StepPlan& s : plan.steps)
       steps.push_back({{"step", s.step}, {"options", s.options}, {"outputs", s.outputs}});
-    inputs.push_back({{"input", plan.input}, {"steps", steps}});
+    // The buffers, images and material files it reads, so that a workflow
+    // engine reruns its steps when one changes; an unreadable input has
+    // none (its steps report the error).
+    std::vector<std::string> references;
+    if (Result<Bytes> bytes = read_file(plan.input); bytes.is_ok())
+      references = referenced_files(plan.input, input_fingerprint(plan.input, bytes.value()));
+    inputs.push_back({{"input", plan.input}, {"references", references}, {"steps", steps}});
   }
   return {{"schema", "lodbake.bake.plan/1"}, {"inputs", inputs}};
 }
