@@ -16,7 +16,6 @@
 #include "formats/mesh/vsplit_dag.h"
 #include "formats/support/status.h"
 #include "lib/dag/dag_fronts.h"
-#include "lib/simplify/wedge_replay.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/replay/camera_path.h"
 #include "lib/simplify/wedge_replay.h"
