@@ -14,6 +14,7 @@
 // removed ones.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

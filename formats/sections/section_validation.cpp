@@ -118,7 +118,7 @@ void check_vspl(Decoded* d, std::vector<SectionFinding>* findings) {
   if (d->wedg_section != nullptr) d->pm = std::move(pm).value();
 }
 
-// WEDG follows the group's progressive mesh.
+// WEDG follows the group's progressive mesh, or BASE without one.
 void check_wedg(const Decoded& d, std::vector<SectionFinding>* findings) {
   Result<PmWedges> wedges = decode_wedg(d.wedg_section->data, d.wedg_section->size);
   if (!wedges.is_ok()) {
@@ -126,7 +126,15 @@ void check_wedg(const Decoded& d, std::vector<SectionFinding>* findings) {
     return;
   }
   if (d.vspl_section == nullptr) {
-    findings->push_back({kWedgTag, "no VSPL section holds the progressive mesh it describes"});
+    // Without a progressive mesh, WEDG gives BASE's own corners (a fan
+    // hierarchy's input).
+    if (d.base_section == nullptr) {
+      findings->push_back({kWedgTag, "no BASE or VSPL section holds the mesh it describes"});
+      return;
+    }
+    if (!d.base_mesh) return;  // BASE's own finding says why
+    for (std::string& finding : validate_wedg_corners(wedges.value(), *d.base_mesh))
+      findings->push_back({kWedgTag, std::move(finding)});
     return;
   }
   if (!d.pm) return;  // VSPL's own finding says why

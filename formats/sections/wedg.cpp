@@ -152,4 +152,31 @@ std::vector<std::string> validate_wedg(const PmWedges& wedges, const Progressive
   return findings;
 }
 
+std::vector<std::string> validate_wedg_corners(const PmWedges& w, const TriangleMesh& base) {
+  auto one = [](std::string problem) { return std::vector<std::string>{std::move(problem)}; };
+  if (!w.added.empty() || !w.moved.empty())
+    return one("WEDG describes " + str(w.added.size()) +
+               " splits but no VSPL section holds a progressive mesh");
+  const size_t count = w.wedge_count();
+  if (w.wedge_vertex.size() != count || w.wedge_home.size() != count)
+    return one("WEDG's wedge table has lists of different lengths");
+  if (w.base.size() != base.triangles.size())
+    return one("WEDG names " + str(w.base.size()) + " triangles, BASE has " +
+               str(base.triangles.size()));
+  for (size_t t = 0; t < w.base.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t wedge = w.base[t][k];
+      if (wedge >= count)
+        return one("triangle " + str(t) + "'s wedge " + str(wedge) + " is out of range");
+      if (w.wedge_home[wedge] != base.triangles[t][k])
+        return one("triangle " + str(t) + "'s corner at vertex " + str(base.triangles[t][k]) +
+                   " has wedge " + str(wedge) + " of vertex " + str(w.wedge_home[wedge]));
+    }
+    const uint32_t p = w.wedge_primitive[w.base[t][0]];
+    if (w.wedge_primitive[w.base[t][1]] != p || w.wedge_primitive[w.base[t][2]] != p)
+      return one("triangle " + str(t) + " has corners of two primitives");
+  }
+  return {};
+}
+
 }  // namespace lodbake

@@ -333,13 +333,19 @@ Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& b
   if (!o["vertices"].is_null()) request.options.target_vertices = o["vertices"].get<uint64_t>();
   if (!o["error"].is_null()) request.options.max_error = o["error"].get<double>();
   if (is_asset(input, bytes)) {
+    // Every front carries the asset's wedges (WEDG).
+    std::map<uint32_t, MeshCornerWedges> corners;
     return build_over_asset(
         input, bytes, fan_meta(request), load_options(o),
-        [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
+        [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
           LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
-          return fan_mesh_sections(std::move(b));
+          return fan_asset_sections(std::move(b), corners, scene_mesh, mesh);
         },
-        {}, out);
+        [&](const Scene& scene) -> Status {
+          LODBAKE_ASSIGN_OR_RETURN(corners, fan_asset_corners(request, scene));
+          return Status::ok();
+        },
+        out);
   }
   LoadedMesh loaded;
   LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));

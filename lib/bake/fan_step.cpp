@@ -4,6 +4,8 @@
 
 #include "formats/container/section_registry.h"
 #include "formats/sections/base.h"
+#include "formats/sections/wedg.h"
+#include "lib/fanmerge/fan_wedges.h"
 
 namespace lodbake {
 
@@ -42,6 +44,47 @@ MeshSections fan_mesh_sections(FanBuilt&& b) {
   out.sections.emplace_back(kFanhTag, std::move(b.fanh));
   out.counts = b.counts;
   out.report = b.counts;
+  return out;
+}
+
+PmWedges fan_input_wedges(const MeshCornerWedges& corners) {
+  PmWedges out;
+  out.wedge_primitive = corners.wedge_primitive;
+  out.wedge_vertex = corners.wedge_vertex;
+  out.wedge_home = corners.wedge_point;
+  out.base = corners.corner_wedge;
+  out.moved_offset.assign(1, 0);
+  return out;
+}
+
+Result<std::map<uint32_t, MeshCornerWedges>> fan_asset_corners(const FanStepOptions& request,
+                                                               const Scene& scene) {
+  LoadOptions load;
+  load.repair = request.repair;
+  load.strict = request.strict;
+  LODBAKE_ASSIGN_OR_RETURN(std::vector<MeshCornerWedges> all, scene_corner_wedges(scene, load));
+  std::map<uint32_t, MeshCornerWedges> corners;
+  for (MeshCornerWedges& c : all)
+    corners.emplace(c.mesh, std::move(c));
+  return corners;
+}
+
+Result<MeshSections> fan_asset_sections(FanBuilt&& built,
+                                        const std::map<uint32_t, MeshCornerWedges>& corners,
+                                        uint32_t scene_mesh, const TriangleMesh& mesh) {
+  auto found = corners.find(scene_mesh);
+  if (found == corners.end() || found->second.topology.positions != mesh.positions ||
+      found->second.topology.triangles != mesh.triangles)
+    return runtime_error("the corners read from the scene are not over the mesh built");
+  const PmWedges wedges = fan_input_wedges(found->second);
+  // What replay and --validate will ask of the file, asked once here so
+  // that a container the tool writes always loads.
+  Result<FanWedges> fronts = FanWedges::create(mesh, built.result.hierarchy, wedges);
+  if (!fronts.is_ok()) return runtime_error("the fan fronts' wedges: " + fronts.status().message());
+  LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(wedges));
+  MeshSections out = fan_mesh_sections(std::move(built));
+  out.sections.emplace_back(kWedgTag, std::move(wedg));
+  out.report["wedges"] = wedges.wedge_count();
   return out;
 }
 

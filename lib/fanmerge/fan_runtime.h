@@ -94,6 +94,8 @@ class FanRuntime {
 
   uint64_t node_count() const { return parent_.size(); }
   uint32_t leaf_count() const { return h_.vertex_count; }
+  /// The input's triangles: corners() and alive() take ids below it.
+  uint32_t input_triangle_count() const { return h_.triangle_count; }
   size_t internal_count() const { return h_.internal_count(); }
   bool is_leaf(uint32_t node) const { return node < h_.vertex_count; }
   /// The node's parent, or kNoNode for a root.

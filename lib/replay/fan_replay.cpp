@@ -206,4 +206,11 @@ std::vector<std::string> FanReplay::check() const {
   return problems;
 }
 
+std::vector<std::string> check_fan_wedges(const FanRuntime& runtime, const FanWedges& fronts,
+                                          const PmWedges& wedges) {
+  Result<std::vector<std::array<uint32_t, 3>>> corners = fronts.corners(runtime);
+  if (!corners.is_ok()) return {corners.status().message()};
+  return corner_wedge_problems(corners.value(), wedges);
+}
+
 }  // namespace lodbake

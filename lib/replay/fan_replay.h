@@ -13,9 +13,11 @@
 #include <vector>
 
 #include "formats/mesh/fan_hierarchy.h"
+#include "formats/mesh/pm_wedges.h"
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
 #include "lib/fanmerge/fan_runtime.h"
+#include "lib/fanmerge/fan_wedges.h"
 #include "lib/replay/camera_path.h"
 
 namespace lodbake {
@@ -105,5 +107,12 @@ class FanReplay {
   float near_ = 0;
   float coarse_fraction_ = 0.5f;
 };
+
+/// An asset's fan front's attributes: every corner of `runtime`'s current
+/// mesh has a wedge (FanWedges::corners()) and a face's three wedges belong
+/// to one primitive (corner_wedge_problems()). One line per kind of
+/// problem; empty when there is none.
+std::vector<std::string> check_fan_wedges(const FanRuntime& runtime, const FanWedges& fronts,
+                                          const PmWedges& wedges);
 
 }  // namespace lodbake

@@ -140,6 +140,14 @@ Result<FanStructure> load_fan_structure(const Container& decoded, uint32_t group
     LODBAKE_ASSIGN_OR_RETURN(out.h, decode_fanh(fanh->data, fanh->size));
     LODBAKE_ASSIGN_OR_RETURN(FanReplay replay, FanReplay::create(out.input, out.h));
     out.replay.emplace(std::move(replay));
+    if (const Section* wedg = decoded.find(kWedgTag, group)) {
+      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
+      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
+      Result<FanWedges> fronts = FanWedges::create(out.input, out.h, *out.wedges);
+      if (!fronts.is_ok())
+        return Status(fronts.status().kind(), "section WEDG: " + fronts.status().message());
+      out.fronts.emplace(std::move(fronts).value());
+    }
     return out;
   });
 }

@@ -24,6 +24,7 @@
 #include "formats/sections/rfin.h"
 #include "formats/sections/sets.h"
 #include "formats/support/status.h"
+#include "lib/fanmerge/fan_wedges.h"
 #include "lib/hierarchy/front_wedges.h"
 #include "lib/hierarchy/selective_refiner.h"
 #include "lib/replay/fan_replay.h"
@@ -70,10 +71,15 @@ Result<DagStructure> load_dag_structure(const Container& decoded, uint32_t group
 
 /// Mode fan: BASE and FANH, and the replay at the coarsest mesh
 /// (FanReplay::create(), which fails when the merges cannot all be made).
+/// With WEDG in the group (an asset's fan), also the wedges of every front:
+/// WEDG must then give BASE's own corners and follow FANH's steps
+/// (FanWedges::create()), or the load fails.
 struct FanStructure {
   TriangleMesh input;
   FanHierarchy h;
   std::optional<FanReplay> replay;
+  std::unique_ptr<PmWedges> wedges;
+  std::optional<FanWedges> fronts;
 };
 Result<FanStructure> load_fan_structure(const Container& decoded, uint32_t group);
 

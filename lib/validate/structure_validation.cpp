@@ -443,6 +443,18 @@ void check_fan(const Container& decoded, uint32_t group, Findings* f) {
     return f->add(kFanhTag, who, "the coarsest mesh cannot be reached");
   if (!runtime.value().split_all())
     return f->add(kFanhTag, who, "the input mesh cannot be reached back from the coarsest");
+  // An asset's fan: every corner of the coarsest front has a wedge of one
+  // primitive, and the finest front gives back the input's corners.
+  const FanStructure& l = loaded.value();
+  if (!l.fronts) return;
+  if (!f->none(kWedgTag, who, "the coarsest mesh's corners",
+               check_fan_wedges(l.replay->runtime(), *l.fronts, *l.wedges)))
+    return;
+  Result<std::vector<std::array<uint32_t, 3>>> finest = l.fronts->corners(runtime.value());
+  if (!finest.is_ok())
+    return f->add(kWedgTag, who, "the input mesh's corners: " + finest.status().message());
+  if (finest.value() != l.wedges->base)
+    f->add(kWedgTag, who, "the input mesh's corners do not have the input's wedges");
 }
 
 // Mode sets: recovery from the full mesh to the coarsest LoD and back, at

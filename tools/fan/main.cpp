@@ -1,5 +1,6 @@
 // lodbake-fan: builds the fan-merge hierarchy (lib/fanmerge) of one mesh and
-// writes it with the mesh as a container (META + BASE + FANH). With
+// writes it with the mesh as a container (META + BASE + FANH; over an
+// asset, each mesh's group also holds its corners' wedges, WEDG). With
 // --compare it also builds the balanced vertex hierarchy (lib/hierarchy) of
 // the same mesh and reports both side by side; that hierarchy's sections
 // (VHIE + RFIN) are encoded to count their bytes, never written. Thin: the
@@ -153,12 +154,27 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   // The comparison is a table for one mesh; on an asset, compare a mesh
   // extracted from it.
   if (request.compare) return tool.usage_error("--compare applies to a single mesh, not an asset");
-  return run_asset_build(tool, asset_run(request, kFanSchema, "building the fan hierarchies"),
-                         fan_meta(request), bytes,
-                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-                           LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
-                           return fan_mesh_sections(std::move(b));
-                         });
+  AssetRun run = asset_run(request, kFanSchema, "building the fan hierarchies");
+  // Every front carries the asset's wedges (WEDG): each mesh's corners,
+  // read once.
+  run.attributes = true;
+  std::map<uint32_t, MeshCornerWedges> corners;
+  Status read_corners = Status::ok();
+  run.on_scene = [&](const Scene& scene) {
+    Result<std::map<uint32_t, MeshCornerWedges>> all = fan_asset_corners(request, scene);
+    if (all.is_ok()) {
+      corners = std::move(all).value();
+    } else {
+      read_corners = all.status();
+    }
+  };
+  return run_asset_build(
+      tool, run, fan_meta(request), bytes,
+      [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
+        LODBAKE_RETURN_IF_ERROR(read_corners);
+        LODBAKE_ASSIGN_OR_RETURN(FanBuilt b, build_fan(request.options, mesh));
+        return fan_asset_sections(std::move(b), corners, scene_mesh, mesh);
+      });
 }
 
 int run(const Tool& tool, Request& request) {

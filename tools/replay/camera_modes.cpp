@@ -140,6 +140,8 @@ struct DagState {
 
 struct FanState {
   std::optional<FanReplay> replay;
+  std::unique_ptr<PmWedges> wedges;  // an asset's fan: every front's wedges
+  std::optional<FanWedges> fronts;
 };
 
 // An asset's structure whose fronts carry wedges: the report says so (and
@@ -339,7 +341,20 @@ Result<Session> load_fan(const OpenedContainer& file, const Request& request) {
     row.ms = f.adapt_ms;
     return std::vector<Row>{row};
   };
-  session.check = [state] { return state->replay->check(); };
+  if (loaded.fronts) {
+    state->wedges = std::move(loaded.wedges);
+    state->fronts.emplace(std::move(*loaded.fronts));
+    note_wedges(&session, *state->wedges);
+  }
+  session.check = [state] {
+    std::vector<std::string> problems = state->replay->check();
+    if (state->fronts) {
+      for (std::string& p :
+           check_fan_wedges(state->replay->runtime(), *state->fronts, *state->wedges))
+        problems.push_back(std::move(p));
+    }
+    return problems;
+  };
   return session;
 }
 
