@@ -4,7 +4,8 @@
 #   -> simplify --lods 0.5,0.25 (.glb)
 #   -> hierarchy, fan, strips, simplify --pm (from the asset and from its
 #      container) -> inspect --validate, replay --validate (vhier, dag,
-#      stream and vtrees on the hierarchy, fan, sets on the strips)
+#      stream and vtrees on the hierarchy, fan, sets on the strips; the
+#      fan's fronts with every corner's wedge checked)
 #   -> simplify --pm with default options (every collapse) -> inspect
 #      --extract --lod 0, 0.25, 0.5 and 1.0 (.glb; 0.25 also as .gltf)
 #   -> pack --draco of that PM -> inspect --validate, --extract --lod 0.5
@@ -108,6 +109,10 @@ build() {  # NAME REPLAY-MODES TOOL OPTION...: TOOL ASSET OPTION... NAME.lbk
 # The hierarchy's default sections (VHIE + RFIN, DAGE, VTRE) serve four modes.
 build hierarchy vhier,dag,stream,vtrees lodbake-hierarchy -o
 build fan fan lodbake-fan -o
+# The fan's fronts carry the asset's wedges: every corner of every frame.
+"$tools/lodbake-replay" "$work/fan.lbk" --mode fan --path orbit --validate > "$work/fan.txt" \
+  || fail "replay fan.lbk --mode fan"
+grep -q "wedges (every corner's checked)" "$work/fan.txt" || fail "the fan's fronts have no wedges"
 build strips sets lodbake-strips -o
 build strips_only none lodbake-strips --strips-only -o
 build pm none lodbake-simplify --ratio 0.5 --pm

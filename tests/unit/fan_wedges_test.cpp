@@ -15,9 +15,17 @@
 #include <utility>
 #include <vector>
 
+#include "formats/container/container_writer.h"
+#include "formats/container/section_registry.h"
+#include "formats/sections/base.h"
+#include "formats/sections/fanh.h"
+#include "formats/sections/open_container.h"
+#include "formats/sections/wedg.h"
 #include "lib/bake/fan_step.h"
 #include "lib/fanmerge/fan_build.h"
+#include "lib/replay/structure_loading.h"
 #include "lib/scene/scene_lods.h"
+#include "lib/validate/structure_validation.h"
 #include "tests/unit/asset_test_support.h"
 
 namespace lodbake {
@@ -251,6 +259,64 @@ TEST(FanWedges, RefusesWedgesThatAreNotTheStructuresOwn) {
   ASSERT_FALSE(other.empty());
   EXPECT_NE(refused(b.mesh, other.front().h, b.wedges).find("fan hierarchy over"),
             std::string::npos);
+}
+
+// BASE + FANH + `wedges` as WEDG, raw, in one group, opened.
+OpenedContainer fan_container(const Built& b, const PmWedges& wedges) {
+  ContainerWriter writer;
+  Result<Bytes> base = encode_base(b.mesh, BaseEncodeOptions());
+  Result<Bytes> fanh = encode_fanh(b.h);
+  Result<Bytes> wedg = encode_wedg(wedges);
+  EXPECT_TRUE(base.is_ok() && fanh.is_ok() && wedg.is_ok());
+  EXPECT_TRUE(writer.add_known_section(kBaseTag, base.value()).is_ok());
+  EXPECT_TRUE(writer.add_known_section(kFanhTag, fanh.value()).is_ok());
+  EXPECT_TRUE(writer.add_known_section(kWedgTag, wedg.value()).is_ok());
+  Result<Bytes> file = writer.finish();
+  EXPECT_TRUE(file.is_ok());
+  Result<OpenedContainer> opened = open_container(std::move(file).value());
+  EXPECT_TRUE(opened.is_ok()) << opened.status().message();
+  return std::move(opened).value();
+}
+
+std::string findings_of(const OpenedContainer& file) {
+  std::string out;
+  for (const SectionFinding& f : validate_container(file.decoded()))
+    out += f.tag + ": " + f.message + "\n";
+  return out;
+}
+
+// What replay and --validate load: the group's own WEDG gives every front
+// its wedges; another's is refused at load (kInvalidInput: exit 3) and
+// named by --validate.
+TEST(FanWedges, ContainersLoadTheirOwnWedgesOnly) {
+  std::vector<Built> all = build_all("Duck/Duck.gltf");
+  ASSERT_FALSE(all.empty());
+  const Built& b = all.front();
+  {
+    const OpenedContainer own = fan_container(b, b.wedges);
+    Result<FanStructure> loaded = load_fan_structure(own.decoded(), 0);
+    ASSERT_TRUE(loaded.is_ok()) << loaded.status().message();
+    ASSERT_TRUE(loaded.value().fronts.has_value());
+    EXPECT_EQ(*loaded.value().wedges, b.wedges);
+    EXPECT_EQ(findings_of(own), "");
+  }
+  PmWedges swapped = b.wedges;
+  std::swap(swapped.base[7][0], swapped.base[7][1]);
+  PmWedges split = b.wedges;
+  split.added.push_back({kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex});
+  split.moved_offset.push_back(0);
+  PmWedges fewer = b.wedges;
+  fewer.base.pop_back();
+  for (const PmWedges* foreign : {&swapped, &split, &fewer}) {
+    const OpenedContainer file = fan_container(b, *foreign);
+    Result<FanStructure> loaded = load_fan_structure(file.decoded(), 0);
+    ASSERT_FALSE(loaded.is_ok());
+    EXPECT_EQ(loaded.status().kind(), ErrorKind::kInvalidInput);
+    EXPECT_EQ(loaded.status().message().rfind("section WEDG: ", 0), 0u)
+        << loaded.status().message();
+    const std::string findings = findings_of(file);
+    EXPECT_NE(findings.find("WEDG: "), std::string::npos) << findings;
+  }
 }
 
 }  // namespace

@@ -304,7 +304,8 @@ int main(int argc, char** argv) {
             "hierarchy of the same mesh (as lodbake-hierarchy) and reports both side by side.\n"
             "MESH may also be a lodbake container (.lbk), read as the mesh it stands for; a\n"
             "glTF asset (or an OBJ with materials, a PLY with colours: docs/import.md), or\n"
-            "its container, gets every mesh built in its own group.");
+            "its container, gets every mesh built in its own group, with its corners'\n"
+            "wedges (WEDG), so that every front keeps the asset's attributes.");
   Request request;
   double ratio = 0, error = 0;
   uint64_t vertices = 0;
