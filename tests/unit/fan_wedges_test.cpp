@@ -39,6 +39,7 @@ struct Built {
   TriangleMesh mesh;
   FanHierarchy h;
   PmWedges wedges;
+  SceneMesh scene_mesh;  // whose primitives the wedges name
 };
 
 std::vector<Built> build_all(const std::string& asset) {
@@ -51,7 +52,8 @@ std::vector<Built> build_all(const std::string& asset) {
     Result<FanBuildResult> r = build_fan_hierarchy(c.topology, FanBuildOptions());
     EXPECT_TRUE(r.is_ok()) << r.status().message();
     if (!r.is_ok()) return {};
-    out.push_back({c.topology, std::move(r).value().hierarchy, fan_input_wedges(c)});
+    out.push_back(
+        {c.topology, std::move(r).value().hierarchy, fan_input_wedges(c), scene.meshes[c.mesh]});
   }
   EXPECT_FALSE(out.empty());
   return out;
@@ -102,6 +104,15 @@ TEST_P(FanWedgesTest, RandomFrontsAreTexturedAndTheFinestIsTheInput) {
     std::cout << GetParam() << ": " << own << " of " << 3 * coarsest.size()
               << " coarsest corners on a wedge of their own vertex\n";
     EXPECT_GT(own * 10, 3 * coarsest.size() * 8);
+    // The coarsest front as the asset's primitives (what an extracted
+    // level is made of): every index checked, no triangle lost.
+    Result<std::vector<ScenePrimitive>> primitives =
+        primitives_at_level(b.scene_mesh, rt.mesh(), coarsest, b.wedges);
+    ASSERT_TRUE(primitives.is_ok()) << primitives.status().message();
+    size_t assembled = 0;
+    for (const ScenePrimitive& p : primitives.value())
+      if (p.mode == PrimitiveMode::kTriangles && p.indices) assembled += p.indices->size() / 3;
+    EXPECT_EQ(assembled, rt.triangle_count());
     // Coarsen at an active node's parent or refine an active node, by one
     // step or a whole fan, as a traversal of the active list would.
     std::mt19937 rng(2028);
