@@ -194,7 +194,9 @@ int main(int argc, char** argv) {
             "legal) or a .lbk holding BASE + VSPL. Writes META + BASE + VSPL + SETS, or with\n"
             "--strips-only META + BASE + STRP (the strips over the full mesh). A glTF asset\n"
             "(or an OBJ with materials, a PLY with colours: docs/import.md), or its\n"
-            "container, gets every mesh built in its own group.");
+            "container, gets every mesh built in its own group, with WEDG (the asset's\n"
+            "wedges through the progressive mesh, which every SETS level's corners take)\n"
+            "after each VSPL.");
   Request request;
   tool.options().add_options()(
       "output,o", po::value<std::string>(&request.output)->value_name("OUT.lbk"),
