@@ -7,9 +7,9 @@
 // as a buggy writer or a hand-edited file would. When validation finds
 // nothing, every consumer runs as lodbake-replay --validate does (modes
 // vhier, dag with its three traversals, fan, sets, stream and vtrees along
-// sampled built-in camera paths, every frame checked) and as
-// `lodbake-inspect --extract` does (BASE, STRP, the PM at several LoDs);
-// any refusal aborts.
+// sampled built-in camera paths, every frame checked, an asset fan's corner
+// wedges too) and as `lodbake-inspect --extract` does (BASE, STRP, the PM at
+// several LoDs); any refusal aborts.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -153,6 +153,11 @@ void run_fan(const OpenedContainer& file, uint32_t group) {
   for (const CameraFrame& frame : sample_path(sphere)) {
     require_ok(replay.adapt(sphere, frame, {}).status(), "mode fan");
     require_clean(replay.check(), "mode fan --validate");
+    if (loaded.value().fronts) {
+      require_clean(
+          check_fan_wedges(replay.runtime(), *loaded.value().fronts, *loaded.value().wedges),
+          "mode fan --validate (wedges)");
+    }
   }
 }
 
