@@ -21,6 +21,7 @@
 #include "lib/replay/stream_wedge_check.h"
 #include "lib/scene/scene_lods.h"
 #include "tests/unit/asset_test_support.h"
+#include "tests/unit/test_support.h"
 #include "tests/unit/wire_corruption_support.h"
 
 namespace lodbake {
@@ -186,6 +187,24 @@ TEST_P(StreamWedgesTest, MessagesWithWedgesRoundTripAndRefuseDamage) {
   std::vector<VsplitPacket> wrong = few;
   wrong[0].wedges.added[0] = db.widths.wedges;
   EXPECT_FALSE(encode_vsplit_message(wrong, db.widths, roots).is_ok());
+
+  // The fuzz target's seeds with wedges are Fox's base message and this
+  // short message, decoded there under Fox's widths (written again with
+  // LODBAKE_REGENERATE_GOLDEN=1).
+  if (GetParam() != "Fox/Fox.gltf") return;
+  // (fuzz_stream_packets.cpp's wedge context)
+  EXPECT_EQ(roots, 4u);
+  EXPECT_EQ(db.widths.node_bits, 8);
+  EXPECT_EQ(db.widths.wedges, 434u);
+  EXPECT_EQ(db.widths.base_faces, 4u);
+  const std::string corpus = testing_util::env_or("LODBAKE_SOURCE_DIR", LODBAKE_TEST_SOURCE_DIR) +
+                             "/tests/fuzz/corpus/stream_packets/";
+  if (testing_util::env_or("LODBAKE_REGENERATE_GOLDEN", "0") == "1") {
+    ASSERT_TRUE(write_file_atomic(corpus + "base_fox_wedges.bin", base).is_ok());
+    ASSERT_TRUE(write_file_atomic(corpus + "vsplits_fox_wedges.bin", small).is_ok());
+  }
+  EXPECT_EQ(testing_util::read_bytes(corpus + "base_fox_wedges.bin"), base);
+  EXPECT_EQ(testing_util::read_bytes(corpus + "vsplits_fox_wedges.bin"), small);
 }
 
 TEST_P(StreamWedgesTest, MissingWedgeDataLeavesCornersWithoutTheirWedge) {
