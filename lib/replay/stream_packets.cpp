@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <string>
 #include <utility>
@@ -36,7 +37,8 @@ Status bad(const std::string& detail) {
   return invalid_input("stream message: " + detail);
 }
 
-void write_wide(BitWriter* w, uint64_t value, int bits) {
+template <typename Sink>
+void write_wide(Sink* w, uint64_t value, int bits) {
   if (bits <= 32) {
     w->write(static_cast<uint32_t>(value), bits);
   } else {
@@ -123,11 +125,8 @@ int bit_width(uint64_t v) {
 // Exp-Golomb (order 0) of v < 2^32 - 1: bit_width(v + 1) - 1 zero bits,
 // then v + 1 in bit_width(v + 1) bits, most significant first so that the
 // leading 1 ends the zeros.
-uint64_t gamma_bits(uint32_t v) {
-  return 2 * static_cast<uint64_t>(bit_width(uint64_t{v} + 1)) - 1;
-}
-
-void write_gamma(BitWriter* w, uint32_t v) {
+template <typename Sink>
+void write_gamma(Sink* w, uint32_t v) {
   const uint64_t x = uint64_t{v} + 1;
   const int n = bit_width(x);
   for (int i = 0; i < n - 1; ++i)
@@ -154,37 +153,77 @@ bool read_gamma(BitReader* r, uint32_t* v) {
   return true;
 }
 
+// Counts what a BitWriter would write.
+struct BitCounter {
+  uint64_t bits = 0;
+  void write(uint32_t, int n) { bits += static_cast<uint64_t>(n); }
+};
+
 uint64_t remaining_bits(const BitReader& r, size_t size) {
   return uint64_t{size} * 8 - r.bits_consumed();
 }
 
-uint64_t wedge_face_bits(const WedgeFace& f, const StreamIdWidths& widths) {
-  return 1 + (f.heap == 0 ? static_cast<uint64_t>(widths.base_face_bits())
-                          : static_cast<uint64_t>(widths.id_bits()) + 1);
+// A wedge that is usually one of `refs` (the split's own corners at the
+// same vertex: one wedge there unless a seam passes): for each distinct
+// reference in order a bit, 1 when it is that one, and after all of them
+// 0 the wedge itself (never one of the references, so one encoding).
+template <typename Sink>
+void write_wedge_like(Sink* w, uint32_t wedge, std::array<uint32_t, 2> refs, int wb) {
+  if (refs[1] == refs[0]) refs[1] = kNoVertex;
+  for (uint32_t ref : refs) {
+    if (ref == kNoVertex) continue;
+    const bool hit = ref == wedge;
+    w->write(hit ? 1 : 0, 1);
+    if (hit) return;
+  }
+  w->write(wedge, wb);
 }
 
-// The wedge data of a packet whose wings are `cuts`; false when a value is
-// out of range (the encoder's caller made it up).
-bool write_wedges(BitWriter* w, const VsplitPacket& p, const StreamIdWidths& widths,
+bool read_wedge_like(BitReader* r, uint32_t* wedge, std::array<uint32_t, 2> refs,
+                     const StreamIdWidths& widths) {
+  if (refs[1] == refs[0]) refs[1] = kNoVertex;
+  for (uint32_t ref : refs) {
+    if (ref == kNoVertex) continue;
+    uint32_t hit = 0;
+    if (!r->read(1, &hit)) return false;
+    if (hit != 0) {
+      *wedge = ref;
+      return true;
+    }
+  }
+  return r->read(widths.wedge_bits(), wedge) && *wedge < widths.wedges && *wedge != refs[0] &&
+         *wedge != refs[1];
+}
+
+// The wedge data of a packet; false when a value is out of range (the
+// encoder's caller made it up). The vt corners and the moved faces' wedges
+// refer to the split's vt wedges, the right face's vs corner to the left
+// face's.
+template <typename Sink>
+bool write_wedges(Sink* w, const VsplitPacket& p, const StreamIdWidths& widths,
                   uint32_t root_count) {
   const VsplitWedges& d = p.wedges;
   const int wb = widths.wedge_bits();
   const HierarchyNodeId* cuts[2] = {&p.cut_left, &p.cut_right};
+  const std::array<uint32_t, 6>& a = d.added;
   for (int side = 0; side < 2; ++side) {
     const bool present = cuts[side]->heap != 0;
-    const WingWedges& wing = d.wings[side];
     for (int k = 0; k < 3; ++k) {
-      const uint32_t v = d.added[3 * side + k];
-      if (!present) {
-        if (v != kNoVertex) return false;
-        continue;
-      }
-      if (v >= widths.wedges) return false;
-      w->write(v, wb);
+      const uint32_t v = a[3 * side + k];
+      if (present ? v >= widths.wedges : v != kNoVertex) return false;
     }
+    const WingWedges& wing = d.wings[side];
     if (!present) {
       if (wing.lift != 0 || !wing.changes.empty()) return false;
       continue;
+    }
+    if (side == 0) {
+      for (int k = 0; k < 3; ++k)
+        w->write(a[k], wb);
+    } else {
+      write_wedge_like(w, a[3], {a[1], kNoVertex}, wb);
+      write_wedge_like(w, a[4], {a[0], kNoVertex}, wb);
+      w->write(a[5], wb);
     }
     const auto depth = static_cast<uint32_t>(bit_width(cuts[side]->heap) - 1);
     if (wing.lift > depth) return false;
@@ -214,7 +253,7 @@ bool write_wedges(BitWriter* w, const VsplitPacket& p, const StreamIdWidths& wid
       write_wide(w, m.face.heap, widths.node_bits);
       w->write(m.face.side, 1);
     }
-    w->write(m.wedge, wb);
+    write_wedge_like(w, m.wedge, {a[1], a[3]}, wb);
   }
   return true;
 }
@@ -226,11 +265,14 @@ std::string read_wedges(BitReader* r, size_t size, VsplitPacket* p, const Stream
   const int wb = widths.wedge_bits();
   const HierarchyNodeId* cuts[2] = {&p->cut_left, &p->cut_right};
   auto wedge = [&](uint32_t* out) { return r->read(wb, out) && *out < widths.wedges; };
+  std::array<uint32_t, 6>& a = d.added;
   for (int side = 0; side < 2; ++side) {
     if (cuts[side]->heap == 0) continue;
-    for (int k = 0; k < 3; ++k) {
-      if (!wedge(&d.added[3 * side + k])) return "a wedge is truncated or out of range";
-    }
+    const bool read = side == 0 ? wedge(&a[0]) && wedge(&a[1]) && wedge(&a[2])
+                                : read_wedge_like(r, &a[3], {a[1], kNoVertex}, widths) &&
+                                      read_wedge_like(r, &a[4], {a[0], kNoVertex}, widths) &&
+                                      wedge(&a[5]);
+    if (!read) return "a wedge is truncated or out of range";
     WingWedges& wing = d.wings[side];
     const auto depth = static_cast<uint32_t>(bit_width(cuts[side]->heap) - 1);
     uint32_t count = 0;
@@ -249,8 +291,9 @@ std::string read_wedges(BitReader* r, size_t size, VsplitPacket* p, const Stream
   }
   uint32_t moved = 0;
   if (!read_gamma(r, &moved)) return "truncated wedge data";
+  // Each moved entry takes its kind bit, a face id and at least one bit.
   const uint64_t least =
-      1 + static_cast<uint64_t>(std::min(widths.base_face_bits(), widths.id_bits() + 1) + wb);
+      2 + static_cast<uint64_t>(std::min(widths.base_face_bits(), widths.id_bits() + 1));
   if (uint64_t{moved} * least > remaining_bits(*r, size)) {
     return std::to_string(moved) + " moved wedges need more bytes than remain";
   }
@@ -270,7 +313,8 @@ std::string read_wedges(BitReader* r, size_t size, VsplitPacket* p, const Stream
       if (m.face.heap == 0) return "node id 0";
       m.face.side = static_cast<uint8_t>(side);
     }
-    if (!wedge(&m.wedge)) return "a wedge is truncated or out of range";
+    if (!read_wedge_like(r, &m.wedge, {a[1], a[3]}, widths))
+      return "a wedge is truncated or out of range";
   }
   return "";
 }
@@ -311,23 +355,10 @@ bool VsplitPacket::operator==(const VsplitPacket& o) const {
 
 uint64_t vsplit_wedge_bits(const VsplitPacket& p, const StreamIdWidths& widths) {
   if (widths.wedges == 0) return 0;
-  const auto wb = static_cast<uint64_t>(widths.wedge_bits());
-  const VsplitWedges& d = p.wedges;
-  uint64_t bits = gamma_bits(static_cast<uint32_t>(d.moved.size()));
-  const HierarchyNodeId* cuts[2] = {&p.cut_left, &p.cut_right};
-  for (int side = 0; side < 2; ++side) {
-    if (cuts[side]->heap == 0) continue;
-    const WingWedges& wing = d.wings[side];
-    bits += 3 * wb + gamma_bits(wing.lift) + gamma_bits(static_cast<uint32_t>(wing.changes.size()));
-    uint32_t level = 0;
-    for (const auto& change : wing.changes) {
-      bits += gamma_bits(change.first - level - 1) + wb;
-      level = change.first;
-    }
-  }
-  for (const MovedWedge& m : d.moved)
-    bits += wedge_face_bits(m.face, widths) + wb;
-  return bits;
+  BitCounter count;
+  // A packet the encoder refuses has no size; count what it would write.
+  (void)write_wedges(&count, p, widths, std::numeric_limits<uint32_t>::max());
+  return count.bits;
 }
 
 uint64_t vsplit_packet_bits(const VsplitPacket& p, const StreamIdWidths& widths) {

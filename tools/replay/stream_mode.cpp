@@ -354,6 +354,7 @@ int run_stream_connect(const Tool& tool, const Request& request) {
          {{"splits", tot.splits},
           {"collapses", tot.collapses},
           {"triangles", {{"mean", tot.mean_triangles}, {"max", tot.max_triangles}}}}}});
+    if (session.client().has_wedges()) report["wedges"] = {{"count", widths.wedges}};
     tool.print_json(report);
     return 0;
   }
@@ -366,6 +367,10 @@ int run_stream_connect(const Tool& tool, const Request& request) {
             << tot.packets << " vsplit packets\n";
   std::cout << "packet        topology " << 3 * widths.id_bits() << " bits (3 x "
             << widths.id_bits() << "; the paper 96)\n";
+  if (session.client().has_wedges()) {
+    std::cout << "wedges        " << widths.wedges << " wedges"
+              << (request.validate ? ", one at every corner of every frame" : "") << "\n";
+  }
   std::cout << "client        " << tot.splits << " splits, " << tot.collapses
             << " collapses, triangles mean " << tot.mean_triangles << ", max " << tot.max_triangles
             << "\n";
