@@ -133,10 +133,16 @@ Result<StreamWedgeTable> stream_wedge_table(const VertexHierarchy& h, const Prog
   }
 }
 
-Status StreamCornerWedges::put(const WedgeFace& face, const HierarchyNodeId& at, uint32_t wedge) {
-  auto [it, added] = lookup_.emplace(std::make_pair(face, canonical(at)), wedge);
-  if (!added && it->second != wedge)
-    return invalid_input("a corner's wedge differs from what an earlier message gave");
+Status StreamCornerWedges::put_all(const std::vector<Entry>& entries) {
+  // All or nothing: a refused message leaves what earlier ones gave.
+  std::map<Key, uint32_t> fresh;
+  for (const Entry& e : entries) {
+    auto known = lookup_.find(e.first);
+    auto [it, added] = fresh.emplace(e.first, e.second);
+    if ((known != lookup_.end() && known->second != e.second) || (!added && it->second != e.second))
+      return invalid_input("a corner's wedge differs from what an earlier message gave");
+  }
+  lookup_.insert(fresh.begin(), fresh.end());
   return Status::ok();
 }
 
@@ -145,11 +151,12 @@ Status StreamCornerWedges::add_base(const std::vector<Triangle>& triangles,
   try {
     if (corners.size() != triangles.size())
       return invalid_input("the base message's corner wedges do not match its triangles");
+    std::vector<Entry> entries;
     for (uint32_t f = 0; f < triangles.size(); ++f) {
       for (int c = 0; c < 3; ++c)
-        LODBAKE_RETURN_IF_ERROR(put({f, 0, 0}, {triangles[f][c], 1}, corners[f][c]));
+        entries.push_back({{{f, 0, 0}, canonical({triangles[f][c], 1})}, corners[f][c]});
     }
-    return Status::ok();
+    return put_all(entries);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory receiving the base corners' wedges");
   }
@@ -160,21 +167,30 @@ Status StreamCornerWedges::add_split(const VsplitPacket& p) {
     const VsplitWedges& d = p.wedges;
     const HierarchyNodeId right{p.vs.tree, p.vs.heap * 2 + 1};
     const HierarchyNodeId cuts[2] = {p.cut_left, p.cut_right};
+    std::vector<Entry> entries;
+    Wing wings[2];
+    auto put = [&](const WedgeFace& face, const HierarchyNodeId& at, uint32_t wedge) {
+      entries.push_back({{face, canonical(at)}, wedge});
+    };
     for (int side = 0; side < 2; ++side) {
       if (cuts[side].heap == 0) continue;
       const WedgeFace face{p.vs.tree, p.vs.heap, static_cast<uint8_t>(side)};
       const WingWedges& wing = d.wings[side];
-      Wing& kept = wings_[face];
-      kept.w = {cuts[side].tree, cuts[side].heap >> wing.lift};
-      kept.wedge = d.added[3 * side + 2];
-      kept.changes = wing.changes;
+      wings[side].w = {cuts[side].tree, cuts[side].heap >> wing.lift};
+      wings[side].wedge = d.added[3 * side + 2];
+      wings[side].changes = wing.changes;
       // (vs, vt, vl) on the left, (vt, vs, vr) on the right.
-      LODBAKE_RETURN_IF_ERROR(put(face, side == 0 ? p.vs : right, d.added[3 * side]));
-      LODBAKE_RETURN_IF_ERROR(put(face, side == 0 ? right : p.vs, d.added[3 * side + 1]));
-      LODBAKE_RETURN_IF_ERROR(put(face, kept.w, kept.wedge));
+      put(face, side == 0 ? p.vs : right, d.added[3 * side]);
+      put(face, side == 0 ? right : p.vs, d.added[3 * side + 1]);
+      put(face, wings[side].w, wings[side].wedge);
     }
     for (const MovedWedge& m : d.moved)
-      LODBAKE_RETURN_IF_ERROR(put(m.face, right, m.wedge));
+      put(m.face, right, m.wedge);
+    LODBAKE_RETURN_IF_ERROR(put_all(entries));
+    for (int side = 0; side < 2; ++side) {
+      if (cuts[side].heap != 0)
+        wings_[{p.vs.tree, p.vs.heap, static_cast<uint8_t>(side)}] = std::move(wings[side]);
+    }
     return Status::ok();
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory receiving a split's wedges");

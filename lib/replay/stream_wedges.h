@@ -47,8 +47,9 @@ class StreamCornerWedges {
   /// The base triangles' corners (their vertices are the roots).
   Status add_base(const std::vector<Triangle>& triangles,
                   const std::vector<std::array<uint32_t, 3>>& corners);
-  /// One received split's wedge data. kInvalidInput when it gives a pair
-  /// (face, vertex) another wedge than an earlier message did.
+  /// One received split's wedge data. kInvalidInput, nothing kept, when it
+  /// gives a pair (face, vertex) another wedge than an earlier message did
+  /// or than itself.
   Status add_split(const VsplitPacket& p);
   /// The wedge of the corner of `face` at node `at` (complete hierarchy
   /// ids), kNoVertex when the messages received give none.
@@ -61,9 +62,11 @@ class StreamCornerWedges {
     uint32_t wedge = kNoVertex;
     std::vector<std::pair<uint32_t, uint32_t>> changes;
   };
-  Status put(const WedgeFace& face, const HierarchyNodeId& at, uint32_t wedge);
+  using Key = std::pair<WedgeFace, HierarchyNodeId>;  // the face, the corner's canonical node
+  using Entry = std::pair<Key, uint32_t>;
+  Status put_all(const std::vector<Entry>& entries);
 
-  std::map<std::pair<WedgeFace, HierarchyNodeId>, uint32_t> lookup_;
+  std::map<Key, uint32_t> lookup_;
   std::map<WedgeFace, Wing> wings_;
 };
 

@@ -261,6 +261,39 @@ TEST_P(StreamWedgesTest, WingsWithoutTheirChangesDifferFromTheServer) {
   EXPECT_GT(differ, 0u);
 }
 
+// A server that contradicts itself (a pair (face, vertex) given two
+// wedges) is refused, and the client keeps what it had.
+TEST_P(StreamWedgesTest, ClientRefusesContradictingWedgeData) {
+  const std::vector<Built> all = build_all(GetParam());
+  ASSERT_FALSE(all.empty());
+  const Built& b = all.front();
+  Result<StreamHierarchy> created = StreamHierarchy::create(b.h, b.data);
+  ASSERT_TRUE(created.is_ok());
+  StreamHierarchy& db = created.value();
+  ASSERT_TRUE(db.set_wedges(stream_wedge_table(b.h, b.pm, b.wedges).value()).is_ok());
+  const auto roots = static_cast<uint32_t>(b.h.root_count());
+  uint32_t root = 0;
+  while (root < roots && (b.h.is_leaf(root) || b.h.cut_left[root] == kNoNode))
+    ++root;
+  ASSERT_LT(root, roots);
+  VsplitPacket p = db.packet(root);
+  // The left face's vt corner again as a moved face, with another wedge;
+  // the vs corner made wrong too, which the client must not keep.
+  const uint32_t other = (p.wedges.added[1] + 1) % db.widths.wedges;
+  p.wedges.added[0] = (p.wedges.added[0] + 1) % db.widths.wedges;
+  p.wedges.moved.push_back({{p.vs.tree, p.vs.heap, 0}, other});
+  const Bytes bad = encode_vsplit_message({p}, db.widths, roots).value();
+  const Bytes base = db.base_message().value();
+  Result<StreamClient> client = StreamClient::create(base.data(), base.size());
+  ASSERT_TRUE(client.is_ok()) << client.status().message();
+  const Status refused = client.value().receive(bad.data(), bad.size());
+  EXPECT_EQ(refused.kind(), ErrorKind::kInvalidInput);
+  EXPECT_NE(refused.message().find("wedge differs"), std::string::npos) << refused.message();
+  EXPECT_TRUE(client.value().received().empty());
+  const Bytes good = encode_vsplit_message({db.packet(root)}, db.widths, roots).value();
+  EXPECT_TRUE(client.value().receive(good.data(), good.size()).is_ok());
+}
+
 INSTANTIATE_TEST_SUITE_P(Assets, StreamWedgesTest,
                          testing::Values("Duck/Duck.glb", "CesiumMilkTruck/CesiumMilkTruck.gltf",
                                          "Fox/Fox.gltf"),
