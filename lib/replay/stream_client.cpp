@@ -22,6 +22,7 @@
 #include "lib/replay/stream_client.h"
 
 #include <new>
+#include <string>
 
 #include "formats/support/bit_packing.h"
 
@@ -55,6 +56,11 @@ Result<StreamClient> StreamClient::create(const uint8_t* base_message, size_t si
     c.roots_ = roots;
     c.widths_.tree_bits = bits_for_count(roots);
     c.widths_.node_bits = base.node_bits;
+    if (base.wedge_count != 0) {
+      c.widths_.wedges = base.wedge_count;
+      c.widths_.base_faces = static_cast<uint32_t>(base.mesh.triangles.size());
+      LODBAKE_RETURN_IF_ERROR(c.corner_wedges_.add_base(base.mesh.triangles, base.corners));
+    }
     c.h_ = std::make_unique<VertexHierarchy>();
     VertexHierarchy& h = *c.h_;
     h.position = base.mesh.positions;
@@ -115,6 +121,10 @@ Status StreamClient::apply(const VsplitPacket& p) {
     if (cut->heap != 0 && (is_prefix(*cut, p.vs) || is_prefix(p.vs, *cut))) {
       return invalid_input(at + "a cut vertex in the node's own subtree or above it");
     }
+  }
+  if (has_wedges()) {
+    Status wedges = corner_wedges_.add_split(p);
+    if (!wedges.is_ok()) return invalid_input(at + wedges.message());
   }
   VertexHierarchy& h = *h_;
   const auto left = static_cast<uint32_t>(h.node_count());
@@ -204,6 +214,35 @@ Result<Bytes> StreamClient::reconnect() {
     return message;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory writing the resume message");
+  }
+}
+
+WedgeFace StreamClient::face_of(uint32_t origin) const {
+  const auto base = static_cast<uint32_t>(h_->base.triangles.size());
+  if (origin < base) return {origin, 0, 0};
+  const HierarchyNodeId& id = ids_[(origin - base) / 2];
+  return {id.tree, id.heap, static_cast<uint8_t>((origin - base) % 2)};
+}
+
+Result<std::vector<std::array<uint32_t, 3>>> StreamClient::corner_wedges() const {
+  if (!has_wedges()) return invalid_input("the stream carries no wedges");
+  try {
+    const std::vector<Triangle> faces = refiner_->triangles();
+    const std::vector<uint32_t> origins = refiner_->face_origins();
+    std::vector<std::array<uint32_t, 3>> out(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const WedgeFace face = face_of(origins[f]);
+      for (int k = 0; k < 3; ++k) {
+        out[f][k] = corner_wedges_.wedge(face, ids_[faces[f][k]]);
+        if (out[f][k] == kNoVertex)
+          return invalid_input("the corner at node <" + std::to_string(ids_[faces[f][k]].tree) +
+                               "," + std::to_string(ids_[faces[f][k]].heap) + "> of face " +
+                               std::to_string(f) + " has no wedge");
+      }
+    }
+    return out;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory finding the client's corner wedges");
   }
 }
 

@@ -18,6 +18,7 @@
 #include "lib/hierarchy/selective_refiner.h"
 #include "lib/replay/stream_packets.h"
 #include "lib/replay/stream_view.h"
+#include "lib/replay/stream_wedges.h"
 
 namespace lodbake {
 
@@ -71,6 +72,17 @@ class StreamClient {
   const std::vector<HierarchyNodeId>& received() const { return received_; }
   const StreamIdWidths& widths() const { return widths_; }
 
+  /// An asset's stream (the base message carries wedges).
+  bool has_wedges() const { return widths_.wedges != 0; }
+  /// The hierarchy's name of the face refiner() gives `origin`
+  /// (SelectiveRefiner::face_origins()).
+  WedgeFace face_of(uint32_t origin) const;
+  /// The wedge of every corner of refiner()'s current mesh, triangle by
+  /// triangle as triangles() lists them, from the wedge data received.
+  /// kInvalidInput naming the first corner without one (or a stream
+  /// without wedges).
+  Result<std::vector<std::array<uint32_t, 3>>> corner_wedges() const;
+
  private:
   StreamClient() = default;
   Status apply(const VsplitPacket& p);
@@ -97,6 +109,7 @@ class StreamClient {
   /// (node, side) whose cut reference is this partial leaf.
   std::vector<std::vector<std::pair<uint32_t, int>>> watchers_;
   std::vector<HierarchyNodeId> received_;
+  StreamCornerWedges corner_wedges_;
   size_t pending_ = 0;  // packets since the last end-of-answer
   bool complete_ = true;
 };

@@ -10,6 +10,9 @@
 //   RFIN's own record bits (float32 radius, mu^2, delta^2; 16-bit octahedral
 //   axis and half-angle), so client and server evaluate qrefine() on the
 //   same values; a leaf child sends only its flag;
+// - an asset's wedge data ends each packet: wedge ids and base face ids in
+//   their computed widths, counts and levels as Exp-Golomb codes (most are
+//   0 or 1, and each code has one encoding);
 // - floats travel as their IEEE-754 bits (so every message has one
 //   encoding); NaN and infinities are refused everywhere, negative values
 //   in refinement data, fov, aspect, tolerance and near where the header
@@ -19,8 +22,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <string>
+#include <utility>
 
 #include "formats/support/bit_packing.h"
 #include "formats/support/byte_reader.h"
@@ -32,7 +37,8 @@ Status bad(const std::string& detail) {
   return invalid_input("stream message: " + detail);
 }
 
-void write_wide(BitWriter* w, uint64_t value, int bits) {
+template <typename Sink>
+void write_wide(Sink* w, uint64_t value, int bits) {
   if (bits <= 32) {
     w->write(static_cast<uint32_t>(value), bits);
   } else {
@@ -109,6 +115,210 @@ bool valid_widths(const StreamIdWidths& widths, uint32_t root_count) {
          widths.node_bits >= 1 && widths.node_bits <= 64;
 }
 
+int bit_width(uint64_t v) {
+  int w = 0;
+  for (; v != 0; v >>= 1)
+    ++w;
+  return w;
+}
+
+// Exp-Golomb (order 0) of v < 2^32 - 1: bit_width(v + 1) - 1 zero bits,
+// then v + 1 in bit_width(v + 1) bits, most significant first so that the
+// leading 1 ends the zeros.
+template <typename Sink>
+void write_gamma(Sink* w, uint32_t v) {
+  const uint64_t x = uint64_t{v} + 1;
+  const int n = bit_width(x);
+  for (int i = 0; i < n - 1; ++i)
+    w->write(0, 1);
+  for (int i = n - 1; i >= 0; --i)
+    w->write(static_cast<uint32_t>((x >> i) & 1), 1);
+}
+
+bool read_gamma(BitReader* r, uint32_t* v) {
+  int zeros = 0;
+  uint32_t bit = 0;
+  for (;;) {
+    if (!r->read(1, &bit)) return false;
+    if (bit != 0) break;
+    if (++zeros > 31) return false;
+  }
+  uint64_t x = 1;
+  for (int i = 0; i < zeros; ++i) {
+    if (!r->read(1, &bit)) return false;
+    x = x << 1 | bit;
+  }
+  if (x - 1 > 0xfffffffeu) return false;
+  *v = static_cast<uint32_t>(x - 1);
+  return true;
+}
+
+// Counts what a BitWriter would write.
+struct BitCounter {
+  uint64_t bits = 0;
+  void write(uint32_t, int n) { bits += static_cast<uint64_t>(n); }
+};
+
+uint64_t remaining_bits(const BitReader& r, size_t size) {
+  return uint64_t{size} * 8 - r.bits_consumed();
+}
+
+// A wedge that is usually one of `refs` (the split's own corners at the
+// same vertex: one wedge there unless a seam passes): for each distinct
+// reference in order a bit, 1 when it is that one, and after all of them
+// 0 the wedge itself (never one of the references, so one encoding).
+template <typename Sink>
+void write_wedge_like(Sink* w, uint32_t wedge, std::array<uint32_t, 2> refs, int wb) {
+  if (refs[1] == refs[0]) refs[1] = kNoVertex;
+  for (uint32_t ref : refs) {
+    if (ref == kNoVertex) continue;
+    const bool hit = ref == wedge;
+    w->write(hit ? 1 : 0, 1);
+    if (hit) return;
+  }
+  w->write(wedge, wb);
+}
+
+bool read_wedge_like(BitReader* r, uint32_t* wedge, std::array<uint32_t, 2> refs,
+                     const StreamIdWidths& widths) {
+  if (refs[1] == refs[0]) refs[1] = kNoVertex;
+  for (uint32_t ref : refs) {
+    if (ref == kNoVertex) continue;
+    uint32_t hit = 0;
+    if (!r->read(1, &hit)) return false;
+    if (hit != 0) {
+      *wedge = ref;
+      return true;
+    }
+  }
+  return r->read(widths.wedge_bits(), wedge) && *wedge < widths.wedges && *wedge != refs[0] &&
+         *wedge != refs[1];
+}
+
+// The wedge data of a packet; false when a value is out of range (the
+// encoder's caller made it up). The vt corners and the moved faces' wedges
+// refer to the split's vt wedges, the right face's vs corner to the left
+// face's.
+template <typename Sink>
+bool write_wedges(Sink* w, const VsplitPacket& p, const StreamIdWidths& widths,
+                  uint32_t root_count) {
+  const VsplitWedges& d = p.wedges;
+  const int wb = widths.wedge_bits();
+  const HierarchyNodeId* cuts[2] = {&p.cut_left, &p.cut_right};
+  const std::array<uint32_t, 6>& a = d.added;
+  for (int side = 0; side < 2; ++side) {
+    const bool present = cuts[side]->heap != 0;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = a[3 * side + k];
+      if (present ? v >= widths.wedges : v != kNoVertex) return false;
+    }
+    const WingWedges& wing = d.wings[side];
+    if (!present) {
+      if (wing.lift != 0 || !wing.changes.empty()) return false;
+      continue;
+    }
+    if (side == 0) {
+      for (int k = 0; k < 3; ++k)
+        w->write(a[k], wb);
+    } else {
+      write_wedge_like(w, a[3], {a[1], kNoVertex}, wb);
+      write_wedge_like(w, a[4], {a[0], kNoVertex}, wb);
+      w->write(a[5], wb);
+    }
+    const auto depth = static_cast<uint32_t>(bit_width(cuts[side]->heap) - 1);
+    if (wing.lift > depth) return false;
+    write_gamma(w, wing.lift);
+    write_gamma(w, static_cast<uint32_t>(wing.changes.size()));
+    uint32_t level = 0;
+    for (const auto& [at, wedge] : wing.changes) {
+      if (at <= level || at > depth - wing.lift || wedge >= widths.wedges) return false;
+      write_gamma(w, at - level - 1);
+      w->write(wedge, wb);
+      level = at;
+    }
+  }
+  write_gamma(w, static_cast<uint32_t>(d.moved.size()));
+  for (const MovedWedge& m : d.moved) {
+    if (m.wedge >= widths.wedges) return false;
+    if (m.face.heap == 0) {
+      if (m.face.tree >= widths.base_faces || m.face.side != 0) return false;
+      w->write(0, 1);
+      w->write(m.face.tree, widths.base_face_bits());
+    } else {
+      if (m.face.tree >= root_count || !fits(m.face.heap, widths.node_bits) || m.face.side > 1) {
+        return false;
+      }
+      w->write(1, 1);
+      w->write(m.face.tree, widths.tree_bits);
+      write_wide(w, m.face.heap, widths.node_bits);
+      w->write(m.face.side, 1);
+    }
+    write_wedge_like(w, m.wedge, {a[1], a[3]}, wb);
+  }
+  return true;
+}
+
+// "" or what is wrong with the packet's wedge data.
+std::string read_wedges(BitReader* r, size_t size, VsplitPacket* p, const StreamIdWidths& widths,
+                        uint32_t root_count) {
+  VsplitWedges& d = p->wedges;
+  const int wb = widths.wedge_bits();
+  const HierarchyNodeId* cuts[2] = {&p->cut_left, &p->cut_right};
+  auto wedge = [&](uint32_t* out) { return r->read(wb, out) && *out < widths.wedges; };
+  std::array<uint32_t, 6>& a = d.added;
+  for (int side = 0; side < 2; ++side) {
+    if (cuts[side]->heap == 0) continue;
+    const bool read = side == 0 ? wedge(&a[0]) && wedge(&a[1]) && wedge(&a[2])
+                                : read_wedge_like(r, &a[3], {a[1], kNoVertex}, widths) &&
+                                      read_wedge_like(r, &a[4], {a[0], kNoVertex}, widths) &&
+                                      wedge(&a[5]);
+    if (!read) return "a wedge is truncated or out of range";
+    WingWedges& wing = d.wings[side];
+    const auto depth = static_cast<uint32_t>(bit_width(cuts[side]->heap) - 1);
+    uint32_t count = 0;
+    if (!read_gamma(r, &wing.lift) || !read_gamma(r, &count)) return "truncated wedge data";
+    if (wing.lift > depth) return "a wing lifted above its tree's root";
+    if (count > depth - wing.lift) return "more wedge changes than levels";
+    uint32_t level = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+      uint32_t step = 0, v = 0;
+      if (!read_gamma(r, &step)) return "truncated wedge data";
+      if (step >= depth - wing.lift - level) return "a wedge change above its tree's root";
+      level += step + 1;
+      if (!wedge(&v)) return "a wedge is truncated or out of range";
+      wing.changes.emplace_back(level, v);
+    }
+  }
+  uint32_t moved = 0;
+  if (!read_gamma(r, &moved)) return "truncated wedge data";
+  // Each moved entry takes its kind bit, a face id and at least one bit.
+  const uint64_t least =
+      2 + static_cast<uint64_t>(std::min(widths.base_face_bits(), widths.id_bits() + 1));
+  if (uint64_t{moved} * least > remaining_bits(*r, size)) {
+    return std::to_string(moved) + " moved wedges need more bytes than remain";
+  }
+  d.moved.resize(moved);
+  for (MovedWedge& m : d.moved) {
+    uint32_t kind = 0, side = 0;
+    if (!r->read(1, &kind)) return "truncated wedge data";
+    if (kind == 0) {
+      if (!r->read(widths.base_face_bits(), &m.face.tree)) return "truncated wedge data";
+      if (m.face.tree >= widths.base_faces) return "a base face out of range";
+    } else {
+      if (!r->read(widths.tree_bits, &m.face.tree) ||
+          !read_wide(r, widths.node_bits, &m.face.heap) || !r->read(1, &side)) {
+        return "truncated wedge data";
+      }
+      if (m.face.tree >= root_count) return "tree id out of range";
+      if (m.face.heap == 0) return "node id 0";
+      m.face.side = static_cast<uint8_t>(side);
+    }
+    if (!read_wedge_like(r, &m.wedge, {a[1], a[3]}, widths))
+      return "a wedge is truncated or out of range";
+  }
+  return "";
+}
+
 }  // namespace
 
 bool ViewRequest::operator==(const ViewRequest& o) const {
@@ -117,6 +327,14 @@ bool ViewRequest::operator==(const ViewRequest& o) const {
          float_bits(aspect) == float_bits(o.aspect) &&
          float_bits(tolerance) == float_bits(o.tolerance) &&
          float_bits(near_distance) == float_bits(o.near_distance);
+}
+
+int StreamIdWidths::wedge_bits() const {
+  return bits_for_count(wedges);
+}
+
+int StreamIdWidths::base_face_bits() const {
+  return bits_for_count(base_faces);
 }
 
 bool StreamNodeData::operator==(const StreamNodeData& o) const {
@@ -131,12 +349,21 @@ bool VsplitPacket::operator==(const VsplitPacket& o) const {
   return vs == o.vs && cut_left == o.cut_left && cut_right == o.cut_right &&
          float_bits(position[0]) == float_bits(o.position[0]) &&
          float_bits(position[1]) == float_bits(o.position[1]) &&
-         float_bits(position[2]) == float_bits(o.position[2]) && left == o.left && right == o.right;
+         float_bits(position[2]) == float_bits(o.position[2]) && left == o.left &&
+         right == o.right && wedges == o.wedges;
+}
+
+uint64_t vsplit_wedge_bits(const VsplitPacket& p, const StreamIdWidths& widths) {
+  if (widths.wedges == 0) return 0;
+  BitCounter count;
+  // A packet the encoder refuses has no size; count what it would write.
+  (void)write_wedges(&count, p, widths, std::numeric_limits<uint32_t>::max());
+  return count.bits;
 }
 
 uint64_t vsplit_packet_bits(const VsplitPacket& p, const StreamIdWidths& widths) {
   return min_packet_bits(widths) + (p.left.internal ? kStreamRecordBits : 0) +
-         (p.right.internal ? kStreamRecordBits : 0);
+         (p.right.internal ? kStreamRecordBits : 0) + vsplit_wedge_bits(p, widths);
 }
 
 Result<uint32_t> stream_payload_length(const uint8_t* header, size_t size, uint32_t max_payload) {
@@ -205,14 +432,19 @@ Result<Bytes> encode_base_message(const BaseMessage& base) {
   if (base.node_bits < 1 || base.node_bits > 64) {
     return invalid_input("base message: node bits outside 1..64");
   }
+  const bool wedges = base.wedge_count != 0;
+  if (wedges ? base.corners.size() != base.mesh.triangles.size() : !base.corners.empty()) {
+    return invalid_input("base message: corner wedges without one entry per triangle");
+  }
   try {
     Bytes payload;
     ByteWriter w(&payload);
     w.write(static_cast<uint32_t>(roots));
     w.write(static_cast<uint32_t>(base.mesh.triangles.size()));
     w.write(static_cast<uint8_t>(base.node_bits));
-    w.write(uint8_t{0});
+    w.write(static_cast<uint8_t>(wedges ? 1 : 0));
     w.write(uint16_t{0});
+    if (wedges) w.write(base.wedge_count);
     for (const Vec3f& p : base.mesh.positions) {
       for (float c : p) {
         if (!std::isfinite(c)) return invalid_input("base message: a position is not finite");
@@ -229,6 +461,13 @@ Result<Bytes> encode_base_message(const BaseMessage& base) {
     }
     for (const StreamNodeData& d : base.roots)
       write_record(&b, d);
+    const int wedge_bits = bits_for_count(base.wedge_count);
+    for (const std::array<uint32_t, 3>& c : base.corners) {
+      for (uint32_t v : c) {
+        if (v >= base.wedge_count) return invalid_input("base message: a wedge is out of range");
+        b.write(v, wedge_bits);
+      }
+    }
     b.finish();
     return frame(StreamMessageType::kBase, payload);
   } catch (const std::bad_alloc&) {
@@ -245,7 +484,12 @@ Result<BaseMessage> decode_base_message(const uint8_t* data, size_t size) {
       !r.read(&pad16)) {
     return bad("base message shorter than its 12 fixed bytes");
   }
-  if (pad8 != 0 || pad16 != 0) return bad("nonzero reserved bytes in the base message");
+  if (pad8 > 1 || pad16 != 0) return bad("nonzero reserved bytes in the base message");
+  uint32_t wedge_count = 0;
+  if (pad8 == 1) {
+    if (!r.read(&wedge_count)) return bad("base message without its wedge count");
+    if (wedge_count == 0) return bad("a base message with wedges counts none");
+  }
   if (roots == 0) return bad("base message without roots");
   if (node_bits < 1 || node_bits > 64) return bad("node bits outside 1..64");
   if (uint64_t{roots} * 12 > r.remaining()) {
@@ -255,7 +499,9 @@ Result<BaseMessage> decode_base_message(const uint8_t* data, size_t size) {
   const uint64_t rest_bits = (uint64_t{r.remaining()} - uint64_t{roots} * 12) * 8;
   // Each triangle takes 3 x bits, each root at least its flag bit; a
   // one-root mesh (0-bit indices) cannot have a triangle of three vertices.
-  if (uint64_t{triangles} * 3 * bits + roots > rest_bits || (bits == 0 && triangles != 0)) {
+  const int wedge_bits = bits_for_count(wedge_count);
+  if (uint64_t{triangles} * 3 * (bits + wedge_bits) + roots > rest_bits ||
+      (bits == 0 && triangles != 0)) {
     return bad(std::to_string(triangles) + " triangles need more bytes than remain");
   }
   try {
@@ -281,6 +527,14 @@ Result<BaseMessage> decode_base_message(const uint8_t* data, size_t size) {
       bool bad_value = false;
       if (!read_record(&b, &d, &bad_value)) return bad("the roots' data is truncated");
       if (bad_value) return bad("a root's refinement data is negative or not finite");
+    }
+    base.wedge_count = wedge_count;
+    if (wedge_count != 0) base.corners.resize(triangles);
+    for (std::array<uint32_t, 3>& c : base.corners) {
+      for (uint32_t& v : c) {
+        if (!b.read(wedge_bits, &v)) return bad("the base corners' wedges are truncated");
+        if (v >= wedge_count) return bad("a base corner's wedge is out of range");
+      }
     }
     if (b.bytes_consumed() != r.remaining()) return bad("trailing bytes after the base message");
     if (!b.padding_is_zero()) return bad("nonzero padding bits in the base message");
@@ -318,6 +572,9 @@ Result<Bytes> encode_vsplit_message(const std::vector<VsplitPacket>& packets,
       }
       write_record(&b, p.left);
       write_record(&b, p.right);
+      if (widths.wedges != 0 && !write_wedges(&b, p, widths, root_count)) {
+        return invalid_input("vsplit message: wedge data out of range or for a missing wing");
+      }
     }
     b.finish();
     if (payload.size() > kMaxStreamPayloadBytes) {
@@ -375,6 +632,10 @@ Result<std::vector<VsplitPacket>> decode_vsplit_message(const uint8_t* data, siz
         return bad(at + "truncated");
       }
       if (bad_value) return bad(at + "refinement data is negative or not finite");
+      if (widths.wedges != 0) {
+        const std::string wrong = read_wedges(&b, r.remaining(), &p, widths, root_count);
+        if (!wrong.empty()) return bad(at + wrong);
+      }
     }
     if (b.bytes_consumed() != r.remaining()) return bad("trailing bytes after the vsplit packets");
     if (!b.padding_is_zero()) return bad("nonzero padding bits in a vsplit message");

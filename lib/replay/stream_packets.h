@@ -84,6 +84,61 @@ struct StreamIdWidths {
   int tree_bits = 0;  ///< bits_for_count(roots), 0..32
   int node_bits = 1;  ///< 1..64
   int id_bits() const { return tree_bits + node_bits; }
+  /// An asset's stream (the base message says so): the wedge count of its
+  /// WEDG (wedge ids take bits_for_count(wedges)) and the base mesh's
+  /// triangle count (a base face id takes bits_for_count(base_faces)). 0:
+  /// a position-only stream, whose packets carry no wedge data.
+  uint32_t wedges = 0;
+  uint32_t base_faces = 0;
+  int wedge_bits() const;
+  int base_face_bits() const;
+};
+
+/// A face of the client's mesh as the hierarchy names it: base triangle
+/// `tree` when heap is 0, else the face that the split of node <tree,
+/// heap> adds on `side` (0: the left wing, 1: the right wing).
+struct WedgeFace {
+  uint32_t tree = 0;
+  uint64_t heap = 0;
+  uint8_t side = 0;
+  bool operator==(const WedgeFace& o) const {
+    return tree == o.tree && heap == o.heap && side == o.side;
+  }
+  bool operator<(const WedgeFace& o) const {
+    return tree != o.tree ? tree < o.tree : heap != o.heap ? heap < o.heap : side < o.side;
+  }
+};
+
+/// A face whose corner the split moves to the removed (right) child, and
+/// the wedge it takes there.
+struct MovedWedge {
+  WedgeFace face;
+  uint32_t wedge = 0;
+  bool operator==(const MovedWedge& o) const { return face == o.face && wedge == o.wedge; }
+};
+
+/// The wedge of a wing corner at every ancestor of the node w the
+/// hierarchy's progressive mesh had the wing at (w is the fundamental cut
+/// vertex `lift` levels up): the added face's wedge at w, replaced by
+/// `changes[i].second` from `changes[i].first` levels above w on (levels
+/// strictly increasing, each at most w's depth).
+struct WingWedges {
+  uint32_t lift = 0;
+  std::vector<std::pair<uint32_t, uint32_t>> changes;
+  bool operator==(const WingWedges& o) const { return lift == o.lift && changes == o.changes; }
+};
+
+/// The wedge data of one split (an asset's stream only): the corners of
+/// the faces it adds (PmWedges::added order: (vs, vt, vl) then (vt, vs,
+/// vr); a missing wing's three are kNoVertex), the moved faces' wedges at
+/// the right child, and each present wing's wedges up the hierarchy.
+struct VsplitWedges {
+  std::array<uint32_t, 6> added{kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex};
+  std::vector<MovedWedge> moved;
+  std::array<WingWedges, 2> wings;
+  bool operator==(const VsplitWedges& o) const {
+    return added == o.added && moved == o.moved && wings == o.wings;
+  }
 };
 
 /// One child's (or root's) refinement data: a leaf of the complete
@@ -106,6 +161,8 @@ struct VsplitPacket {
   Vec3f position{};
   StreamNodeData left;
   StreamNodeData right;
+  /// Sent only when the widths say the stream has wedges.
+  VsplitWedges wedges;
   bool operator==(const VsplitPacket& o) const;
 };
 
@@ -116,11 +173,18 @@ struct BaseMessage {
   int node_bits = 1;
   /// One entry per root.
   std::vector<StreamNodeData> roots;
+  /// An asset's stream: its WEDG's wedge count and the base triangles'
+  /// corner wedges (one entry per triangle). 0 and empty: no wedges.
+  uint32_t wedge_count = 0;
+  std::vector<std::array<uint32_t, 3>> corners;
 };
 
 /// Bits of one packet's fields (without message framing): topology 3 x
-/// id_bits, geometry 96, two leaf flags, 144 per internal child.
+/// id_bits, geometry 96, two leaf flags, 144 per internal child, and the
+/// wedge data's bits when the widths have wedges (vsplit_wedge_bits()).
 uint64_t vsplit_packet_bits(const VsplitPacket& packet, const StreamIdWidths& widths);
+/// The bits of a packet's wedge data alone (0 without wedges).
+uint64_t vsplit_wedge_bits(const VsplitPacket& packet, const StreamIdWidths& widths);
 inline constexpr int kStreamPositionBits = 96;
 inline constexpr int kStreamRecordBits = 144;
 
@@ -147,18 +211,23 @@ Result<ViewRequest> decode_view_request(const uint8_t* data, size_t size);
 /// \return kInvalidInput when the mesh has no vertex or an index out of
 ///         range, a root entry is missing, or node_bits is outside 1..64.
 Result<Bytes> encode_base_message(const BaseMessage& base);
-/// Payload: uint32 roots, uint32 triangles, uint8 node_bits, three zero
-/// bytes, roots x 3 float32, then bits: 3 x bits_for_count(roots) per
-/// triangle, then per root a flag bit and (internal) its record.
+/// Payload: uint32 roots, uint32 triangles, uint8 node_bits, uint8 flags
+/// (1: wedges, else 0), two zero bytes, with wedges a uint32 wedge count,
+/// roots x 3 float32, then bits: 3 x bits_for_count(roots) per triangle,
+/// then per root a flag bit and (internal) its record, then with wedges 3 x
+/// bits_for_count(wedge count) per triangle. Refuses a wedge out of range.
 Result<BaseMessage> decode_base_message(const uint8_t* data, size_t size);
 
 /// `root_count` bounds the tree ids (and gives tree_bits).
 /// \return kInvalidInput for an id outside the widths or the roots.
 Result<Bytes> encode_vsplit_message(const std::vector<VsplitPacket>& packets,
                                     const StreamIdWidths& widths, uint32_t root_count);
-/// Payload: uint32 count, then the packets' bits. Refuses a heap id 0 for
-/// vs, a tree id >= root_count, a missing wing with a tree id, both wings
-/// missing, non-finite positions, invalid records, nonzero padding.
+/// Payload: uint32 count, then the packets' bits; with wedges each packet
+/// ends with its wedge data (layout in docs/replay.md). Refuses a heap id 0
+/// for vs, a tree id >= root_count, a missing wing with a tree id, both
+/// wings missing, non-finite positions, invalid records, a wedge or base
+/// face out of range, a lift or change level above the hierarchy's depth,
+/// a count that the remaining bits cannot hold, nonzero padding.
 Result<std::vector<VsplitPacket>> decode_vsplit_message(const uint8_t* data, size_t size,
                                                         const StreamIdWidths& widths,
                                                         uint32_t root_count);

@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <limits>
 #include <new>
+#include <utility>
 
 #include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
@@ -160,6 +161,17 @@ Result<StreamHierarchy> StreamHierarchy::create(const VertexHierarchy& h,
   return create(h, std::move(records));
 }
 
+Status StreamHierarchy::set_wedges(StreamWedgeTable table) {
+  if (table.splits.size() != h->node_count() || table.base.size() != h->base.triangles.size() ||
+      table.wedge_count == 0) {
+    return invalid_input("the stream's wedges do not match its hierarchy");
+  }
+  wedges = std::move(table);
+  widths.wedges = wedges.wedge_count;
+  widths.base_faces = static_cast<uint32_t>(h->base.triangles.size());
+  return Status::ok();
+}
+
 StreamNodeData StreamHierarchy::node_data(uint32_t node) const {
   StreamNodeData d;
   d.internal = !h->is_leaf(node);
@@ -174,6 +186,8 @@ Result<Bytes> StreamHierarchy::base_message() const {
   base.node_bits = widths.node_bits;
   for (uint32_t r = 0; r < h->root_count(); ++r)
     base.roots.push_back(node_data(r));
+  base.wedge_count = widths.wedges;
+  base.corners = wedges.base;
   return encode_base_message(base);
 }
 
@@ -186,6 +200,7 @@ VsplitPacket StreamHierarchy::packet(uint32_t s) const {
   p.position = h->position[left + 1];
   p.left = node_data(left);
   p.right = node_data(left + 1);
+  if (widths.wedges != 0) p.wedges = wedges.splits[s];
   return p;
 }
 

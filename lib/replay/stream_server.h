@@ -19,6 +19,7 @@
 #include "lib/replay/stream_packets.h"
 #include "lib/replay/stream_transport.h"
 #include "lib/replay/stream_view.h"
+#include "lib/replay/stream_wedges.h"
 
 namespace lodbake {
 
@@ -62,6 +63,9 @@ struct StreamHierarchy {
   StreamIdWidths widths;
   /// bounding_sphere() of every node's position: the scene message.
   BoundingSphere sphere;
+  /// An asset's stream (set_wedges()): the wedges the base message and the
+  /// packets carry; empty otherwise.
+  StreamWedgeTable wedges;
 
   /// `h` must outlive the result. \return kInvalidInput when `h` does not
   /// validate or `records` does not have one entry per node.
@@ -69,6 +73,10 @@ struct StreamHierarchy {
   /// The same from RFIN's float values (quantize_refinement() per node).
   static Result<StreamHierarchy> create(const VertexHierarchy& h,
                                         const std::vector<NodeRefinement>& data);
+  /// Makes the stream an asset's: the base message and every packet carry
+  /// `table`'s wedge data, and the widths say so. kInvalidInput when the
+  /// table does not have an entry per node and per base triangle.
+  Status set_wedges(StreamWedgeTable table);
   StreamNodeData node_data(uint32_t node) const;
   /// The base message: the base mesh, the depth and the roots' data.
   Result<Bytes> base_message() const;

@@ -76,7 +76,8 @@ Status load_corner_wedges(const ProgressiveMesh& pm, const Section& wedg,
   return Status::ok();
 }
 
-Result<StreamStructure> stream_structure(const Container& decoded, uint32_t group) {
+Result<StreamStructure> stream_structure(const Container& decoded, uint32_t group,
+                                         bool with_wedges) {
   LODBAKE_ASSIGN_OR_RETURN(const Section* rfin, decoded.require(kRfinTag, group));
   StreamStructure out;
   LODBAKE_ASSIGN_OR_RETURN(out.h, load_hierarchy(decoded, group));
@@ -84,6 +85,20 @@ Result<StreamStructure> stream_structure(const Container& decoded, uint32_t grou
                            decode_rfin_records(rfin->data, rfin->size, *out.h));
   LODBAKE_ASSIGN_OR_RETURN(StreamHierarchy db, StreamHierarchy::create(*out.h, std::move(records)));
   out.db = std::make_unique<StreamHierarchy>(std::move(db));
+  const Section* wedg = decoded.find(kWedgTag, group);
+  if (with_wedges && wedg != nullptr && decoded.find(kVsplTag, group) != nullptr) {
+    LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
+    LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
+    out.wedges = std::make_unique<PmWedges>(std::move(wedges));
+    Result<FrontWedges> front = FrontWedges::create(*out.h, *out.pm, *out.wedges);
+    if (!front.is_ok())
+      return Status(front.status().kind(), "section WEDG: " + front.status().message());
+    out.front.emplace(std::move(front).value());
+    Result<StreamWedgeTable> table = stream_wedge_table(*out.h, *out.pm, *out.wedges);
+    if (!table.is_ok())
+      return Status(table.status().kind(), "section WEDG: " + table.status().message());
+    LODBAKE_RETURN_IF_ERROR(out.db->set_wedges(std::move(table).value()));
+  }
   return out;
 }
 
@@ -175,7 +190,7 @@ Result<SetsStructure> load_sets_structure(const Container& decoded, uint32_t gro
 }
 
 Result<StreamStructure> load_stream_structure(const Container& decoded, uint32_t group) {
-  return guarded<StreamStructure>([&] { return stream_structure(decoded, group); });
+  return guarded<StreamStructure>([&] { return stream_structure(decoded, group, true); });
 }
 
 Result<VtreesStructure> load_vtrees_structure(const Container& decoded, uint32_t group) {
@@ -183,7 +198,7 @@ Result<VtreesStructure> load_vtrees_structure(const Container& decoded, uint32_t
     LODBAKE_ASSIGN_OR_RETURN(const Section* vtre, decoded.require(kVtreTag, group));
     // The same dequantized refinement data as mode stream's server; VTRE is
     // decoded after, as the mode always did.
-    LODBAKE_ASSIGN_OR_RETURN(StreamStructure refinement, stream_structure(decoded, group));
+    LODBAKE_ASSIGN_OR_RETURN(StreamStructure refinement, stream_structure(decoded, group, false));
     VtreesStructure out;
     LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(vtre->data, vtre->size));
     out.trees = std::make_unique<VertexTrees>(std::move(trees));

@@ -97,10 +97,17 @@ struct SetsStructure {
 Result<SetsStructure> load_sets_structure(const Container& decoded, uint32_t group);
 
 /// Mode stream's database: the hierarchy (BASE + VHIE) and its RFIN records
-/// as StreamHierarchy::create() takes them.
+/// as StreamHierarchy::create() takes them. With VSPL and WEDG in the
+/// group (an asset's hierarchy), the database also carries the wedges
+/// (stream_wedge_table(), StreamHierarchy::set_wedges()), and `front`
+/// gives every front's corner wedges over the whole hierarchy, for
+/// --validate; a VSPL that is not the hierarchy's own fails the load.
 struct StreamStructure {
   std::unique_ptr<VertexHierarchy> h;  ///< db points at it
   std::unique_ptr<StreamHierarchy> db;
+  std::unique_ptr<ProgressiveMesh> pm;  // with wedges only
+  std::unique_ptr<PmWedges> wedges;
+  std::optional<FrontWedges> front;
 };
 Result<StreamStructure> load_stream_structure(const Container& decoded, uint32_t group);
 

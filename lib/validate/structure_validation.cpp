@@ -20,6 +20,7 @@
 #include "lib/replay/replay_check.h"
 #include "lib/replay/sets_replay.h"
 #include "lib/replay/stream_session.h"
+#include "lib/replay/stream_wedge_check.h"
 #include "lib/replay/structure_cross_check.h"
 #include "lib/replay/structure_loading.h"
 #include "lib/replay/vhier_replay.h"
@@ -237,12 +238,20 @@ void check_stream(const Container& decoded, uint32_t group, Findings* f) {
   }
   if (!f->none(kVhieTag, who, "the finest mesh", check_vhier_mesh(session.client().refiner())))
     return;
+  // An asset's stream: the client's corners are the server front's.
+  const StreamStructure& st = loaded.value();
+  auto wedge_problems = [&] {
+    return st.front ? check_stream_wedges(session.client(), db, *st.front, *st.wedges)
+                    : std::vector<std::string>();
+  };
+  if (!f->none(kWedgTag, who, "the finest mesh's corners", wedge_problems())) return;
   const ViewRequest coarse =
       view_request_for(camera, options.viewport, options.viewport.near_fraction * db.sphere.radius,
                        kCoarseTolerance);
   Result<StreamFrameStats> back = session.step(coarse);
   if (!back.is_ok()) return f->add(kVhieTag, who, "coarsening: " + back.status().message());
-  f->none(kVhieTag, who, "coarsened", check_vhier_mesh(session.client().refiner()));
+  if (!f->none(kVhieTag, who, "coarsened", check_vhier_mesh(session.client().refiner()))) return;
+  f->none(kWedgTag, who, "the coarsened mesh's corners", wedge_problems());
 }
 
 // Mode vtrees: the database over the hierarchy, then a session sending

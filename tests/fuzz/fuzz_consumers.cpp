@@ -30,6 +30,7 @@
 #include "lib/replay/replay_check.h"
 #include "lib/replay/sets_replay.h"
 #include "lib/replay/stream_session.h"
+#include "lib/replay/stream_wedge_check.h"
 #include "lib/replay/structure_cross_check.h"
 #include "lib/replay/structure_loading.h"
 #include "lib/replay/vhier_replay.h"
@@ -185,6 +186,11 @@ void run_stream(const OpenedContainer& file, uint32_t group) {
     Result<StreamFrameStats> f = session.value().frame(frame, db.sphere);
     require_ok(f.status(), "mode stream");
     require_clean(check_vhier_mesh(session.value().client().refiner()), "mode stream --validate");
+    if (loaded.value().front) {
+      require_clean(check_stream_wedges(session.value().client(), db, *loaded.value().front,
+                                        *loaded.value().wedges),
+                    "mode stream --validate (wedges)");
+    }
     if (f.value().missing != 0 || f.value().requests > 1)
       refused("mode stream --validate", "needed splits missing");
   }

@@ -3,7 +3,10 @@
 // vsplit messages under three id-width contexts (roots, depth): (15, 16),
 // (18, 11) and (1, 40), so 0-bit tree ids and ids over 32 bits are covered.
 // Whatever decodes must re-encode to the same bytes (one encoding per
-// message), and a client fed a decoded base message must start. Resume
+// message), and a client fed a decoded base message must start. An asset's
+// vsplit messages (wedge data after each packet) decode under Fox's
+// widths: 4 roots, depth 8, 434 wedges, 4 base faces (stream_wedges_test
+// checks them and writes the seeds). Resume
 // messages decode under the same three contexts, each with a server bound
 // on the leaf count; a decoded one must agree with resume_leaf_count().
 #include <cstdint>
@@ -54,6 +57,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         Result<Bytes> again = encode_vsplit_message(p.value(), widths, c[0]);
         require(again.is_ok(), "decoded vsplit message cannot be encoded");
         require_same_bytes(again.value(), data, size, "vsplit round trip");
+      }
+      StreamIdWidths asset;
+      asset.tree_bits = bits_for_count(4);
+      asset.node_bits = 8;
+      asset.wedges = 434;
+      asset.base_faces = 4;
+      Result<std::vector<VsplitPacket>> p = decode_vsplit_message(data, size, asset, 4);
+      if (p.is_ok()) {
+        Result<Bytes> again = encode_vsplit_message(p.value(), asset, 4);
+        require(again.is_ok(), "decoded vsplit message with wedges cannot be encoded");
+        require_same_bytes(again.value(), data, size, "vsplit with wedges round trip");
       }
       break;
     }

@@ -22,6 +22,7 @@
 #include "lib/replay/replay_check.h"
 #include "lib/replay/stream_session.h"
 #include "lib/replay/stream_transport.h"
+#include "lib/replay/stream_wedge_check.h"
 #include "lib/replay/structure_loading.h"
 #include "tools/replay/frame_support.h"
 #include "tools/replay/replay_request.h"
@@ -49,9 +50,18 @@ StreamReplayOptions stream_options(const Request& request) {
 }
 
 // --validate's check of one streamed frame: a valid mesh, one request at
-// most and nothing missing.
-Status stream_frame_check(const StreamClient& client, const StreamFrameStats& f, size_t i) {
+// most and nothing missing; on an asset's stream a wedge at every corner,
+// the server's front's own when `loaded` (in process) has them.
+Status stream_frame_check(const StreamClient& client, const StreamFrameStats& f, size_t i,
+                          const StreamDb* loaded = nullptr) {
   std::vector<std::string> problems = check_vhier_mesh(client.refiner());
+  if (loaded != nullptr && loaded->front) {
+    for (std::string& p : check_stream_wedges(client, *loaded->db, *loaded->front, *loaded->wedges))
+      problems.push_back(std::move(p));
+  } else if (client.has_wedges()) {
+    Result<std::vector<std::array<uint32_t, 3>>> corners = client.corner_wedges();
+    if (!corners.is_ok()) problems.push_back(corners.status().message());
+  }
   if (f.missing != 0 || f.requests > 1) {
     problems.push_back(std::to_string(f.missing) + " needed splits missing after " +
                        std::to_string(f.requests) + " requests");
@@ -149,7 +159,7 @@ int run_stream_clients(const Tool& tool, const Request& request, const StreamDb&
                                           std::to_string(i) + ": " + f.status().message()));
       }
       if (request.validate) {
-        Status checked = stream_frame_check(sessions[k].client(), f.value(), i);
+        Status checked = stream_frame_check(sessions[k].client(), f.value(), i, &loaded);
         if (!checked.is_ok()) {
           return tool.fail(request.input, Status(checked.kind(), "client " + std::to_string(k) +
                                                                      ", " + checked.message()));
@@ -344,6 +354,7 @@ int run_stream_connect(const Tool& tool, const Request& request) {
          {{"splits", tot.splits},
           {"collapses", tot.collapses},
           {"triangles", {{"mean", tot.mean_triangles}, {"max", tot.max_triangles}}}}}});
+    if (session.client().has_wedges()) report["wedges"] = {{"count", widths.wedges}};
     tool.print_json(report);
     return 0;
   }
@@ -356,6 +367,10 @@ int run_stream_connect(const Tool& tool, const Request& request) {
             << tot.packets << " vsplit packets\n";
   std::cout << "packet        topology " << 3 * widths.id_bits() << " bits (3 x "
             << widths.id_bits() << "; the paper 96)\n";
+  if (session.client().has_wedges()) {
+    std::cout << "wedges        " << widths.wedges << " wedges"
+              << (request.validate ? ", one at every corner of every frame" : "") << "\n";
+  }
   std::cout << "client        " << tot.splits << " splits, " << tot.collapses
             << " collapses, triangles mean " << tot.mean_triangles << ", max " << tot.max_triangles
             << "\n";
@@ -389,7 +404,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
     if (!f.is_ok()) return tool.fail(request.input, frame_failure(i, f.status()));
     frames.push_back(f.value());
     if (request.validate) {
-      Status checked = stream_frame_check(session.client(), f.value(), i);
+      Status checked = stream_frame_check(session.client(), f.value(), i, &loaded.value());
       if (!checked.is_ok()) return tool.fail(request.input, checked);
     }
     progress.update(static_cast<double>(i + 1) / path.size());
@@ -429,6 +444,14 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
       static_cast<double>(memory.window_bytes) / static_cast<double>(memory.front_bytes);
   const double buffer_share =
       static_cast<double>(memory.buffer_bytes) / static_cast<double>(memory.front_bytes);
+  // An asset's stream: what the wedge data adds to the packets sent.
+  uint64_t wedge_bits = 0;
+  for (uint32_t s : session.server().sent())
+    wedge_bits += vsplit_wedge_bits(stream_db.packet(s), widths);
+  const double mean_packet_bits =
+      packets == 0 ? 0.0 : static_cast<double>(vi.sent_bits) / static_cast<double>(packets);
+  const double mean_wedge_bits =
+      packets == 0 ? 0.0 : static_cast<double>(wedge_bits) / static_cast<double>(packets);
   if (tool.json()) {
     nlohmann::json report = camera_report(request, frames.size());
     report.update(nlohmann::json{
@@ -445,8 +468,7 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
          {{"topology_bits", topology_bits},
           {"paper_topology_bits", 96},
           {"earlier_topology_bits", {192, 256}},
-          {"mean_bits",
-           packets == 0 ? 0.0 : static_cast<double>(vi.sent_bits) / static_cast<double>(packets)}}},
+          {"mean_bits", mean_packet_bits}}},
         {"client",
          {{"splits", splits},
           {"collapses", collapses},
@@ -465,6 +487,11 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
           {"bytes", vi.bytes},
           {"full_bytes", vi.full_bytes},
           {"view_dependent_share", ratio}}}});
+    if (widths.wedges != 0) {
+      report["packet"]["mean_wedge_bits"] = mean_wedge_bits;
+      report["packet"]["mean_bits_without_wedges"] = mean_packet_bits - mean_wedge_bits;
+      report["wedges"] = {{"count", widths.wedges}, {"validated", request.validate}};
+    }
     tool.print_json(report);
     return 0;
   }
@@ -483,6 +510,12 @@ int run_stream(const Tool& tool, const Request& request, const Bytes& bytes) {
             << (packets == 0 ? 0.0
                              : static_cast<double>(vi.sent_bits) / static_cast<double>(packets))
             << " bits with geometry and refinement data\n";
+  if (widths.wedges != 0) {
+    std::cout << "wedges        " << widths.wedges << " wedges"
+              << (request.validate ? " (every corner's checked against the server's front)" : "")
+              << ": " << mean_wedge_bits << " bits per split of the mean " << mean_packet_bits
+              << " (" << mean_packet_bits - mean_wedge_bits << " without them)\n";
+  }
   std::cout << "client        " << splits << " splits, " << collapses
             << " collapses, triangles mean " << triangles << ", max " << max_triangles << "\n";
   std::cout << "server memory window " << memory.window_bytes << " bytes (buffer "
