@@ -3,6 +3,7 @@
 #include "lib/core/parallel.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <cstdint>
@@ -64,6 +65,29 @@ TEST(Parallel, EveryPartRunsOnceOnTheScopesThreads) {
         }
       }
     }
+  }
+}
+
+// Scope 0 inside an arena (a bake's --jobs arena) takes that arena's
+// threads rather than every core: a bake with --jobs N stays at N threads.
+TEST(Parallel, ScopeZeroSharesTheEnclosingArena) {
+  for (int jobs : {1, 2}) {
+    tbb::task_arena arena(jobs);
+    arena.execute([&] {
+      const ParallelScope scope(0);
+      EXPECT_EQ(scope.threads(), static_cast<unsigned>(jobs));
+      EXPECT_EQ(scope.parts(1000000, 10), static_cast<size_t>(jobs));
+      std::mutex mutex;
+      std::set<std::thread::id> ids;
+      scope.for_each_part(64, [&](size_t) {
+        std::lock_guard<std::mutex> lock(mutex);
+        ids.insert(std::this_thread::get_id());
+      });
+      EXPECT_LE(ids.size(), static_cast<size_t>(jobs));
+      if (jobs == 1) {
+        EXPECT_EQ(ids, std::set<std::thread::id>{std::this_thread::get_id()});
+      }
+    });
   }
 }
 
