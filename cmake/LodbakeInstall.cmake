@@ -61,6 +61,26 @@ if(LODBAKE_MAN_PAGES)
     message(FATAL_ERROR "help2man not found: install Debian's help2man (make deps does) "
                         "or configure with -DLODBAKE_MAN_PAGES=OFF")
   endif()
+  # help2man dates a page with the build's month unless SOURCE_DATE_EPOCH
+  # is set: the pages, and the .deb holding them, would differ between two
+  # builds of one commit. The date is the environment's SOURCE_DATE_EPOCH
+  # (what Debian's builds set) or else the commit's time.
+  set(man_epoch "$ENV{SOURCE_DATE_EPOCH}")
+  if(man_epoch STREQUAL "")
+    find_package(Git QUIET)
+    if(GIT_FOUND)
+      execute_process(
+        COMMAND ${GIT_EXECUTABLE} log -1 --format=%ct
+        WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
+        OUTPUT_VARIABLE man_epoch
+        OUTPUT_STRIP_TRAILING_WHITESPACE
+        ERROR_QUIET)
+    endif()
+  endif()
+  set(man_env "")
+  if(man_epoch MATCHES "^[0-9]+$")
+    set(man_env ${CMAKE_COMMAND} -E env SOURCE_DATE_EPOCH=${man_epoch})
+  endif()
   set(man_pages "")
   file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/man/man1)
   foreach(tool IN LISTS LODBAKE_TOOLS)
@@ -72,7 +92,7 @@ if(LODBAKE_MAN_PAGES)
     set(page ${CMAKE_BINARY_DIR}/man/man1/${tool}.1.gz)
     add_custom_command(
       OUTPUT ${page}
-      COMMAND ${LODBAKE_HELP2MAN} --no-info --section 1 --name "${summary}"
+      COMMAND ${man_env} ${LODBAKE_HELP2MAN} --no-info --section 1 --name "${summary}"
               --output ${CMAKE_BINARY_DIR}/man/man1/${tool}.1 $<TARGET_FILE:${tool}>
       COMMAND gzip -9 -n -f ${CMAKE_BINARY_DIR}/man/man1/${tool}.1
       DEPENDS ${tool}

@@ -84,4 +84,22 @@ std::string level_metrics_text(const nlohmann::json& metrics) {
   return text.str() + attribute_metrics_text(metrics);
 }
 
+std::string primitive_metrics_lines(const nlohmann::json& metrics) {
+  if (!metrics.is_object() || !metrics.contains("primitives")) return "";
+  const double diagonal = metrics["diagonal"].get<double>();
+  std::ostringstream text;
+  for (const nlohmann::json& p : metrics["primitives"]) {
+    text << "  mesh " << p["mesh"].get<uint64_t>() << " primitive "
+         << p["primitive"].get<uint64_t>();
+    if (p["distance"]["samples"].get<uint64_t>() == 0 || !(diagonal > 0)) {
+      text << "  no samples";
+    } else {
+      text << "  distance max " << p["max_distance"].get<double>() / diagonal << " and mean "
+           << p["distance"]["mean"].get<double>() / diagonal << " of the diagonal";
+    }
+    text << attribute_metrics_text(p) << "\n";
+  }
+  return text.str();
+}
+
 }  // namespace lodbake::cli

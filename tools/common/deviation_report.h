@@ -35,4 +35,10 @@ std::string attribute_metrics_text(const nlohmann::json& metrics);
 // diagonal" and attribute_metrics_text(); empty for a null object.
 std::string level_metrics_text(const nlohmann::json& metrics);
 
+// One text line per input primitive of a level's metrics (its "primitives"):
+// "  mesh M primitive P  distance max X and mean Y of the diagonal" and
+// attribute_metrics_text()'s clause, measured from that primitive's samples
+// to the level; empty when there are none.
+std::string primitive_metrics_lines(const nlohmann::json& metrics);
+
 }  // namespace lodbake::cli

@@ -115,14 +115,6 @@ Result<nlohmann::json> measure(const Request& request, const TriangleMesh& input
   return metrics;
 }
 
-std::string metrics_text(const nlohmann::json& metrics) {
-  if (metrics.is_null()) return "";
-  std::ostringstream text;
-  text << ", Hausdorff " << metrics["hausdorff_relative"].get<double>() << " and mean "
-       << metrics["mean_relative"].get<double>() << " of the diagonal";
-  return text.str() + attribute_metrics_text(metrics);
-}
-
 // Written to a temporary file; `outputs` renames every output into place at
 // the end, so that a run failing at its second output leaves not even the first.
 // A path whose format loses attributes is added to `*lossy`, warned about
@@ -310,7 +302,8 @@ int run_asset(const Tool& tool, Request& request, const Bytes& bytes) {
   for (const nlohmann::json& out : outputs)
     std::cout << "wrote         " << out["file"].get<std::string>() << ": "
               << out["triangles"].get<uint64_t>() << " triangles"
-              << level_metrics_text(out["metrics"]) << "\n";
+              << level_metrics_text(out["metrics"]) << "\n"
+              << primitive_metrics_lines(out["metrics"]);
   return 0;
 }
 
@@ -444,11 +437,11 @@ int run(const Tool& tool, Request& request) {
                                                    " tries refused by the height guard, "
                                              : std::string())
             << "largest collapse error " << result.stats.max_collapse_error << " of the diagonal"
-            << metrics_text(report.value("metrics", nlohmann::json(nullptr))) << ")\n";
+            << level_metrics_text(report.value("metrics", nlohmann::json(nullptr))) << ")\n";
   for (const nlohmann::json& out : outputs)
     std::cout << "wrote         " << out["file"].get<std::string>() << ": "
               << out["triangles"].get<uint64_t>() << " triangles"
-              << (ratios.empty() ? std::string() : metrics_text(out["metrics"])) << "\n";
+              << (ratios.empty() ? std::string() : level_metrics_text(out["metrics"])) << "\n";
   if (report.contains("pm"))
     std::cout << "wrote         " << request.pm_output << ": progressive mesh, "
               << report["pm"]["splits"].get<uint64_t>() << " vertex splits, "
