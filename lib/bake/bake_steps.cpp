@@ -365,9 +365,20 @@ Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes
   request.repair = o["repair"] == "repair";
   request.strict = o["repair"] == "strict";
   if (is_asset(input, bytes)) {
+    // As lodbake-strips: the progressive mesh under the graph carries the
+    // asset's wedges.
+    AssetCorners corners;
     return build_over_asset(
         input, bytes, strips_meta(request), load_options(o),
-        [&](uint32_t, const TriangleMesh& mesh) { return strips_mesh_sections(request, mesh); }, {},
+        [&](uint32_t scene_mesh, const TriangleMesh& mesh) {
+          return strips_mesh_sections(request, corners, scene_mesh, mesh);
+        },
+        [&](const Scene& scene) -> Status {
+          if (request.strips_only) return Status::ok();
+          LODBAKE_ASSIGN_OR_RETURN(corners,
+                                   read_asset_corners(scene, request.repair, request.strict));
+          return Status::ok();
+        },
         out);
   }
   LoadOptions load_with = load_options(o);

@@ -11,6 +11,7 @@
 #include "formats/sections/vspl.h"
 #include "formats/sections/vtre.h"
 #include "formats/sections/wedg.h"
+#include "lib/bake/asset_pm_wedges.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
@@ -135,14 +136,7 @@ nlohmann::json hierarchy_meta_options(const HierarchyStepOptions& request) {
 
 Result<std::map<uint32_t, MeshCornerWedges>> asset_corner_wedges(
     const HierarchyStepOptions& request, const Scene& scene) {
-  LoadOptions load;
-  load.repair = request.repair;
-  load.strict = request.strict;
-  LODBAKE_ASSIGN_OR_RETURN(std::vector<MeshCornerWedges> all, scene_corner_wedges(scene, load));
-  std::map<uint32_t, MeshCornerWedges> corners;
-  for (MeshCornerWedges& c : all)
-    corners.emplace(c.mesh, std::move(c));
-  return corners;
+  return read_asset_corners(scene, request.repair, request.strict);
 }
 
 Result<MeshSections> hierarchy_mesh_sections(HierarchyBuilt&& b,
@@ -153,14 +147,7 @@ Result<MeshSections> hierarchy_mesh_sections(HierarchyBuilt&& b,
     const bool vspl = std::string(w.tag) == kVsplTag;
     out.sections.emplace_back(w.tag, std::move(w.bytes));
     if (!vspl) continue;
-    // The corners read from the scene must be over the very mesh the
-    // hierarchy was built on.
-    auto found = corners.find(scene_mesh);
-    if (found == corners.end() || found->second.topology.positions != mesh.positions ||
-        found->second.topology.triangles != mesh.triangles)
-      return runtime_error("the corners read from the scene are not over the mesh built");
-    LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, wedges_of_pm(b.pm, found->second));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_wedg(wedges));
+    LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_asset_pm_wedges(b.pm, corners, scene_mesh, mesh));
     out.sections.emplace_back(kWedgTag, std::move(wedg));
   }
   out.counts = b.counts;

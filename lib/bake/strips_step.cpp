@@ -135,6 +135,7 @@ Result<Bytes> strips_container(const StripsStepOptions& request, const StripsInp
 }
 
 Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
+                                          const AssetCorners& corners, uint32_t scene_mesh,
                                           const TriangleMesh& mesh) {
   StripsInput in;
   if (request.strips_only) {
@@ -144,7 +145,13 @@ Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
   }
   LODBAKE_ASSIGN_OR_RETURN(StripsBuilt b, build_strips(request, in));
   MeshSections out;
-  out.sections = std::move(b.sections);
+  for (auto& [tag, bytes] : b.sections) {
+    const bool vspl = tag == kVsplTag;
+    out.sections.emplace_back(tag, std::move(bytes));
+    if (!vspl) continue;
+    LODBAKE_ASSIGN_OR_RETURN(Bytes wedg, encode_asset_pm_wedges(*in.pm, corners, scene_mesh, mesh));
+    out.sections.emplace_back(kWedgTag, std::move(wedg));
+  }
   out.counts = b.counts;
   out.report = b.counts;
   return out;

@@ -18,6 +18,7 @@
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
+#include "lib/bake/asset_pm_wedges.h"
 #include "lib/scene/asset_build.h"
 #include "lib/strips/stripify.h"
 
@@ -61,8 +62,13 @@ MetaSection strips_meta(const StripsStepOptions& request);
 Result<Bytes> strips_container(const StripsStepOptions& request, const StripsInput& in,
                                StripsBuilt built);
 
-// One asset mesh's group (build_asset()).
+// One asset mesh's group (build_asset()). Without strips_only, `corners`
+// (read_asset_corners(), which must hold `scene_mesh`'s corners over
+// `mesh`) gives the WEDG written after the progressive mesh's VSPL: its
+// levels, and so every SETS level, carry the asset's wedges. STRP (with
+// strips_only) holds positions only.
 Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
+                                          const AssetCorners& corners, uint32_t scene_mesh,
                                           const TriangleMesh& mesh);
 
 }  // namespace lodbake

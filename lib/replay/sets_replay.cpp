@@ -35,6 +35,7 @@
 #include <new>
 #include <utility>
 
+#include "formats/mesh/canonical_triangles.h"
 #include "formats/sections/strp.h"
 #include "lib/check/mesh_check.h"
 #include "lib/replay/replay_check.h"
@@ -91,7 +92,30 @@ SetsTestSummary summarize_sets_test(LodSpacing spacing, double percent,
   return summary;
 }
 
-Result<SetsReplay> SetsReplay::create(const ProgressiveMesh& pm, const SetsGraph& graph) {
+std::vector<std::array<uint32_t, 3>> recovered_corner_wedges(const std::vector<Triangle>& triangles,
+                                                             const std::vector<Triangle>& level,
+                                                             const CornerWedges& lookup) {
+  // The level's triangles in canonical form with their face slots, sorted:
+  // a recovered triangle finds its slot by binary search.
+  std::vector<std::pair<Triangle, uint32_t>> slots(level.size());
+  for (size_t f = 0; f < level.size(); ++f)
+    slots[f] = {canonical_triangle(level[f]), static_cast<uint32_t>(f)};
+  std::sort(slots.begin(), slots.end());
+  std::vector<std::array<uint32_t, 3>> corners(triangles.size(), {kNoVertex, kNoVertex, kNoVertex});
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle key = canonical_triangle(triangles[t]);
+    auto it = std::lower_bound(slots.begin(), slots.end(), std::make_pair(key, uint32_t{0}));
+    if (it == slots.end() || it->first != key) continue;
+    for (int k = 0; k < 3; ++k)
+      corners[t][k] = lookup.wedge(it->second, triangles[t][k]);
+  }
+  return corners;
+}
+
+Result<SetsReplay> SetsReplay::create(const ProgressiveMesh& pm, const SetsGraph& graph,
+                                      const CornerWedges* lookup, const PmWedges* wedges) {
+  if ((lookup == nullptr) != (wedges == nullptr))
+    return runtime_error("SETS replay: the corner lookup and the wedges go together");
   if (graph.vertex_count != pm.full_vertex_count() || graph.lod_count != pm.splits.size() + 1) {
     return invalid_input("SETS graph over " + std::to_string(graph.vertex_count) +
                          " vertices and " + std::to_string(graph.lod_count) +
@@ -101,11 +125,14 @@ Result<SetsReplay> SetsReplay::create(const ProgressiveMesh& pm, const SetsGraph
   }
   try {
     SetsReplay replay(pm, graph);
+    replay.lookup_ = lookup;
+    replay.wedges_ = wedges;
     LODBAKE_ASSIGN_OR_RETURN(StripRecovery fresh, StripRecovery::create(graph));
     replay.fresh_.emplace(std::move(fresh));
     LODBAKE_RETURN_IF_ERROR(replay.restart());
     LODBAKE_ASSIGN_OR_RETURN(PmRefiner refiner, PmRefiner::create(pm));
     replay.refiner_.emplace(std::move(refiner));
+    if (lookup != nullptr) LODBAKE_RETURN_IF_ERROR(replay.check_own_pm());
     return replay;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory preparing the SETS recovery");
@@ -161,10 +188,9 @@ std::vector<std::string> SetsReplay::check(std::optional<uint32_t> against_lod) 
       problems.push_back("coherent recovery differs from fresh: " + differing);
     const uint32_t lod = against_lod.value_or(*lod_);
     if (lod >= lod_count()) return {"LoD " + std::to_string(lod) + " out of range"};
-    const Status refined = refiner_->refine_to(pm_->full_vertex_count() - lod);
+    const Status refined = refine_pm(lod);
     if (!refined.is_ok()) {
-      problems.push_back("the progressive mesh does not replay to LoD " + std::to_string(lod) +
-                         ": " + refined.message());
+      problems.push_back(refined.message());
       return problems;
     }
     const TriangleMesh& pm_mesh = refiner_->mesh();
@@ -175,9 +201,56 @@ std::vector<std::string> SetsReplay::check(std::optional<uint32_t> against_lod) 
     strips_mesh.triangles = strip_triangles(fresh_->to_strips());
     for (std::string& problem : triangulation_problems(strips_mesh))
       problems.push_back(std::move(problem));
+    if (lookup_ != nullptr) {
+      const std::vector<std::array<uint32_t, 3>> corners =
+          recovered_corner_wedges(strips_mesh.triangles, pm_mesh.triangles, *lookup_);
+      for (std::string& problem : corner_wedge_problems(corners, *wedges_))
+        problems.push_back(std::move(problem));
+      checked_corners_ += 3 * corners.size();
+    }
     return problems;
   } catch (const std::bad_alloc&) {
     return {"out of memory checking the recovered strips"};
+  }
+}
+
+// The corners' wedges are the PM's face slots' (recovered_corner_wedges()),
+// so they are only right over the graph's own PM: the full mesh and the
+// base are the strips' triangles at LoD 0 and at the coarsest LoD. Counts
+// alone (create()'s first check) let another PM of the same size through.
+Status SetsReplay::check_own_pm() {
+  for (const uint32_t lod : {0u, lod_count() - 1}) {
+    LODBAKE_RETURN_IF_ERROR(fresh_->recover(lod));
+    LODBAKE_RETURN_IF_ERROR(refine_pm(lod));
+    const std::vector<std::string> differ =
+        check_recovered_triangles(*fresh_, refiner_->mesh().triangles);
+    if (!differ.empty())
+      return invalid_input("the progressive mesh (VSPL) is not the SETS graph's own: at LoD " +
+                           std::to_string(lod) + ", " + differ.front());
+  }
+  return Status::ok();
+}
+
+Status SetsReplay::refine_pm(uint32_t lod) {
+  const Status refined = refiner_->refine_to(pm_->full_vertex_count() - lod);
+  if (refined.is_ok()) return refined;
+  return invalid_input("the progressive mesh does not replay to LoD " + std::to_string(lod) + ": " +
+                       refined.message());
+}
+
+Result<SetsLevel> SetsReplay::level() {
+  if (!lod_) return invalid_input("no LoD recovered");
+  try {
+    LODBAKE_RETURN_IF_ERROR(refine_pm(*lod_));
+    SetsLevel out;
+    out.lod = *lod_;
+    out.vertex_count = refiner_->vertex_count();
+    out.triangles = strip_triangles(fresh_->to_strips());
+    if (lookup_ != nullptr)
+      out.corners = recovered_corner_wedges(out.triangles, refiner_->mesh().triangles, *lookup_);
+    return out;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory building the recovered LoD");
   }
 }
 

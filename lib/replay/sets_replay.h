@@ -6,16 +6,19 @@
 // LoD recovered. The LoD sequences are shared with tests/bench/strips_bench.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "formats/mesh/pm_wedges.h"
 #include "formats/mesh/progressive_mesh.h"
 #include "formats/sections/sets.h"
 #include "formats/support/status.h"
 #include "lib/simplify/pm_replay.h"
+#include "lib/simplify/wedge_replay.h"
 #include "lib/strips/sets_recovery.h"
 
 namespace lodbake {
@@ -72,6 +75,30 @@ struct SetsTestSummary {
 SetsTestSummary summarize_sets_test(LodSpacing spacing, double percent,
                                     const std::vector<SetsStep>& steps);
 
+/// The wedge of every corner of a recovered LoD's triangles: `triangles`
+/// (the strips' non-degenerate triangles, in PM vertex ids) against
+/// `level`, the progressive mesh's triangles at the same LoD as PmRefiner
+/// lays them out (triangle i is face slot i: the base triangles, then each
+/// split's added faces). A recovered triangle is the level's triangle with
+/// the same corners in the same cyclic order (what
+/// check_recovered_triangles() asks, each once), so it is that face slot,
+/// and its corner at vertex v takes lookup.wedge(slot, v): the wedge that
+/// level of the PM gives it. A triangle the level does not hold gets
+/// kNoVertex at every corner (corner_wedge_problems() counts them).
+std::vector<std::array<uint32_t, 3>> recovered_corner_wedges(const std::vector<Triangle>& triangles,
+                                                             const std::vector<Triangle>& level,
+                                                             const CornerWedges& lookup);
+
+/// One recovered LoD as a mesh: the strips' non-degenerate triangles (strip
+/// by strip, in PM vertex ids; vertices 0 .. vertex_count - 1 are the PM's
+/// at the LoD) and, over an asset's strips, each corner's wedge.
+struct SetsLevel {
+  uint32_t lod = 0;
+  size_t vertex_count = 0;
+  std::vector<Triangle> triangles;
+  std::vector<std::array<uint32_t, 3>> corners;  ///< per triangle; empty without wedges
+};
+
 /// A SETS graph, its progressive mesh, a fresh and a coherent recovery of
 /// it, and (for check()) the PM replayed to the last recovered LoD.
 class SetsReplay {
@@ -79,8 +106,15 @@ class SetsReplay {
   /// Fails when the graph is not over the PM (vertex_count !=
   /// full_vertex_count(), lod_count != splits + 1), the graph fails
   /// StripRecovery::create() or the PM's base mesh is malformed. `pm` and
-  /// `graph` must outlive the replay.
-  static Result<SetsReplay> create(const ProgressiveMesh& pm, const SetsGraph& graph);
+  /// `graph` must outlive the replay. An asset's strips (WEDG beside the
+  /// VSPL) give `wedges` and `lookup` (CornerWedges::create(pm, *wedges)),
+  /// both or neither: every level() then has its corners' wedges and
+  /// check() checks them. They must outlive the replay too. With them, a
+  /// PM that is not the graph's own (the strips' triangles at LoD 0 or at
+  /// the coarsest LoD are not the PM's) is refused (kInvalidInput).
+  static Result<SetsReplay> create(const ProgressiveMesh& pm, const SetsGraph& graph,
+                                   const CornerWedges* lookup = nullptr,
+                                   const PmWedges* wedges = nullptr);
 
   uint32_t lod_count() const { return graph_->lod_count; }
 
@@ -101,18 +135,35 @@ class SetsReplay {
   /// replayed by PmRefiner); and they form a valid triangulation
   /// (triangulation_problems(): no repeated or out-of-range index of the
   /// LoD's vertices, no duplicate, no edge with more than two faces or
-  /// walked twice the same way). `against_lod` compares with the PM at
+  /// walked twice the same way). With wedges, every corner has one and a
+  /// face's three belong to one primitive (corner_wedge_problems() of
+  /// recovered_corner_wedges()). `against_lod` compares with the PM at
   /// another LoD instead (for tests that show a mismatch is found).
   std::vector<std::string> check(std::optional<uint32_t> against_lod = std::nullopt);
+
+  /// The last step's fresh recovery as a mesh, with its corners' wedges
+  /// when the replay has them (the PM is replayed to the LoD).
+  /// \return kInvalidInput without a successful step, or when the PM does
+  ///         not replay to the LoD.
+  Result<SetsLevel> level();
+
+  bool has_wedges() const { return lookup_ != nullptr; }
+  /// Corners whose wedges check() has checked since the replay was created.
+  uint64_t checked_corners() const { return checked_corners_; }
 
   const StripRecovery& fresh() const { return *fresh_; }
   const StripRecovery& coherent() const { return *coherent_; }
 
  private:
   SetsReplay(const ProgressiveMesh& pm, const SetsGraph& graph) : pm_(&pm), graph_(&graph) {}
+  Status refine_pm(uint32_t lod);
+  Status check_own_pm();
 
   const ProgressiveMesh* pm_;
   const SetsGraph* graph_;
+  const CornerWedges* lookup_ = nullptr;
+  const PmWedges* wedges_ = nullptr;
+  uint64_t checked_corners_ = 0;
   std::optional<StripRecovery> fresh_, coherent_;
   std::optional<PmRefiner> refiner_;
   std::optional<uint32_t> lod_;  // of the last successful step

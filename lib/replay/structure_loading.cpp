@@ -62,6 +62,20 @@ Result<std::unique_ptr<ProgressiveMesh>> load_pm(const Container& decoded, uint3
   return std::make_unique<ProgressiveMesh>(std::move(pm));
 }
 
+// WEDG over `pm`: its wedges and the corner lookup every mesh made of the
+// PM's face slots takes its corners' wedges from. A WEDG that does not
+// replay with the PM (another progressive mesh's) is kInvalidInput.
+Status load_corner_wedges(const ProgressiveMesh& pm, const Section& wedg,
+                          std::unique_ptr<PmWedges>* wedges, std::optional<CornerWedges>* lookup) {
+  LODBAKE_ASSIGN_OR_RETURN(PmWedges decoded, decode_wedg(wedg.data, wedg.size));
+  *wedges = std::make_unique<PmWedges>(std::move(decoded));
+  Result<CornerWedges> made = CornerWedges::create(pm, **wedges);
+  if (!made.is_ok())
+    return Status(made.status().kind(), "section WEDG: " + made.status().message());
+  lookup->emplace(std::move(made).value());
+  return Status::ok();
+}
+
 Result<StreamStructure> stream_structure(const Container& decoded, uint32_t group) {
   LODBAKE_ASSIGN_OR_RETURN(const Section* rfin, decoded.require(kRfinTag, group));
   StreamStructure out;
@@ -120,12 +134,7 @@ Result<DagStructure> load_dag_structure(const Container& decoded, uint32_t group
     LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, decode_dage(dage->data, dage->size));
     out.dag = std::make_unique<VsplitDag>(std::move(dag));
     if (const Section* wedg = decoded.find(kWedgTag, group)) {
-      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
-      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
-      Result<CornerWedges> lookup = CornerWedges::create(*out.pm, *out.wedges);
-      if (!lookup.is_ok())
-        return Status(lookup.status().kind(), "section WEDG: " + lookup.status().message());
-      out.lookup.emplace(std::move(lookup).value());
+      LODBAKE_RETURN_IF_ERROR(load_corner_wedges(*out.pm, *wedg, &out.wedges, &out.lookup));
     }
     return out;
   });
@@ -151,6 +160,8 @@ Result<SetsStructure> load_sets_structure(const Container& decoded, uint32_t gro
     LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
     LODBAKE_ASSIGN_OR_RETURN(SetsGraph graph, decode_sets(sets->data, sets->size));
     out.graph = std::make_unique<SetsGraph>(std::move(graph));
+    if (const Section* wedg = decoded.find(kWedgTag, group))
+      LODBAKE_RETURN_IF_ERROR(load_corner_wedges(*out.pm, *wedg, &out.wedges, &out.lookup));
     return out;
   });
 }

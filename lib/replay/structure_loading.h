@@ -79,9 +79,14 @@ Result<FanStructure> load_fan_structure(const Container& decoded, uint32_t group
 
 /// Mode sets: the progressive mesh (BASE + VSPL) and its strip graph
 /// (SETS). SetsReplay::create() over them is the mode's own step.
+/// With WEDG in the group (an asset's strips), also the corner wedges of
+/// every recovered LoD (CornerWedges over the PM; a WEDG that is not that
+/// VSPL's, so does not replay with it, fails the load).
 struct SetsStructure {
   std::unique_ptr<ProgressiveMesh> pm;
   std::unique_ptr<SetsGraph> graph;
+  std::unique_ptr<PmWedges> wedges;
+  std::optional<CornerWedges> lookup;
 };
 Result<SetsStructure> load_sets_structure(const Container& decoded, uint32_t group);
 

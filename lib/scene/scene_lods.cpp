@@ -94,6 +94,7 @@ class WedgeMeshBuilder {
       }
     }
     WedgeMesh out;
+    out.uv_sets = uv_sets();
     out.points.reserve(repaired.positions.size());
     for (const Vec3f& p : repaired.positions)
       out.points.push_back({p[0], p[1], p[2]});
@@ -273,6 +274,16 @@ class WedgeMeshBuilder {
     return bytes;
   }
 
+  // How many texture coordinate sets the fold check reads: up to the
+  // highest TEXCOORD_n any primitive of the mesh has, at least one.
+  uint32_t uv_sets() const {
+    uint32_t sets = 1;
+    for (const ScenePrimitive& prim : mesh_.primitives)
+      for (uint32_t set = sets; set < WedgeMesh::kMaxUvSets; ++set)
+        if (prim.find("TEXCOORD_" + std::to_string(set)) != nullptr) sets = set + 1;
+    return sets;
+  }
+
   double weight_of(const std::string& semantic) const {
     if (semantic == "NORMAL") return weights_.normal;
     if (semantic == "TANGENT") return weights_.tangent;
@@ -292,11 +303,15 @@ class WedgeMeshBuilder {
         out->values.push_back(static_cast<float>(weight * float_value(a.data, v, c)));
     }
     out->value_offset.push_back(static_cast<uint32_t>(out->values.size()));
-    const SceneAttribute* uv = prim.find("TEXCOORD_0");
-    out->has_uv.push_back(uv != nullptr && uv->data.components() == 2);
-    out->uv.push_back(out->has_uv.back()
-                          ? Vec2f{float_value(uv->data, v, 0), float_value(uv->data, v, 1)}
-                          : Vec2f{});
+    uint8_t has_uv = 0;
+    for (uint32_t set = 0; set < out->uv_sets; ++set) {
+      const SceneAttribute* uv = prim.find("TEXCOORD_" + std::to_string(set));
+      const bool present = uv != nullptr && uv->data.components() == 2;
+      has_uv |= static_cast<uint8_t>(present) << set;
+      out->uv.push_back(present ? Vec2f{float_value(uv->data, v, 0), float_value(uv->data, v, 1)}
+                                : Vec2f{});
+    }
+    out->has_uv.push_back(has_uv);
     const SceneAttribute* normal = prim.find("NORMAL");
     out->has_normal.push_back(normal != nullptr && normal->data.components() == 3);
     out->normal.push_back(out->has_normal.back() ? Vec3f{float_value(normal->data, v, 0),

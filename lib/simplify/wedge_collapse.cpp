@@ -196,7 +196,8 @@ class WedgeCollapser {
     const size_t n = in_.points.size();
     const size_t wedges = in_.wedge_point.size();
     if (in_.corner_wedge.size() != in_.triangles.size() || in_.value_offset.size() != wedges + 1 ||
-        in_.value_offset.back() != in_.values.size() || in_.uv.size() != wedges ||
+        in_.value_offset.back() != in_.values.size() || in_.uv_sets < 1 ||
+        in_.uv_sets > WedgeMesh::kMaxUvSets || in_.uv.size() != wedges * in_.uv_sets ||
         in_.normal.size() != wedges || in_.has_uv.size() != wedges ||
         in_.has_normal.size() != wedges)
       return Status(ErrorKind::kInvalidInput, "the wedge mesh's arrays do not match");
@@ -470,9 +471,12 @@ class WedgeCollapser {
         return Refusal::kFlip;
       const uint32_t w = corner_wedge_[f][k], nw = target_of(w);
       const uint32_t wb = corner_wedge_[f][(k + 1) % 3], wc = corner_wedge_[f][(k + 2) % 3];
-      if (in_.has_uv[w]) {
-        const double before = uv_area(in_.uv[w], in_.uv[wb], in_.uv[wc]);
-        const double after = uv_area(in_.uv[nw], in_.uv[wb], in_.uv[wc]);
+      const uint32_t sets = in_.uv_sets;
+      for (uint32_t set = 0; set < sets; ++set) {
+        if (!(in_.has_uv[w] >> set & 1)) continue;
+        const Vec2f* uv = in_.uv.data() + set;
+        const double before = uv_area(uv[w * sets], uv[wb * sets], uv[wc * sets]);
+        const double after = uv_area(uv[nw * sets], uv[wb * sets], uv[wc * sets]);
         if (before != 0 && !(before > 0 ? after > 0 : after < 0)) return Refusal::kUvFold;
       }
       if (in_.has_normal[w]) {

@@ -42,8 +42,14 @@ struct WedgeMesh {
   std::vector<uint32_t> wedge_point;
   std::vector<uint32_t> value_offset;  // wedges + 1 entries
   std::vector<float> values;
-  // Per wedge, for the legality checks: TEXCOORD_0 and NORMAL when
-  // has_uv / has_normal (one material's wedges all have them or not).
+  // Per wedge, for the legality checks: its texture coordinate sets
+  // (TEXCOORD_0 .. TEXCOORD_{uv_sets - 1}; set s of wedge w at
+  // uv[w * uv_sets + s], present when bit s of has_uv[w] is set) and its
+  // NORMAL when has_normal (one material's wedges all have them or not).
+  // Every set is checked for folds: a second set (a light map, a detail
+  // texture) folds as visibly as the first.
+  static constexpr uint32_t kMaxUvSets = 8;
+  uint32_t uv_sets = 1;
   std::vector<Vec2f> uv;
   std::vector<Vec3f> normal;
   std::vector<uint8_t> has_uv;

@@ -451,7 +451,10 @@ void check_sets(const Container& decoded, uint32_t group, Findings* f) {
   const char* who = "mode sets";
   Result<SetsStructure> loaded = load_sets_structure(decoded, group);
   if (!loaded.is_ok()) return f->add(kSetsTag, who, loaded.status().message());
-  Result<SetsReplay> created = SetsReplay::create(*loaded.value().pm, *loaded.value().graph);
+  const SetsStructure& s = loaded.value();
+  // An asset's strips: run_sets_test() checks every recovered LoD's corners.
+  Result<SetsReplay> created =
+      SetsReplay::create(*s.pm, *s.graph, s.lookup ? &*s.lookup : nullptr, s.wedges.get());
   if (!created.is_ok()) return f->add(kSetsTag, who, created.status().message());
   const uint32_t lods = created.value().lod_count();
   std::vector<uint32_t> path;

@@ -4,7 +4,9 @@
 #   -> simplify --lods 0.5,0.25 (.glb)
 #   -> hierarchy, fan, strips, simplify --pm (from the asset and from its
 #      container) -> inspect --validate, replay --validate (vhier, dag,
-#      stream and vtrees on the hierarchy, fan, sets on the strips)
+#      stream and vtrees on the hierarchy, fan, sets on the strips: every
+#      recovered LoD's corners have their wedges) -> inspect --extract --lod
+#      0.5 and 1.0 of the hierarchy's and the strips' progressive meshes
 #   -> simplify --pm with default options (every collapse) -> inspect
 #      --extract --lod 0, 0.25, 0.5 and 1.0 (.glb; 0.25 also as .gltf)
 #   -> pack --draco of that PM -> inspect --validate, --extract --lod 0.5
@@ -17,7 +19,8 @@
 # primitives and attributes), materials, textures and animations. Corner
 # by corner (tests/npm/same_triangles.mjs: every triangle with every
 # attribute value of its corners, exactly): the PM's full level is the
-# input, its levels at 0.5 and 0.25 are simplify --lods' levels (the same
+# input (and so are the hierarchy's and the strips' PMs' full levels), its
+# levels at 0.5 and 0.25 are simplify --lods' levels (the same
 # collapse order), whether written as .gltf or extracted from the Draco
 # container (a Draco BASE is lossy in positions, but a level's corners take
 # their points from the asset's SCNE, so no tolerance is needed). An asset
@@ -126,6 +129,9 @@ level pm_full.lbk 1.0 pm_100.glb
 # The hierarchy's own progressive mesh (beside DAGE and VTRE) has its wedges.
 level hierarchy.lbk 0.5 hier_50.glb
 level hierarchy.lbk 1.0 hier_100.glb
+# So has the strips' progressive mesh under the SETS graph (WEDG).
+level strips.lbk 0.5 strips_50.glb
+level strips.lbk 1.0 strips_100.glb
 # A build without the Draco codec (make test-nodraco) refuses --draco with
 # exit 5: the Draco container's level is then left out.
 draco=draco_50.glb
@@ -145,11 +151,11 @@ esac
 scene_of "$work/container.json" copy > "$work/container.copy"
 cmp -s "$work/input.copy" "$work/container.copy" || fail "the container's scene differs from the input's"
 copies="back.glb gltf/back.gltf"
-levels="lod_0.glb lod_1.glb pm_0.glb pm_25.glb gltf/pm_25.gltf pm_50.glb $draco pm_100.glb hier_50.glb hier_100.glb"
+levels="lod_0.glb lod_1.glb pm_0.glb pm_25.glb gltf/pm_25.gltf pm_50.glb $draco pm_100.glb hier_50.glb hier_100.glb strips_50.glb strips_100.glb"
 for out in $copies $levels; do
   "$tools/lodbake-inspect" "$work/$out" --json -q > "$work/out.json" || fail "inspect $out"
   case $out in
-    pm_100.glb | hier_100.glb) mode=full ;;
+    pm_100.glb | hier_100.glb | strips_100.glb) mode=full ;;
     back.glb | gltf/back.gltf) mode=copy ;;
     *) mode=level ;;
   esac
@@ -178,7 +184,7 @@ grep -v '^ ' v.txt
 node "$scripts/same_inventory.mjs" --modules "$npm" "$reference" $copies --lod $levels \
   || fail "gltf-transform's inspect lists something else"
 # shellcheck disable=SC2086
-node "$scripts/same_triangles.mjs" --modules "$npm" "$reference" pm_100.glb hier_100.glb \
+node "$scripts/same_triangles.mjs" --modules "$npm" "$reference" pm_100.glb hier_100.glb strips_100.glb \
   -- lod_0.glb pm_50.glb $draco -- lod_1.glb pm_25.glb gltf/pm_25.gltf \
   || fail "the PM's full level is not the input, or a level is not simplify's"
 echo "ok: $asset"

@@ -126,6 +126,63 @@ TEST(WedgeCollapse, NoTextureChartFolds) {
     EXPECT_GT(uv_area(m, w), 0);
 }
 
+// The grid of linear_uv() with a second texture coordinate set, wavy and
+// not in the error, so that only the fold check holds it; `check_second`
+// false leaves set 1 out of the checks (its has_uv bit clear).
+WedgeMesh grid_with_wavy_second_set(bool check_second) {
+  WedgeMesh m = grid(20, linear_uv);
+  std::vector<Vec2f> uv;
+  for (size_t w = 0; w < m.wedge_point.size(); ++w) {
+    const Vec3d& p = m.points[m.wedge_point[w]];
+    uv.push_back(m.uv[w]);
+    uv.push_back({static_cast<float>(p[0] / 20 + 0.04 * std::sin(p[1])),
+                  static_cast<float>(p[1] / 20 + 0.04 * std::sin(p[0] * 1.3))});
+    m.has_uv[w] = check_second ? 3 : 1;
+  }
+  m.uv = std::move(uv);
+  m.uv_sets = 2;
+  return m;
+}
+
+// Faces of `level` whose second set's signed area is not positive.
+size_t folded_in_second_set(const WedgeMesh& m, const WedgeLevel& level) {
+  size_t folded = 0;
+  for (const auto& w : level.corner_wedge) {
+    const Vec2f &a = m.uv[w[0] * 2 + 1], &b = m.uv[w[1] * 2 + 1], &c = m.uv[w[2] * 2 + 1];
+    const double area = (double{b[0]} - a[0]) * (double{c[1]} - a[1]) -
+                        (double{b[1]} - a[1]) * (double{c[0]} - a[0]);
+    folded += area > 0 ? 0 : 1;
+  }
+  return folded;
+}
+
+TEST(WedgeCollapse, NoChartFoldsInAnyTextureCoordinateSet) {
+  WedgeCollapseOptions options;
+  options.targets = {20};
+  // Unchecked, the collapses steered by set 0 alone fold set 1: the case
+  // the check has to catch.
+  const WedgeMesh unchecked = grid_with_wavy_second_set(false);
+  Result<WedgeCollapseResult> folded = collapse_wedges(unchecked, options);
+  ASSERT_TRUE(folded.is_ok()) << folded.status().message();
+  EXPECT_GT(folded_in_second_set(unchecked, folded.value().levels.at(0)), 0u);
+
+  const WedgeMesh checked = grid_with_wavy_second_set(true);
+  Result<WedgeCollapseResult> kept = collapse_wedges(checked, options);
+  ASSERT_TRUE(kept.is_ok()) << kept.status().message();
+  const WedgeLevel& level = kept.value().levels.at(0);
+  ASSERT_FALSE(level.triangles.empty());
+  EXPECT_EQ(folded_in_second_set(checked, level), 0u);
+}
+
+TEST(WedgeCollapse, RefusesTextureCoordinateSetsThatDoNotMatch) {
+  WedgeMesh m = grid_with_wavy_second_set(true);
+  m.uv.pop_back();
+  EXPECT_FALSE(collapse_wedges(m, WedgeCollapseOptions{}).is_ok());
+  m = grid_with_wavy_second_set(true);
+  m.uv_sets = WedgeMesh::kMaxUvSets + 1;
+  EXPECT_FALSE(collapse_wedges(m, WedgeCollapseOptions{}).is_ok());
+}
+
 // Points kept inside the square [lo, hi]^2 of a flat grid whose texture is
 // linear except for a bump there.
 size_t kept_in_bump(double weight) {

@@ -24,6 +24,10 @@ inline constexpr char kHierarchyPmOnly[] =
     "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG), and so do "
     "VHIE's selective fronts and DAGE's cuts; VTRE trees and streamed fronts hold positions "
     "only (not yet)";
+// lodbake-strips without --strips-only: its progressive mesh has WEDG.
+inline constexpr char kStripsPmOnly[] =
+    "the strips' progressive mesh (VSPL) keeps the asset's attributes (WEDG), and so does every "
+    "SETS level recovered (each corner takes its wedge from it); the strips index positions";
 
 // The report of a build over an asset, text or JSON; returns 0.
 int print_asset_build(const Tool& tool, const char* schema, const std::string& input,

@@ -161,7 +161,8 @@ int main(int argc, char** argv) {
       "triangulation without duplicate triangles and the counters agree (exit 7 naming "
       "the frame otherwise); sets: after every LoD, that the strips' triangles are the "
       "progressive mesh's at that LoD with their orientation, form such a triangulation "
-      "and coherent recovery equals fresh recovery (exit 7 naming the LoD); vtrees: that the "
+      "and coherent recovery equals fresh recovery, and over an asset that every corner has "
+      "its wedge (exit 7 naming the LoD); vtrees: that the "
       "client's visible vertex list and triangles are the server's every frame and no record "
       "is sent twice (exit 7 naming the frame)")(
       "plot", po::value<std::string>(&request.plot)->value_name("DIR"),

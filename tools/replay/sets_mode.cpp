@@ -39,7 +39,11 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
   if (!loaded.is_ok()) return tool.fail(request.input, loaded.status());
   const ProgressiveMesh& pm = *loaded.value().pm;
   const SetsGraph& graph = *loaded.value().graph;
-  Result<SetsReplay> created = SetsReplay::create(pm, graph);
+  // An asset's strips (WEDG beside the VSPL): every recovered LoD's
+  // corners have their wedges, which --validate checks.
+  const SetsStructure& structure = loaded.value();
+  const CornerWedges* lookup = structure.lookup ? &*structure.lookup : nullptr;
+  Result<SetsReplay> created = SetsReplay::create(pm, graph, lookup, structure.wedges.get());
   if (!created.is_ok()) return tool.fail(request.input, created.status());
   SetsReplay& replay = created.value();
 
@@ -98,15 +102,19 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
                       {"fresh_mindices_per_s", t.fresh_mindices_per_s},
                       {"coherent_mindices_per_s", t.coherent_mindices_per_s}});
     }
+    nlohmann::json sets = {{"strips", graph.strip_count()},
+                           {"nodes", graph.node_count()},
+                           {"lods", graph.lod_count},
+                           {"base_triangles", pm.base.triangle_count()}};
+    if (replay.has_wedges()) {
+      sets["wedges"] = structure.wedges->wedge_count();
+      if (request.validate) sets["checked_corners"] = replay.checked_corners();
+    }
     nlohmann::json report = {{"schema", kReplaySchema},
                              {"input", request.input},
                              {"mode", request.mode},
                              {"validated", request.validate},
-                             {"sets",
-                              {{"strips", graph.strip_count()},
-                               {"nodes", graph.node_count()},
-                               {"lods", graph.lod_count},
-                               {"base_triangles", pm.base.triangle_count()}}},
+                             {"sets", sets},
                              {"spacing", request.spacing},
                              {"percents", request.percents},
                              {"lods_recovered", recovered},
@@ -121,7 +129,13 @@ int run_sets(const Tool& tool, const Request& request, const Bytes& bytes) {
             << (request.validate ? ", every LoD validated" : "") << "\n";
   std::cout << "sets          " << graph.strip_count() << " strips, " << graph.node_count()
             << " nodes over " << graph.lod_count << " LoDs, " << pm.base.triangle_count()
-            << " base triangles\n";
+            << " base triangles";
+  if (replay.has_wedges()) {
+    std::cout << ", " << structure.wedges->wedge_count() << " wedges";
+    if (request.validate)
+      std::cout << " (every recovered corner's checked: " << replay.checked_corners() << ")";
+  }
+  std::cout << "\n";
   print_plots(request, plots);
   std::cout
       << "tests         LoD 0 to the coarsest and back; recovery alone (steady_clock): fresh\n"

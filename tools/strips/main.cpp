@@ -103,12 +103,29 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
 
 // An asset (glTF, or a container with SCNE): every mesh's strips (and
 // graph over its own progressive mesh), each in its group beside the scene.
+// The progressive mesh carries the asset's wedges (WEDG): each mesh's
+// corners, read once.
 int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
-  return run_asset_build(tool, asset_run(request, kStripsSchema, "building the strips"),
-                         strips_meta(request), bytes,
-                         [&](uint32_t, const TriangleMesh& mesh) -> Result<MeshSections> {
-                           return strips_mesh_sections(request, mesh);
-                         });
+  AssetRun run = asset_run(request, kStripsSchema, "building the strips");
+  AssetCorners corners;
+  Status read_corners = Status::ok();
+  if (!request.strips_only) {
+    run.partial_note = kStripsPmOnly;
+    run.on_scene = [&](const Scene& scene) {
+      Result<AssetCorners> all = read_asset_corners(scene, request.repair, request.strict);
+      if (all.is_ok()) {
+        corners = std::move(all).value();
+      } else {
+        read_corners = all.status();
+      }
+    };
+  }
+  return run_asset_build(
+      tool, run, strips_meta(request), bytes,
+      [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {
+        LODBAKE_RETURN_IF_ERROR(read_corners);
+        return strips_mesh_sections(request, corners, scene_mesh, mesh);
+      });
 }
 
 int run(const Tool& tool, const Request& request) {
@@ -177,7 +194,9 @@ int main(int argc, char** argv) {
             "legal) or a .lbk holding BASE + VSPL. Writes META + BASE + VSPL + SETS, or with\n"
             "--strips-only META + BASE + STRP (the strips over the full mesh). A glTF asset\n"
             "(or an OBJ with materials, a PLY with colours: docs/import.md), or its\n"
-            "container, gets every mesh built in its own group.");
+            "container, gets every mesh built in its own group, with WEDG (the asset's\n"
+            "wedges through the progressive mesh, which every SETS level's corners take)\n"
+            "after each VSPL.");
   Request request;
   tool.options().add_options()(
       "output,o", po::value<std::string>(&request.output)->value_name("OUT.lbk"),
