@@ -54,6 +54,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -113,23 +114,24 @@ struct Candidate {
 // of a full sort was never read. The result is the same as sorting by
 // (upper digit, lower digit, listing order) in one go.
 //
-// The listing comes in two parts (the first and second half of the live
-// triangles), each with its own region of items_ and its own upper-digit
-// counts, so that two threads can list and scatter at once: part 0's
-// candidates go before part 1's in every bucket, which is the listing order
-// of one thread. The scatter empties the regions into scratch_ before the
-// sorted buckets are written back to items_, so one array serves both.
+// The listing comes in parts (consecutive ranges of the live triangles),
+// each with its own region of items_ and its own upper-digit counts, so that
+// the threads list and scatter at once: in every bucket part p's candidates
+// go before part p + 1's, which is the listing order of one thread whatever
+// the number of parts. The scatter empties the regions into scratch_ before
+// the sorted buckets are written back to items_, so one array serves both.
 class CandidateList {
  public:
-  static constexpr int kParts = 2;
-
   // Empties the list for at most `max_count[p]` candidates in part p.
-  void clear(const size_t max_count[kParts]) {
+  void clear(const std::vector<size_t>& max_count) {
+    const size_t parts = max_count.size();
+    part_start_.resize(parts);
+    part_size_.assign(parts, 0);
+    part_counts_.assign(parts * kBuckets, 0u);
+    part_fill_.resize(parts * kBuckets);
     size_t total = 0;
-    for (int p = 0; p < kParts; ++p) {
+    for (size_t p = 0; p < parts; ++p) {
       part_start_[p] = total;
-      part_size_[p] = 0;
-      std::fill(part_counts_[p], part_counts_[p] + kBuckets, 0u);
       total += max_count[p];
     }
     reserve(&scratch_, total);
@@ -142,40 +144,51 @@ class CandidateList {
   // candidate's cost, and the counts of successive candidates (often the
   // same bucket) through memory serialised the listing (bunny: a quarter of
   // its time).
-  void push_back(int p, const Candidate& c) { items_.data[part_start_[p] + part_size_[p]++] = c; }
+  void push_back(size_t p, const Candidate& c) {
+    items_.data[part_start_[p] + part_size_[p]++] = c;
+  }
   size_t size() const { return size_; }
 
   // Groups the candidates by the upper digit and leaves each group in
   // listing order.
-  void sort_upper(TwoWaySplit& split) {
-    const size_t listed = part_size_[0] + part_size_[1];
-    split.run(
-        [this](int p) {
-          uint32_t* counts = part_counts_[p];
-          const Candidate* src = items_.data.get() + part_start_[p];
-          for (size_t i = 0, n = part_size_[p]; i < n; ++i)
-            ++counts[upper(src[i])];
-        },
-        listed >= kParallelScatter);
+  void sort_upper(const ParallelScope& threads) {
+    const size_t parts = part_size_.size();
+    size_t listed = 0;
+    for (size_t n : part_size_)
+      listed += n;
+    // The parts are the listing's; a short list is counted and scattered
+    // on the calling thread.
+    const size_t run_parts = listed >= kParallelScatter ? parts : 1;
+    auto each_part = [&](const std::function<void(size_t)>& job) {
+      threads.for_each_part(run_parts, [&](size_t r) {
+        const IndexRange range = part_range(parts, run_parts, r);
+        for (size_t p = range.begin; p < range.end; ++p)
+          job(p);
+      });
+    };
+    each_part([this](size_t p) {
+      uint32_t* counts = &part_counts_[p * kBuckets];
+      const Candidate* src = items_.data.get() + part_start_[p];
+      for (size_t i = 0, n = part_size_[p]; i < n; ++i)
+        ++counts[upper(src[i])];
+    });
     uint32_t sum = 0;
     for (uint32_t b = 0; b < kBuckets; ++b) {
       bucket_end_[b] = sum;
-      for (int p = 0; p < kParts; ++p) {
-        part_fill_[p][b] = sum;
-        sum += part_counts_[p][b];
+      for (size_t p = 0; p < parts; ++p) {
+        part_fill_[p * kBuckets + b] = sum;
+        sum += part_counts_[p * kBuckets + b];
       }
     }
     bucket_end_[kBuckets] = sum;
     size_ = sum;
-    split.run(
-        [this](int p) {
-          uint32_t* fill = part_fill_[p];
-          const Candidate* src = items_.data.get() + part_start_[p];
-          Candidate* dst = scratch_.data.get();
-          for (size_t i = 0, n = part_size_[p]; i < n; ++i)
-            dst[fill[upper(src[i])]++] = src[i];
-        },
-        size_ >= kParallelScatter);
+    each_part([this](size_t p) {
+      uint32_t* fill = &part_fill_[p * kBuckets];
+      const Candidate* src = items_.data.get() + part_start_[p];
+      Candidate* dst = scratch_.data.get();
+      for (size_t i = 0, n = part_size_[p]; i < n; ++i)
+        dst[fill[upper(src[i])]++] = src[i];
+    });
     // bucket_end_[b] now is the start of bucket b, bucket_end_[b + 1] its end.
     next_bucket_ = 0;
     sorted_end_ = 0;
@@ -251,12 +264,12 @@ class CandidateList {
     sorted_end_ = end;
   }
 
-  size_t part_start_[kParts] = {};  // each part's region of items_ while listing
-  size_t part_size_[kParts] = {};
-  uint32_t part_counts_[kParts][kBuckets] = {};
-  uint32_t part_fill_[kParts][kBuckets] = {};
-  Buffer scratch_;  // grouped by the upper digit
-  Buffer items_;    // the parts' listings, then sorted, bucket by bucket
+  std::vector<size_t> part_start_;  // each part's region of items_ while listing
+  std::vector<size_t> part_size_;
+  std::vector<uint32_t> part_counts_;  // kBuckets per part
+  std::vector<uint32_t> part_fill_;    // kBuckets per part
+  Buffer scratch_;                     // grouped by the upper digit
+  Buffer items_;                       // the parts' listings, then sorted, bucket by bucket
   size_t size_ = 0;
   uint32_t bucket_end_[kBuckets + 1] = {};
   uint32_t next_bucket_ = 0;
@@ -333,7 +346,7 @@ class Engine {
   // vinfo_, and the state's positions are written back at the end).
   Engine(TriangleMesh mesh, MeshTopology topology, const SimplifyOptions& options,
          const EngineSettings& settings)
-      : options_(options), settings_(settings), split_(*settings.split) {
+      : options_(options), settings_(settings), threads_(*settings.threads) {
     const size_t n = mesh.positions.size();
     state_.positions = std::move(mesh.positions);
     state_.triangles = std::move(mesh.triangles);
@@ -391,7 +404,7 @@ class Engine {
     while (triangle_count_ > target) {
       if (pass_ > 0) finish_pass(/*rebuild=*/true);
       list_candidates();
-      candidates_.sort_upper(split_);
+      candidates_.sort_upper(threads_);
       if (run_pass() == 0) break;
     }
     finish_pass(/*rebuild=*/false);
@@ -469,21 +482,17 @@ class Engine {
   }
 
   // Each vertex sums its faces' quadrics (and its boundary edges') in
-  // triangle order. Two parts own the lower and the upper half of the
-  // vertices; each walks all triangles and adds only to its own vertices,
-  // so every sum is made in the same order as by one thread (a triangle
-  // with vertices in both halves has its quadric computed twice).
+  // triangle order. Each part owns a range of the vertices, walks all
+  // triangles and adds only to its own vertices, so every sum is made in
+  // the same order for any number of parts (a triangle with vertices in
+  // several ranges has its quadric computed once for each).
   void setup_quadrics() {
     const size_t n = state_.positions.size();
     quadric_.assign(n, AlignedQuadric());
-    const auto all = static_cast<uint32_t>(n);
-    if (!split_.splits(state_.triangles.size() >= kParallelQuadrics)) {
-      add_quadrics(0, all);
-      return;
-    }
-    const uint32_t half = all / 2;
-    split_.run([this, half, all](int part) {
-      add_quadrics(part == 0 ? 0 : half, part == 0 ? half : all);
+    const size_t parts = threads_.parts(state_.triangles.size(), kParallelQuadrics / 2);
+    threads_.for_each_part(parts, [this, n, parts](size_t p) {
+      const IndexRange owned = part_range(n, parts, p);
+      add_quadrics(static_cast<uint32_t>(owned.begin), static_cast<uint32_t>(owned.end));
     });
   }
 
@@ -539,17 +548,21 @@ class Engine {
 
   // Every live edge once, in its cheaper direction. A half-edge a->b stands
   // for its edge when a precedes b or when b->a does not exist (a boundary
-  // edge). Two parts, the two halves of the live triangles, listed at once
-  // (everything they read is constant during the listing).
+  // edge). In parts, consecutive ranges of the live triangles, listed at
+  // once (everything they read is constant during the listing).
   void list_candidates() {
     const size_t live = live_triangles_.size();
-    const size_t bounds[CandidateList::kParts + 1] = {0, live / 2, live};
-    size_t max_count[CandidateList::kParts];
-    for (int p = 0; p < CandidateList::kParts; ++p)
-      max_count[p] = 3 * (bounds[p + 1] - bounds[p]);
+    const size_t parts = threads_.parts(live, kParallelListing / 2);
+    std::vector<size_t> max_count(parts);
+    for (size_t p = 0; p < parts; ++p) {
+      const IndexRange range = part_range(live, parts, p);
+      max_count[p] = 3 * (range.end - range.begin);
+    }
     candidates_.clear(max_count);
-    split_.run([&](int p) { list_candidates(p, bounds[p], bounds[p + 1]); },
-               live >= kParallelListing);
+    threads_.for_each_part(parts, [&](size_t p) {
+      const IndexRange range = part_range(live, parts, p);
+      list_candidates(p, range.begin, range.end);
+    });
   }
 
   // In two steps per batch of triangles, so that no branch depends on a
@@ -559,7 +572,7 @@ class Engine {
   // time and waits for both quadric evaluations, which stalled every
   // candidate behind it; without it the evaluations of successive
   // candidates overlap (bunny: a fifth less time per candidate).
-  void list_candidates(int part, size_t begin, size_t end) {
+  void list_candidates(size_t part, size_t begin, size_t end) {
     struct Edge {
       uint32_t a, b;
       bool boundary;
@@ -618,46 +631,41 @@ class Engine {
   // The last pass is followed by the triangle rewrite alone (`rebuild`
   // false).
   //
-  // Two parts share the work, each with one half of the live vertices and
-  // one half of the live triangles: first the quadric sums and the triangle
-  // rewrite (part 0 also counts the corners its triangles give each
-  // vertex), then, after the list places are known, the corner lists. Each
-  // vertex's list is filled from its start by part 0 and after part 0's
-  // corners by part 1, so it is in triangle order, as with one thread.
+  // The parts share the work: first each sums the quadrics of a range of
+  // the live vertices and rewrites a range of the live triangles, the kept
+  // triangles then joined in part order; then, once the list places are
+  // known, each fills the corner lists of a range of the live vertices,
+  // walking all kept triangles and writing only its own vertices' corners,
+  // so every list is in triangle order for any number of parts.
   void finish_pass(bool rebuild) {
     const bool faces = rebuild && !seam_attrs_.empty();
     const size_t live = live_triangles_.size();
     const size_t live_v = live_vertices_.size();
-    const bool parallel = split_.splits(live >= kParallelListing);
-    const size_t tri_bounds[3] = {0, parallel ? live / 2 : live, live};
-    const size_t vert_bounds[3] = {0, parallel ? live_v / 2 : live_v, live_v};
-    if (rebuild) {
-      fill_.resize(vinfo_.size());
-      if (parallel) {
-        fill_second_.resize(vinfo_.size());
-        corners_first_.resize(vinfo_.size());
-      }
-    }
-    size_t kept_triangles[2] = {0, 0};
-    auto rewrite = [&](int part) {
+    const size_t parts = threads_.parts(live, kParallelListing / 2);
+    if (rebuild) fill_.resize(vinfo_.size());
+    std::vector<size_t> kept_triangles(parts);
+    threads_.for_each_part(parts, [&](size_t p) {
       if (rebuild) {
-        for (size_t i = vert_bounds[part]; i < vert_bounds[part + 1]; ++i) {
+        const IndexRange vertices = part_range(live_v, parts, p);
+        for (size_t i = vertices.begin; i < vertices.end; ++i) {
           const uint32_t v = live_vertices_[i];
           if (!locked_[v]) continue;
           if (alias_[v] != v) quadric_[alias_[v]].add(quadric_[v].q);
           locked_[v] = 0;
         }
       }
-      kept_triangles[part] = rewrite_triangles(tri_bounds[part], tri_bounds[part + 1],
-                                               rebuild && parallel && part == 0);
-    };
-    split_.run(rewrite, parallel);
-    // The second part's kept triangles follow the first part's.
-    std::copy(
-        live_triangles_.begin() + static_cast<std::ptrdiff_t>(tri_bounds[1]),
-        live_triangles_.begin() + static_cast<std::ptrdiff_t>(tri_bounds[1] + kept_triangles[1]),
-        live_triangles_.begin() + static_cast<std::ptrdiff_t>(kept_triangles[0]));
-    live_triangles_.resize(kept_triangles[0] + kept_triangles[1]);
+      const IndexRange triangles = part_range(live, parts, p);
+      kept_triangles[p] = rewrite_triangles(triangles.begin, triangles.end);
+    });
+    size_t kept_total = kept_triangles[0];
+    for (size_t p = 1; p < parts; ++p) {
+      const auto from =
+          live_triangles_.begin() + static_cast<std::ptrdiff_t>(part_range(live, parts, p).begin);
+      std::copy(from, from + static_cast<std::ptrdiff_t>(kept_triangles[p]),
+                live_triangles_.begin() + static_cast<std::ptrdiff_t>(kept_total));
+      kept_total += kept_triangles[p];
+    }
+    live_triangles_.resize(kept_total);
     if (!rebuild) return;
 
     // Only the vertices that had faces at the pass start: the others are
@@ -672,37 +680,34 @@ class Engine {
       info.start = sum;
       info.size = info.count;
       fill_[v] = sum;
-      if (parallel) {
-        fill_second_[v] = sum + corners_first_[v];
-        corners_first_[v] = 0;
-      }
       sum += info.count;
     }
     live_vertices_.resize(kept);
     corners_.resize(sum);
     if (faces) faces_.resize(sum);
-    const size_t list_bounds[3] = {0, kept_triangles[0], kept_triangles[0] + kept_triangles[1]};
-    split_.run(
-        [&](int part) {
-          std::vector<uint32_t>& fill = part == 0 ? fill_ : fill_second_;
-          for (size_t i = list_bounds[part]; i < list_bounds[part + 1]; ++i) {
-            const uint32_t f = live_triangles_[i];
-            const Triangle& t = state_.triangles[f];
-            for (int k = 0; k < 3; ++k) {
-              const uint32_t slot = fill[t[k]]++;
-              corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
-              if (faces) faces_[slot] = f;
-            }
-          }
-        },
-        parallel);
+    // live_vertices_ is in id order, so a range of it is a range of ids.
+    threads_.for_each_part(parts, [&](size_t p) {
+      const IndexRange owned = part_range(kept, parts, p);
+      if (owned.begin == owned.end) return;
+      const uint32_t lo = p == 0 ? 0 : live_vertices_[owned.begin];
+      const uint32_t hi =
+          owned.end == kept ? std::numeric_limits<uint32_t>::max() : live_vertices_[owned.end];
+      for (const uint32_t f : live_triangles_) {
+        const Triangle& t = state_.triangles[f];
+        for (int k = 0; k < 3; ++k) {
+          if (t[k] < lo || t[k] >= hi) continue;
+          const uint32_t slot = fill_[t[k]]++;
+          corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
+          if (faces) faces_[slot] = f;
+        }
+      }
+    });
   }
 
   // Rewrites live_triangles_[begin, end) through alias_, drops the faces
   // that died in the pass and keeps the others at the front of the range;
-  // returns how many it kept. With `count`, adds each kept corner to its
-  // vertex's corners_first_.
-  size_t rewrite_triangles(size_t begin, size_t end, bool count) {
+  // returns how many it kept.
+  size_t rewrite_triangles(size_t begin, size_t end) {
     std::vector<Triangle>& tris = state_.triangles;
     size_t live = begin;
     for (size_t i = begin; i < end; ++i) {
@@ -716,10 +721,6 @@ class Engine {
         continue;
       }
       live_triangles_[live++] = f;
-      if (count) {
-        for (uint32_t v : t)
-          ++corners_first_[v];
-      }
       if (seam_attrs_.empty() || options_.permissive || t == old) continue;
       // Corners moved from vt take vs's (unique) value, so no new seam appears.
       for (int k = 0; k < 3; ++k) {
@@ -963,7 +964,7 @@ class Engine {
     return with_crack_floor(tv, ps, q.q.evaluate(ps) * q.inverse_weight);
   }
 
-  void add_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {
+  void add_candidate(size_t part, uint32_t a, uint32_t b, bool boundary_edge) {
     if (options_.placement == Placement::kHalf) {
       add_half_candidate(part, a, b, boundary_edge);
       return;
@@ -1217,11 +1218,9 @@ class Engine {
   // faces_ holds the face of each corner, only kept for seam attributes.
   std::vector<Corner> corners_;
   std::vector<uint32_t> faces_;
-  std::vector<uint32_t> alias_;          // a removed vertex's survivor; itself while alive
-  std::vector<uint8_t> locked_;          // touched in this pass
-  std::vector<uint32_t> fill_;           // finish_pass(): next corner slot of each vertex
-  std::vector<uint32_t> fill_second_;    // the same for the second part's triangles
-  std::vector<uint32_t> corners_first_;  // corners of the first part's triangles; 0 between
+  std::vector<uint32_t> alias_;  // a removed vertex's survivor; itself while alive
+  std::vector<uint8_t> locked_;  // touched in this pass
+  std::vector<uint32_t> fill_;   // finish_pass(): next corner slot of each vertex
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<std::vector<uint32_t>> seam_value_;  // per seam attribute, per removed vertex
   std::vector<AlignedQuadric> quadric_;
@@ -1233,7 +1232,7 @@ class Engine {
   uint32_t shared_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<uint32_t> live_vertices_;   // those with faces, in order, filtered by finish_pass()
-  TwoWaySplit& split_;
+  const ParallelScope& threads_;
   CandidateList candidates_;
   uint32_t pass_ = 0;
   float max_cost_float_ = 0;  // the listed cost that ends a walk (see the constructor)

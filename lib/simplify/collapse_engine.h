@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "formats/mesh/triangle_mesh.h"
+#include "lib/core/parallel.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/simplify.h"
-#include "lib/simplify/two_way_split.h"
 
 namespace lodbake {
 namespace simplify_internal {
@@ -35,7 +35,7 @@ struct EngineSettings {
   // collapse sequence does not depend on the numbering. Null: identity.
   const std::vector<uint32_t>* input_ids = nullptr;
   // The threads of the parallel steps (never null).
-  TwoWaySplit* split = nullptr;
+  const ParallelScope* threads = nullptr;
 };
 
 struct EngineState {

@@ -198,7 +198,7 @@ Status check_fans(MeshTopology* topology, size_t begin, size_t end) {
 }  // namespace
 
 Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces,
-                      TwoWaySplit* split) {
+                      const ParallelScope* threads) {
   const size_t n = mesh.positions.size();
   const size_t m = mesh.triangles.size();
   if (n >= (size_t{1} << 31) || m >= (size_t{1} << 30)) {
@@ -246,22 +246,23 @@ Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool wit
   }
   topology->boundary.assign(n, 0);
 
-  // The fan checks are independent per vertex: two parts, the halves of
-  // the vertices; the first part's error, if any, is the first in vertex
-  // order.
-  Status part_status[2];
-  const size_t bounds[3] = {0, n / 2, n};
-  auto check_part = [&](int part) {
-    part_status[part] = check_fans(topology, bounds[part], bounds[part + 1]);
+  // The fan checks are independent per vertex: in parts, ranges of the
+  // vertices; the first failed part's error is the first in vertex order.
+  const size_t parts = threads ? threads->parts(m, kParallelFanCheck / 2) : 1;
+  std::vector<Status> part_status(parts);
+  auto check_part = [&](size_t part) {
+    const IndexRange range = part_range(n, parts, part);
+    part_status[part] = check_fans(topology, range.begin, range.end);
   };
-  if (split) {
-    split->run(check_part, m >= kParallelFanCheck);
+  if (threads) {
+    threads->for_each_part(parts, check_part);
   } else {
     check_part(0);
-    check_part(1);
   }
-  if (!part_status[0].is_ok()) return part_status[0];
-  return part_status[1];
+  for (const Status& status : part_status) {
+    if (!status.is_ok()) return status;
+  }
+  return Status::ok();
 }
 
 }  // namespace simplify_internal

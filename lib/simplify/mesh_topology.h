@@ -8,7 +8,7 @@
 
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
-#include "lib/simplify/two_way_split.h"
+#include "lib/core/parallel.h"
 
 namespace lodbake {
 namespace simplify_internal {
@@ -32,9 +32,9 @@ struct MeshTopology {
 /// faces around each vertex forming a single fan (no non-manifold vertex).
 /// Fails with kInvalidInput naming the first offending element. Without
 /// `with_faces`, MeshTopology::faces is left empty. The fan checks use
-/// `split`'s threads when given; the result is the same.
+/// `threads` when given; the result is the same.
 Status build_topology(const TriangleMesh& mesh, MeshTopology* topology, bool with_faces = true,
-                      TwoWaySplit* split = nullptr);
+                      const ParallelScope* threads = nullptr);
 
 }  // namespace simplify_internal
 }  // namespace lodbake

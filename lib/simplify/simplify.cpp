@@ -166,9 +166,9 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   // attributes (seams).
   const bool per_corner = input.normals.binding == AttributeBinding::kPerCorner ||
                           input.texcoords.binding == AttributeBinding::kPerCorner;
-  simplify_internal::TwoWaySplit split(options.threads);
+  const ParallelScope threads(options.threads);
   simplify_internal::MeshTopology topology;
-  const Status valid = simplify_internal::build_topology(work, &topology, per_corner, &split);
+  const Status valid = simplify_internal::build_topology(work, &topology, per_corner, &threads);
   if (!valid.is_ok()) {
     // Name the problem in input ids, and the first one in input order.
     simplify_internal::MeshTopology unused;
@@ -180,7 +180,7 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   EngineSettings settings;
   settings.diagonal = bbox_diagonal(work, topology);
   if (renumber) settings.input_ids = &order;
-  settings.split = &split;
+  settings.threads = &threads;
   settings.target_triangles = 0;
   if (options.target_triangles) settings.target_triangles = *options.target_triangles;
   if (options.target_ratio) {
@@ -204,15 +204,19 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
   SimplifyResult result;
   result.stats = state.stats;
   // Both only read the state.
-  split.run(
-      [&](int part) {
-        if (part == 0) {
-          result.mesh = assemble_mesh(state);
-        } else if (options.record_pm) {
-          result.pm = simplify_internal::record_progressive_mesh(input, state);
-        }
-      },
-      options.record_pm && input_triangles >= kParallelAssembly);
+  auto assemble = [&](size_t task) {
+    if (task == 0) {
+      result.mesh = assemble_mesh(state);
+    } else if (options.record_pm) {
+      result.pm = simplify_internal::record_progressive_mesh(input, state);
+    }
+  };
+  if (options.record_pm && input_triangles >= kParallelAssembly) {
+    threads.for_each_part(2, assemble);
+  } else {
+    assemble(0);
+    assemble(1);
+  }
   return result;
 }
 

@@ -55,10 +55,10 @@ struct SimplifyOptions {
   bool record_pm = false;  // also record the progressive mesh
   // Threads for the engine's parallel steps (the listing and sort of each
   // pass, the sweep between passes, the input check, the quadric set-up,
-  // the assembly): 1, or 2 (0 means 2 when the machine has two cores). Two
-  // take less wall time and about twice the CPU time (two_way_split.h);
-  // the result is the same.
-  unsigned threads = 1;
+  // the assembly), on oneTBB (lib/core/parallel.h): any count; 0 runs them
+  // on the caller's task arena (every core, or a bake's --jobs threads).
+  // The result is the same byte for byte for every count.
+  unsigned threads = 0;
   // Called now and then with the fraction done (0..1); may be empty.
   std::function<void(double)> progress;
 };

@@ -14,8 +14,8 @@
 // "core s" for the peers. The time is the median of --runs runs, taken in
 // turns (run 1 of every method, then run 2, ...) so that a change in the
 // load of a shared machine falls on all methods alike. The peers are single
-// threaded; lodbake is too, unless --threads 2 runs some steps of its passes
-// on a second thread. The throughput and lodbake's
+// threaded; lodbake is too, unless --threads N (0: every core) runs the
+// parallel steps of its passes on N threads. The throughput and lodbake's
 // speed-ups are computed from the wall time ("seconds", what a baking job
 // waits for); the process CPU time ("cpu s", the work summed over threads,
 // which other jobs on a shared machine disturb far less) gives a second

@@ -15,7 +15,6 @@
 #include "lib/check/mesh_check.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/pm_replay.h"
-#include "lib/simplify/two_way_split.h"
 #include "simplify_test_meshes.h"
 
 namespace lodbake {
@@ -300,8 +299,9 @@ TEST(Simplify, HeightGuardNeedsHalfPlacement) {
 }
 
 // The listing, the quadric set-up, the input check and the assembly run in
-// two parts on one thread or two; the result must not depend on which. The
-// bunny is above every size from which the parts run in parallel.
+// as many parts as threads; the result must not depend on how many. The
+// bunny is above every size from which the parts run in parallel
+// (simplify_threads_test.cpp compares 1, 2 and 7 threads on more meshes).
 TEST(Simplify, OneThreadAndTwoGiveTheSameResult) {
   const TriangleMesh bunny = load_clean_mesh("stanford_bun_zipper.ply");
   for (Placement placement : {Placement::kHalf, Placement::kOptimal}) {
@@ -343,8 +343,8 @@ TEST(Simplify, OneThreadAndTwoGiveTheSameResult) {
   EXPECT_EQ(guarded_one.stats.refused_height, guarded_two.stats.refused_height);
 }
 
-// The input check's two parts report the first problem in vertex order,
-// as one thread does.
+// The input check's parts report the first problem in vertex order, as
+// one thread does.
 TEST(Simplify, TwoThreadsNameTheFirstProblemOfTheInput) {
   TriangleMesh mesh = load_clean_mesh("stanford_bun_zipper.ply");
   const auto n = static_cast<uint32_t>(mesh.positions.size());
@@ -371,11 +371,12 @@ TEST(Simplify, TwoThreadsNameTheFirstProblemOfTheInput) {
 
   // The check itself, in the ids it is given (simplify() names the problem
   // in input ids by checking the input again on one thread).
-  simplify_internal::TwoWaySplit split(2);
-  ASSERT_TRUE(split.parallel());
-  simplify_internal::MeshTopology topology;
-  const Status status = simplify_internal::build_topology(mesh, &topology, false, &split);
-  EXPECT_EQ(status.message(), messages[0]);
+  for (unsigned threads : {2u, 7u}) {
+    const ParallelScope scope(threads);
+    simplify_internal::MeshTopology topology;
+    const Status status = simplify_internal::build_topology(mesh, &topology, false, &scope);
+    EXPECT_EQ(status.message(), messages[0]);
+  }
 }
 
 // A fan of `k` triangles around vertex 0 on a circle of rim vertices 1..k:
@@ -428,27 +429,6 @@ TEST(Simplify, InputCheckTellsFansOfEverySize) {
     const Status status = simplify_internal::build_topology(flipped, &topology);
     EXPECT_NE(status.message().find("is walked the same way by two faces"), std::string::npos)
         << status.message();
-  }
-}
-
-TEST(TwoWaySplit, RunsBothPartsAndRethrows) {
-  for (unsigned threads : {1u, 2u}) {
-    simplify_internal::TwoWaySplit split(threads);
-    EXPECT_EQ(split.parallel(), threads == 2);
-    for (int round = 0; round < 50; ++round) {
-      int ran[2] = {0, 0};
-      split.run([&](int part) { ++ran[part]; });
-      EXPECT_EQ(ran[0], 1);
-      EXPECT_EQ(ran[1], 1);
-    }
-    EXPECT_THROW(split.run([](int part) {
-      if (part == 1) throw std::runtime_error("worker");
-    }),
-                 std::runtime_error);
-    // Still usable after a part threw.
-    int ran = 0;
-    split.run([&](int) { ++ran; }, false);
-    EXPECT_EQ(ran, 2);
   }
 }
 

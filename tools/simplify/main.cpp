@@ -522,8 +522,8 @@ int main(int argc, char** argv) {
       "orientation")("quantize", po::value<int>(&request.quantize_bits)->value_name("BITS"),
                      "store the PM's positions quantized to BITS (1..30) bits")(
       "threads", po::value<unsigned>(&request.options.threads)->value_name("N"),
-      "threads for the engine's parallel steps: 1 (default) or 2 (0: 2 when there are two "
-      "cores); two take less wall time and about twice the CPU time, the output is the same")(
+      "threads for the engine's parallel steps (oneTBB): 0 (default) every core, or any "
+      "count up to 4096; the output is the same bytes for every count")(
       "no-metrics",
       "skip measuring the Hausdorff and mean distance, and the UV and normal deviation, to the "
       "input");
@@ -550,6 +550,9 @@ int main(int argc, char** argv) {
     return tool.usage_error("--placement takes 'half' or 'optimal', not '" + request.placement +
                             "'");
   }
+  // More is surely a typo (and tbb::task_arena takes an int).
+  if (request.options.threads > 4096)
+    return tool.usage_error("--threads takes a count from 0 (every core) to 4096");
   if (tool.has("height-guard-factor")) {
     if (!is_valid_height_guard_factor(request.options.height_guard_factor))
       return tool.usage_error("--height-guard-factor takes a finite value above 0");
