@@ -20,6 +20,7 @@
 #include "lib/hierarchy/refinement_data.h"
 #include "lib/replay/replay_check.h"
 #include "lib/replay/vtrees_session.h"
+#include "lib/replay/vtrees_wedge_check.h"
 #include "lib/scene/scene_lods.h"
 #include "lib/simplify/wedge_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
@@ -142,6 +143,7 @@ TEST_P(VtreesWedgesTest, ClientCornersAreTheServerFrontsOverAPathAndAtTheInput) 
       Result<std::vector<std::array<uint32_t, 3>>> corners = s.client().corner_wedges();
       ASSERT_TRUE(corners.is_ok());
       EXPECT_TRUE(corner_wedge_problems(corners.value(), b->wedges).empty()) << "frame " << i;
+      EXPECT_TRUE(check_vtrees_wedges(s.client(), *b->reference, b->wedges).empty());
     }
     EXPECT_GT(ups, 0u);  // the path coarsens too
     EXPECT_GT(triangles, 0u);
@@ -244,7 +246,7 @@ TEST_P(VtreesWedgesTest, RecordsWithWedgesRoundTripAndRefuseDamage) {
 // the server's front; without the right records' pairs, full refinement
 // has corners with no wedge.
 TEST_P(VtreesWedgesTest, MissingWedgeDataShows) {
-  size_t off = 0;
+  size_t off = 0, flagged = 0;
   for (const std::unique_ptr<Built>& b : build_all(GetParam(), [](VtreesWedgeTable* t) {
          for (auto& wings : t->wings)
            for (VtreesWing& w : wings)
@@ -256,9 +258,11 @@ TEST_P(VtreesWedgesTest, MissingWedgeDataShows) {
     for (size_t i = 0; i < path.size(); i += 3) {
       ASSERT_TRUE(session.value().frame(path[i], b->db->sphere).is_ok());
       off += corners_off(session.value().client(), *b->reference);
+      flagged += !check_vtrees_wedges(session.value().client(), *b->reference, b->wedges).empty();
     }
   }
   EXPECT_GT(off, 0u);
+  EXPECT_GT(flagged, 0u);
 
   const std::vector<std::unique_ptr<Built>> cut = build_all(GetParam(), [](VtreesWedgeTable* t) {
     const size_t b = t->pairs.size() - 2 * t->wings.size();
