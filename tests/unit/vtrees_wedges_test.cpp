@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/support/file_io.h"
 #include "lib/hierarchy/balanced_build.h"
 #include "lib/hierarchy/front_wedges.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
@@ -25,6 +26,7 @@
 #include "lib/simplify/wedge_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
 #include "tests/unit/asset_test_support.h"
+#include "tests/unit/test_support.h"
 #include "tests/unit/wire_corruption_support.h"
 
 namespace lodbake {
@@ -276,6 +278,63 @@ TEST_P(VtreesWedgesTest, MissingWedgeDataShows) {
   // The right record repeats its parent's entries with another wedge: the
   // client refuses the contradiction.
   EXPECT_FALSE(session.value().step(everything(cut.front()->db->sphere)).is_ok());
+}
+
+// The fuzz target's seeds with wedges: Fox's downlink (the trees message
+// and the answer to one view), and a frame of three splits' records alone,
+// which the target decodes under Fox's widths (its wedge context). Written
+// again with LODBAKE_REGENERATE_GOLDEN=1.
+TEST(VtreesWedgesSeeds, FoxDownlinkAndFrame) {
+  const std::vector<std::unique_ptr<Built>> all = build_all("Fox/Fox.gltf");
+  ASSERT_EQ(all.size(), 1u);
+  const Built& b = *all.front();
+  const VtreesWidths& w = b.db->widths;
+  // (fuzz_vtrees_records.cpp's wedge context)
+  EXPECT_EQ(w.base_count, 4u);
+  EXPECT_EQ(w.split_count, 286u);
+  EXPECT_EQ(w.run_count_bits, 1);
+  EXPECT_EQ(w.run_length_bits, 4);
+  EXPECT_EQ(w.slot_count, 576u);
+  EXPECT_EQ(w.wedge_count, 434u);
+  Result<VtreesServerSession> server = VtreesServerSession::create(*b.db);
+  ASSERT_TRUE(server.is_ok());
+  CameraFrame camera;
+  camera.eye = {b.db->sphere.center[0], b.db->sphere.center[1],
+                b.db->sphere.center[2] + 3 * b.db->sphere.radius};
+  camera.target = b.db->sphere.center;
+  const Bytes request =
+      encode_view_request(view_request_for(camera, Viewport(), 0.01f * b.db->sphere.radius, 8));
+  Result<std::vector<Bytes>> answer = server.value().answer(request.data(), request.size());
+  ASSERT_TRUE(answer.is_ok());
+  ASSERT_GT(server.value().last_answer().splits, 0u);
+  Bytes downlink = b.db->trees_message().value();
+  Result<VtreesClient> client = VtreesClient::create(downlink.data(), downlink.size());
+  ASSERT_TRUE(client.is_ok());
+  for (const Bytes& m : answer.value()) {
+    ASSERT_TRUE(client.value().receive(m.data(), m.size()).is_ok());
+    downlink.insert(downlink.end(), m.begin(), m.end());
+  }
+  EXPECT_TRUE(client.value().corner_wedges().is_ok());
+  std::vector<VtreesItem> items;
+  for (uint32_t k = 0; k < 3; ++k) {
+    VtreesItem it;
+    it.kind = VtreesItemKind::kSplit;
+    it.split = k;
+    it.left = b.db->record(w.base_count + 2 * k);
+    it.right = b.db->record(w.base_count + 2 * k + 1);
+    it.wings[0] = b.db->wedges->wings[k][0];
+    it.wings[1] = b.db->wedges->wings[k][1];
+    items.push_back(std::move(it));
+  }
+  const Bytes frame = encode_vtrees_frame(items, w).value();
+  const std::string corpus = testing_util::env_or("LODBAKE_SOURCE_DIR", LODBAKE_TEST_SOURCE_DIR) +
+                             "/tests/fuzz/corpus/vtrees_records/";
+  if (testing_util::env_or("LODBAKE_REGENERATE_GOLDEN", "0") == "1") {
+    ASSERT_TRUE(write_file_atomic(corpus + "session_fox_wedges.bin", downlink).is_ok());
+    ASSERT_TRUE(write_file_atomic(corpus + "frame_fox_wedges.bin", frame).is_ok());
+  }
+  EXPECT_EQ(testing_util::read_bytes(corpus + "session_fox_wedges.bin"), downlink);
+  EXPECT_EQ(testing_util::read_bytes(corpus + "frame_fox_wedges.bin"), frame);
 }
 
 INSTANTIATE_TEST_SUITE_P(Assets, VtreesWedgesTest, testing::Values("Duck/Duck.glb", "Fox/Fox.gltf"),
