@@ -115,6 +115,7 @@ SimplifyStepOptions simplify_options(const nlohmann::json& o) {
   s.options.lock_border = o["lock_border"].get<bool>();
   s.options.max_normal_change_degrees = o["max_normal_change"].get<double>();
   s.options.permissive = o["permissive"].get<bool>();
+  s.options.seam_release = o["seam_release"].get<double>();
   if (o.contains("placement")) {
     s.placement = o["placement"].get<std::string>();
     s.options.placement = s.placement == "optimal" ? Placement::kOptimal : Placement::kHalf;

@@ -16,6 +16,8 @@
 #define TOML_EXCEPTIONS 0
 #include <toml++/toml.h>
 
+#include "lib/simplify/simplify.h"
+
 namespace lodbake {
 namespace {
 
@@ -47,6 +49,7 @@ const std::map<std::string, std::vector<KeySpec>>& step_specs() {
         {"lock_border", Kind::kBool, false},
         {"max_normal_change", Kind::kFloat, 150.0, 0, 180},
         {"permissive", Kind::kBool, false},
+        {"seam_release", Kind::kFloat, kDefaultSeamRelease, 0, kInf},
         {"height_guard", Kind::kBool, false},
         {"height_guard_factor", Kind::kFloat, nullptr, 0, kInf, {}, true},
         {"quantize", Kind::kInt, 0, 0, 30},
@@ -61,7 +64,8 @@ const std::map<std::string, std::vector<KeySpec>>& step_specs() {
         {"boundary_weight", Kind::kFloat, 10.0, 0, kInf},
         {"lock_border", Kind::kBool, false},
         {"max_normal_change", Kind::kFloat, 150.0, 0, 180},
-        {"permissive", Kind::kBool, false}}},
+        {"permissive", Kind::kBool, false},
+        {"seam_release", Kind::kFloat, kDefaultSeamRelease, 0, kInf}}},
       {"hierarchy",
        {{"sections",
          Kind::kStrings,

@@ -1,6 +1,7 @@
 #include "lib/bake/simplify_step.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "formats/container/container_writer.h"
@@ -32,6 +33,13 @@ nlohmann::json pm_meta_options(const SimplifyStepOptions& request) {
   if (request.options.target_ratio) options["ratio"] = *request.options.target_ratio;
   if (request.options.target_triangles) options["triangles"] = *request.options.target_triangles;
   if (request.options.max_error) options["error"] = *request.options.max_error;
+  // Only when not the default, so that files made before the option keep
+  // their bytes; null: seams never move.
+  if (request.options.seam_release != kDefaultSeamRelease)
+    options["seam_release"] =
+        request.options.seam_release && std::isfinite(*request.options.seam_release)
+            ? nlohmann::json(*request.options.seam_release)
+            : nlohmann::json(nullptr);
   return options;
 }
 

@@ -181,6 +181,15 @@ class WedgeMeshBuilder {
         b.indices.push_back(it->second);
       }
     }
+    // A wedge at home at each point: where a moved corner's exact position
+    // is read from the asset, not from `positions` (a Draco or quantized
+    // BASE's are not the asset's).
+    std::vector<std::pair<uint32_t, uint32_t>> home_vertex(positions.size(), {kNoVertex, 0});
+    for (size_t w = 0; w < wedge_home.size(); ++w)
+      if (wedge_home[w] < positions.size() && home_vertex[wedge_home[w]].first == kNoVertex &&
+          wedge_primitive[w] < n &&
+          wedge_vertex[w] < mesh_.point_of_vertex[wedge_primitive[w]].size())
+        home_vertex[wedge_home[w]] = {wedge_primitive[w], wedge_vertex[w]};
     std::vector<ScenePrimitive> out;
     for (uint32_t p = 0; p < n; ++p) {
       const ScenePrimitive& in = mesh_.primitives[p];
@@ -196,7 +205,7 @@ class WedgeMeshBuilder {
       prim.extensions = in.extensions;
       prim.indices = std::move(built[p].indices);
       for (const SceneAttribute& a : in.attributes)
-        prim.attributes.push_back(gather(a, built[p].sources, positions));
+        prim.attributes.push_back(gather(a, built[p].sources, positions, home_vertex));
       for (const std::vector<SceneAttribute>& target : in.targets) {
         std::vector<SceneAttribute> t;
         for (const SceneAttribute& a : target) {
@@ -334,15 +343,28 @@ class WedgeMeshBuilder {
 
   SceneAttribute gather(const SceneAttribute& a,
                         const std::vector<std::pair<uint32_t, int64_t>>& sources,
-                        const std::vector<Vec3f>& positions) const {
+                        const std::vector<Vec3f>& positions,
+                        const std::vector<std::pair<uint32_t, uint32_t>>& home_vertex) const {
     SceneAttribute out = a;
     out.data = select(a.data, sources);
     if (a.semantic != "POSITION") return out;
-    // A moved wedge sits at another point: its position.
+    // A moved wedge sits at another point: its position, the asset's own
+    // where a vertex at home there stores it alike.
     const size_t size = a.data.element_size();
     for (size_t i = 0; i < sources.size(); ++i) {
       if (sources[i].second < 0) continue;
-      const Vec3f& position = positions[static_cast<size_t>(sources[i].second)];
+      const size_t at = static_cast<size_t>(sources[i].second);
+      if (const auto [hp, hv] = home_vertex[at]; hp != kNoVertex) {
+        const SceneAttribute* home = mesh_.primitives[hp].find("POSITION");
+        if (home != nullptr && home->data.component_type == a.data.component_type &&
+            home->data.normalized == a.data.normalized &&
+            home->data.components() == a.data.components() && hv < home->data.count) {
+          std::memcpy(out.data.bytes.data() + i * size, home->data.bytes.data() + size_t{hv} * size,
+                      size);
+          continue;
+        }
+      }
+      const Vec3f& position = positions[at];
       if (a.data.component_type == ComponentType::kFloat && a.data.components() == 3) {
         std::memcpy(out.data.bytes.data() + i * size, position.data(), size);
         continue;
@@ -438,6 +460,7 @@ WedgeCollapseOptions engine_options(const SceneLodOptions& options) {
   run.boundary_weight = options.simplify.boundary_weight;
   run.lock_border = options.simplify.lock_border;
   run.permissive = options.simplify.permissive;
+  run.seam_release = options.simplify.seam_release;
   run.max_normal_change_degrees = options.simplify.max_normal_change_degrees;
   run.progress = options.simplify.progress;
   return run;

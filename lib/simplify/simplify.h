@@ -25,6 +25,11 @@ inline bool is_valid_height_guard_factor(double factor) {
   return factor > 0 && std::isfinite(factor);
 }
 
+// The default seam release bound: gltfpack's default error bound, the
+// error above which keeping texture seams flattens charts more than moving
+// them distorts the texture (docs/lab/seam-release.md).
+constexpr double kDefaultSeamRelease = 0.01;
+
 struct SimplifyOptions {
   Placement placement = Placement::kHalf;
   // Stop criteria: simplification stops at the first one reached. With none
@@ -39,6 +44,10 @@ struct SimplifyOptions {
   bool lock_border = false;       // never move or remove boundary vertices
   double max_normal_change_degrees = 150.0;  // refuse collapses turning a face normal more
   bool permissive = false;                   // allow collapses across texture seams
+  // Assets, without `permissive`: seams stay until keeping them costs more
+  // than this error, relative to the diagonal (WedgeCollapseOptions;
+  // docs/simplify.md "Assets"); unset or infinite, they never move.
+  std::optional<double> seam_release = kDefaultSeamRelease;
   // Half placement only: also refuse a collapse when the removed vertex lies
   // farther from the plane of one of the faces it moves than the pass's
   // error scale allows (the cost, a mean over its faces, misses one face

@@ -80,19 +80,32 @@ struct WedgeMove {
 // One point's cheapest legal collapse, or why it has none.
 struct Candidate {
   uint32_t target = kNoVertex;
-  double cost = 0;
+  double cost = 0;  // with kSeamRelease's penalty when `relaxed`
   Refusal refusal = Refusal::kNone;
+  bool relaxed = false;  // moves seams (permissive rules) though the run keeps them
 };
+
+// A collapse that moves seams under a seam release costs at most this
+// many times the bound: past it, a seam's chart is what the mesh still
+// looks like (a textured box stays a box; docs/lab/seam-release.md).
+constexpr double kReleaseCap = 3;
+
+// A refused target, and whether under the permissive rules.
+uint32_t refused_key(uint32_t target, bool relaxed) {
+  return target << 1 | static_cast<uint32_t>(relaxed);
+}
 
 struct HeapEntry {
   double cost;
   uint32_t point;
   uint32_t target;
   uint32_t stamp;
+  bool relaxed;
   bool operator>(const HeapEntry& o) const {
     if (cost != o.cost) return cost > o.cost;
     if (point != o.point) return point > o.point;
-    return target > o.target;
+    if (target != o.target) return target > o.target;
+    return relaxed > o.relaxed;
   }
 };
 
@@ -113,7 +126,7 @@ class WedgeCollapser {
     auto push = [&](uint32_t v) {
       ++stamp_[v];
       const Candidate c = best_collapse(v, false);
-      if (c.target != kNoVertex) heap.push({c.cost, v, c.target, stamp_[v]});
+      if (c.target != kNoVertex) heap.push({c.cost, v, c.target, stamp_[v], c.relaxed});
     };
     for (uint32_t v = 0; v < points_.size(); ++v)
       if (!faces_[v].empty()) push(v);
@@ -147,13 +160,15 @@ class WedgeCollapser {
       const HeapEntry top = heap.top();
       heap.pop();
       if (top.stamp != stamp_[top.point] || faces_[top.point].empty()) continue;
-      if (options_.max_error && std::sqrt(top.cost) > *options_.max_error) {
+      if (options_.max_error &&
+          std::sqrt(top.cost - (top.relaxed ? release_penalty_ : 0)) > *options_.max_error) {
         stopped_by_error = true;
         break;
       }
       double cost = 0;
-      if (check(top.point, top.target, &cost, &moves, true) != Refusal::kNone) {
-        refused_[top.point].push_back(top.target);
+      if (check(top.point, top.target, &cost, &moves, true, permissive_or(top.relaxed)) !=
+          Refusal::kNone) {
+        refused_[top.point].push_back(refused_key(top.target, top.relaxed));
         push(top.point);
         continue;
       }
@@ -267,6 +282,14 @@ class WedgeCollapser {
     }
     add_constraint_planes();
     cos_limit_ = std::cos(options_.max_normal_change_degrees * M_PI / 180.0);
+    if (options_.seam_release && !options_.permissive) {
+      if (!(*options_.seam_release >= 0))
+        return Status(ErrorKind::kInvalidInput, "the seam release bound is not an error >= 0");
+      releases_ = std::isfinite(*options_.seam_release);
+      release_penalty_ = *options_.seam_release * *options_.seam_release;
+      const double cap = kReleaseCap * *options_.seam_release;
+      release_cap_ = cap * cap;
+    }
     return Status::ok();
   }
 
@@ -330,8 +353,10 @@ class WedgeCollapser {
 
   // The collapses v may make: all its neighbours, the ends of its two crease
   // edges, or none (with the reason).
-  Refusal allowed_targets(uint32_t v, std::vector<uint32_t>* targets) {
+  Refusal allowed_targets(uint32_t v, bool permissive, std::vector<uint32_t>* targets,
+                          bool* on_seam) {
     targets->clear();
+    *on_seam = false;
     around_.clear();
     neighbours(v, &around_);
     uint32_t borders = 0, seams = 0;
@@ -344,11 +369,12 @@ class WedgeCollapser {
         creases_.push_back(u);
       } else if (is_seam(v, u, shared_[0], shared_[1])) {
         ++seams;
-        if (!options_.permissive) creases_.push_back(u);
+        if (!permissive) creases_.push_back(u);
       }
     }
     if (borders > 0 && options_.lock_border) return Refusal::kBorder;
-    const uint32_t crease = borders + (options_.permissive ? 0 : seams);
+    if (seams > 0) *on_seam = true;
+    const uint32_t crease = borders + (permissive ? 0 : seams);
     if (crease == 0) {
       *targets = around_;
       return Refusal::kNone;
@@ -358,19 +384,39 @@ class WedgeCollapser {
     return Refusal::kNone;
   }
 
+  bool permissive_or(bool relaxed) const { return options_.permissive || relaxed; }
+
   // v's cheapest collapse; with `legality`, its cheapest legal one, else
   // its cheapest not yet refused since its neighbourhood last changed.
+  // With a seam release, a point on a seam also offers its cheapest
+  // collapse under the permissive rules at its cost plus the penalty: it
+  // comes up only when keeping the seams costs more than the bound.
   Candidate best_collapse(uint32_t v, bool legality) {
+    bool on_seam = false;
+    Candidate best = best_collapse_under(v, legality, options_.permissive, &on_seam);
+    if (!releases_ || !on_seam) return best;
+    bool ignored = false;
+    Candidate relaxed = best_collapse_under(v, legality, true, &ignored);
+    if (relaxed.target == kNoVertex || relaxed.cost > release_cap_) return best;
+    relaxed.cost += release_penalty_;
+    relaxed.relaxed = true;
+    return best.target == kNoVertex || relaxed.cost < best.cost ? relaxed : best;
+  }
+
+  Candidate best_collapse_under(uint32_t v, bool legality, bool permissive, bool* on_seam) {
     Candidate best;
-    best.refusal = allowed_targets(v, &targets_);
+    best.refusal = allowed_targets(v, permissive, &targets_, on_seam);
     if (best.refusal != Refusal::kNone) return best;
     best.refusal = Refusal::kLink;  // a point with no neighbour (cannot happen with faces)
     bool refused = false;
+    const std::vector<uint32_t>& refused_targets = refused_[v];
     for (uint32_t u : targets_) {
-      if (!legality && std::find(refused_[v].begin(), refused_[v].end(), u) != refused_[v].end())
+      if (!legality &&
+          std::find(refused_targets.begin(), refused_targets.end(),
+                    refused_key(u, permissive && !options_.permissive)) != refused_targets.end())
         continue;
       double cost = 0;
-      const Refusal r = check(v, u, &cost, &moves_, legality);
+      const Refusal r = check(v, u, &cost, &moves_, legality, permissive);
       if (r != Refusal::kNone) {
         if (!refused) best.refusal = r;
         refused = true;
@@ -389,7 +435,7 @@ class WedgeCollapser {
   // `legality` whether the mesh stays valid. The heap orders collapses by
   // cost alone; legality is checked when one comes up (most never do).
   Refusal check(uint32_t vt, uint32_t vs, double* cost, std::vector<WedgeMove>* moves,
-                bool legality) {
+                bool legality, bool permissive) {
     moves->clear();
     removed_.clear();
     moved_.clear();
@@ -414,7 +460,7 @@ class WedgeCollapser {
     for (uint32_t f : moved_) {
       const uint32_t w = wedge_at(f, vt);
       if (target_of(w) != kNoVertex) continue;
-      if (!options_.permissive) return Refusal::kSeamMismatch;
+      if (!permissive) return Refusal::kSeamMismatch;
       moves->push_back({w, w});
     }
 
@@ -593,7 +639,10 @@ class WedgeCollapser {
   std::vector<uint8_t> triangle_alive_;
   std::vector<uint32_t> stamp_;
   // The collapses found illegal since each point's neighbourhood changed.
-  std::vector<std::vector<uint32_t>> refused_;
+  std::vector<std::vector<uint32_t>> refused_;  // refused_key()s since v's last change
+  bool releases_ = false;       // seam_release applies (a bound, and not permissive)
+  double release_penalty_ = 0;  // seam_release squared, in the costs' units
+  double release_cap_ = 0;      // the largest cost of a collapse that moves seams
   uint64_t live_ = 0;
   double cos_limit_ = -1;
   // Scratch lists, kept to avoid allocating per evaluation.

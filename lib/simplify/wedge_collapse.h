@@ -64,6 +64,13 @@ struct WedgeCollapseOptions {
   double boundary_weight = 10.0;    // border and seam constraint planes: this * edge length^2
   bool lock_border = false;
   bool permissive = false;
+  // Without `permissive`: seams stay while a collapse that keeps them costs
+  // at most this error (relative to the diagonal); past it, a point on a
+  // seam may also collapse under the permissive rules, its error counted
+  // plus this bound, so seams move only where keeping them costs more. A
+  // collapse that moves seams may itself cost at most 3 times the bound.
+  // Unset or infinite: seams never move.
+  std::optional<double> seam_release;
   double max_normal_change_degrees = 150.0;
   // Also keep the log of every collapse (what a progressive mesh with
   // wedges is recorded from, lib/simplify/wedge_pm.h).

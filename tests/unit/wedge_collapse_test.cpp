@@ -269,6 +269,45 @@ TEST(WedgeCollapse, SeamCornersHoldTheMeshAndSaySo) {
   EXPECT_GT(moved_wedges, 0u);
 }
 
+TEST(WedgeCollapse, ASeamReleaseLeavesCheapCollapsesAsTheyAre) {
+  // A flat grid with a seam: collapses that keep it cost nothing, so with a
+  // release bound the run is the locked run.
+  const WedgeMesh m = grid(16, linear_uv, 5);
+  WedgeCollapseOptions locked;
+  locked.targets = {200, 60};
+  WedgeCollapseOptions released = locked;
+  released.seam_release = 0.01;
+  Result<WedgeCollapseResult> a = collapse_wedges(m, locked);
+  Result<WedgeCollapseResult> b = collapse_wedges(m, released);
+  ASSERT_TRUE(a.is_ok() && b.is_ok());
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(a.value().levels.at(i).triangles, b.value().levels.at(i).triangles);
+    EXPECT_EQ(a.value().levels.at(i).corner_wedge, b.value().levels.at(i).corner_wedge);
+  }
+}
+
+TEST(WedgeCollapse, ABoxStaysABoxUnderASeamRelease) {
+  // Every collapse of a textured cube moves a chart by half its size: far
+  // more than the release's cap, so the seams hold as they do locked.
+  WedgeCollapseOptions options;
+  options.targets = {2};
+  options.seam_release = 0.01;
+  Result<WedgeCollapseResult> r = collapse_wedges(cube(), options);
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  EXPECT_EQ(r.value().levels.at(0).triangles.size(), 12u);
+  options.seam_release = 1.0;
+  Result<WedgeCollapseResult> loose = collapse_wedges(cube(), options);
+  ASSERT_TRUE(loose.is_ok());
+  EXPECT_LT(loose.value().levels.at(0).triangles.size(), 12u);
+  // An infinite bound is no release.
+  options.seam_release = HUGE_VAL;
+  Result<WedgeCollapseResult> never = collapse_wedges(cube(), options);
+  ASSERT_TRUE(never.is_ok());
+  EXPECT_EQ(never.value().levels.at(0).triangles.size(), 12u);
+  options.seam_release = -1.0;
+  EXPECT_FALSE(collapse_wedges(cube(), options).is_ok());
+}
+
 TEST(WedgeCollapse, Deterministic) {
   const WedgeMesh m = grid(12, linear_uv, 5);
   WedgeCollapseOptions options;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -472,6 +473,7 @@ int main(int argc, char** argv) {
   Request request;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;
+  std::string seam_release;
   tool.options().add_options()("output,o",
                                po::value<std::string>(&request.output)->value_name("OUT"),
                                "the simplified mesh (.obj .ply .off .glb); with --lods a pattern "
@@ -498,6 +500,10 @@ int main(int argc, char** argv) {
       "permissive", po::bool_switch(&request.options.permissive),
       "let texture seams and material borders move: seam corners may go, and a wedge "
       "without a partner keeps its values at the survivor, the attribute error counted")(
+      "seam-release", po::value<std::string>(&seam_release)->value_name("E|none"),
+      "(assets, without --permissive) seams stay while a collapse that keeps them costs at "
+      "most E times the diagonal; past it they may move as with --permissive, at their "
+      "error plus E (default 0.01; none: they never move)")(
       "normal-weight", po::value<double>(&request.weights.normal)->value_name("W"),
       "(assets) how much normals weigh: a weighted difference of 1 over a distance d "
       "costs about what moving the surface by d does (default 0.3; 0 leaves them out)")(
@@ -543,6 +549,16 @@ int main(int argc, char** argv) {
     if (!(error >= 0 && std::isfinite(error)))
       return tool.usage_error("--error takes a finite value >= 0");
     request.options.max_error = error;
+  }
+  if (seam_release == "none") {
+    request.options.seam_release.reset();
+  } else if (tool.has("seam-release")) {
+    char* end = nullptr;
+    const double bound = std::strtod(seam_release.c_str(), &end);
+    if (seam_release.empty() || *end != '\0' || !(bound >= 0) || !std::isfinite(bound))
+      return tool.usage_error("--seam-release takes a finite value >= 0 or 'none', not '" +
+                              seam_release + "'");
+    request.options.seam_release = bound;
   }
   if (request.placement == "optimal") {
     request.options.placement = Placement::kOptimal;
