@@ -1,6 +1,7 @@
 #include "lib/bake/hierarchy_step.h"
 
 #include <chrono>
+#include <functional>
 #include <sstream>
 
 #include "formats/container/section_registry.h"
@@ -12,6 +13,7 @@
 #include "formats/sections/vtre.h"
 #include "formats/sections/wedg.h"
 #include "lib/bake/asset_pm_wedges.h"
+#include "lib/core/parallel.h"
 #include "lib/dag/vsplit_dag_builder.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/hierarchy/refinement_data.h"
@@ -64,43 +66,45 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
   out.stats = built.stats;
   const HierarchyShape& shape = out.shape;
   std::vector<HierarchySection>& sections = out.sections;
-  if (request.vhie) {
-    start = Clock::now();
+  // VHIE + RFIN need the hierarchy alone, DAGE and VTRE its progressive
+  // mesh alone: each chain runs on its own thread (when there are two) and
+  // writes its own slots, assembled below in section order.
+  const ParallelScope threads(request.options.threads);
+  double refinement_seconds = 0, pm_seconds = 0, dag_seconds = 0, vtre_seconds = 0;
+  Status refined = Status::ok(), converted = Status::ok(), dag_made = Status::ok(),
+         vtre_made = Status::ok();
+  Bytes vhie, rfin, vspl, dage, vtre;
+  uint64_t dag_nodes = 0, vtre_nodes = 0;
+  auto refine = [&]() -> Status {
+    const Clock::time_point began = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(std::vector<NodeRefinement> refinement,
                              compute_refinement_data(h, mesh));
-    out.build_seconds.emplace_back("refinement", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes vhie, encode_vhie(h));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes rfin, encode_rfin(h, refinement));
-    sections.push_back({kVhieTag, std::move(vhie), "node", shape.nodes});
-    sections.push_back({kRfinTag, std::move(rfin), "split", shape.splits});
-  }
+    refinement_seconds = seconds_since(began);
+    LODBAKE_ASSIGN_OR_RETURN(vhie, encode_vhie(h));
+    LODBAKE_ASSIGN_OR_RETURN(rfin, encode_rfin(h, refinement));
+    return Status::ok();
+  };
   // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
   // share BASE with VHIE (a greedy PM given as input has another base mesh).
   ProgressiveMesh& pm = out.pm;
-  if (request.dage || request.vtre) {
-    start = Clock::now();
-    LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
-    out.build_seconds.emplace_back("progressive_mesh", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
-    sections.push_back({kVsplTag, std::move(vspl), "split", pm.splits.size()});
-  }
-  if (request.dage) {
-    start = Clock::now();
+  auto build_dag = [&]() -> Status {
+    const Clock::time_point began = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, build_vsplit_dag(pm));
-    out.build_seconds.emplace_back("dag", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes dage, encode_dage(dag));
+    dag_seconds = seconds_since(began);
+    LODBAKE_ASSIGN_OR_RETURN(dage, encode_dage(dag));
     LODBAKE_ASSIGN_OR_RETURN(DageSummary summary, read_dage_summary(dage.data(), dage.size()));
     out.dag_report = {{"nodes", summary.node_count},
                       {"edges", summary.edge_count},
                       {"roots", summary.root_count},
                       {"leaves", summary.leaf_count}};
-    sections.push_back({kDageTag, std::move(dage), "node", dag.node_count()});
-  }
-  if (request.vtre) {
-    start = Clock::now();
+    dag_nodes = dag.node_count();
+    return Status::ok();
+  };
+  auto build_trees = [&]() -> Status {
+    const Clock::time_point began = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, build_vertex_trees(pm));
-    out.build_seconds.emplace_back("vertex_trees", seconds_since(start));
-    LODBAKE_ASSIGN_OR_RETURN(Bytes vtre, encode_vtre(trees));
+    vtre_seconds = seconds_since(began);
+    LODBAKE_ASSIGN_OR_RETURN(vtre, encode_vtre(trees));
     const VtreRecordSizes rec = vtre_record_sizes(trees);
     auto bytes_per = [](uint64_t bits, uint64_t count) {
       return count == 0 ? nlohmann::json(nullptr)
@@ -110,7 +114,45 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
                        {"base_record_bytes", bytes_per(rec.base_bits, rec.base_records)},
                        {"left_record_bytes", bytes_per(rec.left_bits, rec.left_records)},
                        {"right_record_bytes", bytes_per(rec.right_bits, rec.right_records)}};
-    sections.push_back({kVtreTag, std::move(vtre), "node", trees.node_count()});
+    vtre_nodes = trees.node_count();
+    return Status::ok();
+  };
+  auto convert = [&]() -> Status {
+    const Clock::time_point began = Clock::now();
+    LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
+    pm_seconds = seconds_since(began);
+    LODBAKE_ASSIGN_OR_RETURN(vspl, encode_vspl(pm, VsplEncodeOptions()));
+    std::vector<std::function<void()>> after;
+    if (request.dage) after.emplace_back([&] { dag_made = build_dag(); });
+    if (request.vtre) after.emplace_back([&] { vtre_made = build_trees(); });
+    threads.for_each_part(after.size(), [&](size_t k) { after[k](); });
+    return Status::ok();
+  };
+  std::vector<std::function<void()>> chains;
+  if (request.vhie) chains.emplace_back([&] { refined = refine(); });
+  if (request.dage || request.vtre) chains.emplace_back([&] { converted = convert(); });
+  threads.for_each_part(chains.size(), [&](size_t k) { chains[k](); });
+  // The first failure in section order, as the steps one after the other.
+  LODBAKE_RETURN_IF_ERROR(refined);
+  LODBAKE_RETURN_IF_ERROR(converted);
+  LODBAKE_RETURN_IF_ERROR(dag_made);
+  LODBAKE_RETURN_IF_ERROR(vtre_made);
+  if (request.vhie) {
+    out.build_seconds.emplace_back("refinement", refinement_seconds);
+    sections.push_back({kVhieTag, std::move(vhie), "node", shape.nodes});
+    sections.push_back({kRfinTag, std::move(rfin), "split", shape.splits});
+  }
+  if (request.dage || request.vtre) {
+    out.build_seconds.emplace_back("progressive_mesh", pm_seconds);
+    sections.push_back({kVsplTag, std::move(vspl), "split", pm.splits.size()});
+  }
+  if (request.dage) {
+    out.build_seconds.emplace_back("dag", dag_seconds);
+    sections.push_back({kDageTag, std::move(dage), "node", dag_nodes});
+  }
+  if (request.vtre) {
+    out.build_seconds.emplace_back("vertex_trees", vtre_seconds);
+    sections.push_back({kVtreTag, std::move(vtre), "node", vtre_nodes});
   }
   out.counts = {
       {"vertices", h.base.vertex_count()},     {"triangles", h.base.triangle_count()},

@@ -43,6 +43,11 @@
 //   that input face (docs/hierarchy.md has the argument);
 // - packing: roots ordered by their survivor's input index, nodes breadth
 //   first over all trees, left (surviving) child before right.
+// Threads (lib/core/parallel.h): a round lists its candidates in vertex
+// ranges concatenated in range order (the serial list) and sorts them in
+// fixed chunks, so every thread count walks the same sorted list; the walk
+// itself stays serial (each collapse blocks the ones after it). With more
+// than one thread the orderings finish side by side, each on its own copy.
 #include "lib/hierarchy/balanced_build.h"
 
 #include <algorithm>
@@ -54,6 +59,8 @@
 
 #include "formats/sections/vhie.h"
 #include "formats/support/bit_packing.h"
+#include "lib/core/parallel.h"
+#include "lib/core/parallel_sort.h"
 #include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/mesh_topology.h"
 #include "lib/simplify/quadric.h"
@@ -64,6 +71,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr uint32_t kNone = 0xffffffffu;
+// Vertices per part of a round's candidate listing (fewer: one part).
+constexpr size_t kMinListPart = 4096;
+// Candidates per sorted chunk: a constant, so the chunks (and the order of
+// tied keys, were there any) are the same for every thread count.
+constexpr size_t kSortChunk = size_t{1} << 15;
 
 struct TempNode {
   uint32_t left = kNone;   // surviving child
@@ -94,8 +106,9 @@ struct Candidate {
 
 class Builder {
  public:
-  Builder(const TriangleMesh& mesh, const BalancedBuildOptions& options, int ordering)
-      : mesh_(mesh), options_(options), ordering_(ordering) {}
+  Builder(const TriangleMesh& mesh, const BalancedBuildOptions& options, int ordering,
+          const ParallelScope& threads)
+      : mesh_(mesh), options_(options), ordering_(ordering), threads_(&threads) {}
 
   Status setup() {
     simplify_internal::MeshTopology topology;
@@ -200,22 +213,22 @@ class Builder {
     return static_cast<float>(e);
   }
 
-  uint64_t run_round(uint32_t round) {
-    const size_t n = mesh_.positions.size();
-    candidates_.clear();
+  // The candidates of vertices [begin, end) in vertex order; sets
+  // *capped when the height cap held one back.
+  void list_candidates(size_t begin, size_t end, std::vector<Candidate>* out, bool* capped) const {
     std::vector<uint32_t> ring;
-    for (uint32_t u = 0; u < n; ++u) {
+    for (auto u = static_cast<uint32_t>(begin); u < end; ++u) {
       if (vertex_faces_[u].empty()) continue;
       const uint32_t hu = nodes_[node_of_[u]].height;
       if (hu + 1 > cap_) {
-        capped_ = true;
+        *capped = true;
         continue;
       }
       neighbours(u, &ring);
       for (uint32_t t : ring) {
         const uint32_t h = std::max(hu, nodes_[node_of_[t]].height) + 1;
         if (h > cap_) {
-          capped_ = true;
+          *capped = true;
           continue;
         }
         // Low-valence vertices first: each removal blocks its neighbours
@@ -226,10 +239,35 @@ class Builder {
         const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
                              : ordering_ == 1 ? valence
                                               : shorter;
-        candidates_.push_back({h, sec, cost(u, t), u, t});
+        out->push_back({h, sec, cost(u, t), u, t});
       }
     }
-    std::sort(candidates_.begin(), candidates_.end());
+  }
+
+  uint64_t run_round(uint32_t round) {
+    const size_t n = mesh_.positions.size();
+    const size_t parts = threads_->parts(n, kMinListPart);
+    candidates_.clear();
+    if (parts == 1) {
+      bool held_back = false;
+      list_candidates(0, n, &candidates_, &held_back);
+      capped_ = capped_ || held_back;
+    }
+    std::vector<std::vector<Candidate>> listed(parts == 1 ? 0 : parts);
+    std::vector<uint8_t> capped(parts, 0);
+    threads_->for_each_part(listed.size(), [&](size_t p) {
+      const IndexRange range = part_range(n, parts, p);
+      bool part_capped = false;
+      list_candidates(range.begin, range.end, &listed[p], &part_capped);
+      capped[p] = part_capped ? 1 : 0;
+    });
+    for (size_t p = 0; p < listed.size(); ++p) {
+      candidates_.insert(candidates_.end(), listed[p].begin(), listed[p].end());
+      std::vector<Candidate>().swap(listed[p]);
+      if (capped[p]) capped_ = true;
+    }
+    sort_in_chunks(*threads_, &candidates_, kSortChunk, std::less<Candidate>());
+    std::vector<uint32_t> ring;
     uint64_t made = 0;
     for (const Candidate& c : candidates_) {
       if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) continue;
@@ -415,6 +453,7 @@ class Builder {
   const TriangleMesh& mesh_;
   const BalancedBuildOptions& options_;
   int ordering_;
+  const ParallelScope* threads_;  // never null
   uint32_t round_ = 1;
   std::vector<Triangle> tris_;
   std::vector<uint8_t> face_alive_;
@@ -446,27 +485,48 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
   try {
     // Each ordering is deterministic; the one with the fewest id bits wins
     // (then the shallower, then the one with fewer roots, then the first).
-    std::optional<BalancedHierarchy> best;
-    HierarchyShape best_shape;
+    const ParallelScope threads(options.threads);
     const int orderings = std::max(1, std::min(3, options.orderings));
-    Builder shared(mesh, options, 0);
+    Builder shared(mesh, options, 0, threads);
     LODBAKE_RETURN_IF_ERROR(shared.setup());
     // The orderings share the levels down to 1/16 of the vertices: the
     // tie-breaks matter in the last levels, where few vertices remain and
     // the trees' heights are decided; sharing the rest makes three
     // orderings cost little more than one.
     shared.build_until(orderings > 1 ? mesh.positions.size() / 16 : 0);
-    for (int ordering = 0; ordering < orderings; ++ordering) {
-      Builder builder = ordering + 1 == orderings ? std::move(shared) : shared;
+    std::vector<std::optional<Result<BalancedHierarchy>>> built(orderings);
+    auto finish = [&](Builder builder, int ordering) {
       builder.set_ordering(ordering);
       builder.build_until(0);
-      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy built, builder.result());
-      const HierarchyShape shape = hierarchy_shape(built.hierarchy);
+      built[ordering] = builder.result();
+    };
+    if (threads.threads() > 1) {
+      // Side by side, each on a copy of the shared state (the last takes
+      // it): more memory than one after the other, the same hierarchies.
+      std::vector<std::optional<Builder>> copies(orderings);
+      for (int ordering = 0; ordering + 1 < orderings; ++ordering)
+        copies[ordering].emplace(shared);
+      copies[orderings - 1].emplace(std::move(shared));
+      threads.for_each_part(static_cast<size_t>(orderings), [&](size_t ordering) {
+        finish(std::move(*copies[ordering]), static_cast<int>(ordering));
+        copies[ordering].reset();
+      });
+    } else {
+      for (int ordering = 0; ordering < orderings; ++ordering)
+        finish(ordering + 1 == orderings ? std::move(shared) : shared, ordering);
+    }
+    // Each ordering is deterministic; the one with the fewest id bits wins
+    // (then the shallower, then the one with fewer roots, then the first).
+    std::optional<BalancedHierarchy> best;
+    HierarchyShape best_shape;
+    for (int ordering = 0; ordering < orderings; ++ordering) {
+      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy one, std::move(*built[ordering]));
+      const HierarchyShape shape = hierarchy_shape(one.hierarchy);
       if (!best || shape.id_bits < best_shape.id_bits ||
           (shape.id_bits == best_shape.id_bits &&
            (shape.depth < best_shape.depth ||
             (shape.depth == best_shape.depth && shape.roots < best_shape.roots)))) {
-        best = std::move(built);
+        best = std::move(one);
         best_shape = shape;
       }
     }

@@ -271,6 +271,9 @@ int main(int argc, char** argv) {
       po::value<double>(&request.options.max_normal_change_degrees)->value_name("DEG"),
       "refuse collapses that turn a face normal by more than DEG degrees (default 150)")(
       "repair", po::bool_switch(&request.repair), "repair an input mesh first (see lodbake-pack)")(
+      "threads", po::value<unsigned>(&request.options.threads)->value_name("N"),
+      "threads for the parallel steps (oneTBB): 0 (default) every core, or any count up to "
+      "4096; the output is the same bytes for every count")(
       "strict", po::bool_switch(&request.strict),
       "refuse a mesh that needs repairing (exit 3) instead of repairing it by default: "
       "non-manifold edges or vertices, degenerate or duplicate triangles, inconsistent "
@@ -287,6 +290,9 @@ int main(int argc, char** argv) {
     return tool.usage_error("--max-normal-change takes degrees in (0, 180]");
   if (!(request.options.boundary_weight >= 0 && std::isfinite(request.options.boundary_weight)))
     return tool.usage_error("--boundary-weight takes a finite value >= 0");
+  // More is surely a typo (and tbb::task_arena takes an int).
+  if (request.options.threads > 4096)
+    return tool.usage_error("--threads takes a count from 0 (every core) to 4096");
   if (same_file(request.input, request.output))
     return tool.usage_error("the output '" + request.output + "' is the input itself");
   if (std::optional<int> code = tool.check_outputs({request.output})) return *code;
