@@ -256,6 +256,21 @@ void join(SetsGraph* all, const SetsGraph& part) {
 // costs more than its share of the strips saves.
 constexpr size_t kMinStripsPerPart = 512;
 
+// The p-th of `parts` consecutive ranges of strips holding about as many
+// indices each (a strip's work grows with its length): the strips whose
+// first index lies in the p-th near-equal piece of the indices.
+IndexRange strip_range(const TriangleStrips& strips, size_t parts, size_t p) {
+  const size_t count = strips.strip_count();
+  if (count == 0) return {0, 0};
+  const IndexRange indices = part_range(strips.indices.size(), parts, p);
+  auto first_at = [&](size_t index) {
+    return static_cast<size_t>(
+        std::lower_bound(strips.first.begin(), strips.first.begin() + count, index) -
+        strips.first.begin());
+  };
+  return {first_at(indices.begin), p + 1 == parts ? count : first_at(indices.end)};
+}
+
 SetsGraph build_graph(const TriangleStrips& strips, const ProgressiveMesh& pm, unsigned threads,
                       SetsBuildStats* stats) {
   const ParallelScope scope(threads);
@@ -263,8 +278,7 @@ SetsGraph build_graph(const TriangleStrips& strips, const ProgressiveMesh& pm, u
   std::vector<SetsGraph> graphs(parts);
   std::vector<SetsBuildStats> part_stats(parts);
   scope.for_each_part(parts, [&](size_t p) {
-    graphs[p] =
-        Builder(strips, part_range(strips.strip_count(), parts, p), pm, &part_stats[p]).run();
+    graphs[p] = Builder(strips, strip_range(strips, parts, p), pm, &part_stats[p]).run();
   });
   SetsGraph graph = std::move(graphs[0]);
   *stats = part_stats[0];
