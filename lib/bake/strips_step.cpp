@@ -30,8 +30,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress) {
+Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
+                                  unsigned threads) {
   SimplifyOptions options;
+  options.threads = threads;
   options.record_pm = true;
   options.placement = Placement::kHalf;
   options.progress = std::move(progress);
@@ -82,7 +84,7 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
   const ProgressiveMesh& pm = *in.pm;
   SetsBuildStats sets_stats;
   start = std::chrono::steady_clock::now();
-  LODBAKE_ASSIGN_OR_RETURN(SetsGraph g, build_sets(strips, pm, &sets_stats));
+  LODBAKE_ASSIGN_OR_RETURN(SetsGraph g, build_sets(strips, pm, &sets_stats, request.threads));
   const double build_seconds = seconds_since(start);
   LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
   LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
@@ -141,7 +143,7 @@ Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
   if (request.strips_only) {
     in.mesh = mesh;
   } else {
-    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(mesh, nullptr));
+    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(mesh, nullptr, request.threads));
   }
   LODBAKE_ASSIGN_OR_RETURN(StripsBuilt b, build_strips(request, in));
   MeshSections out;

@@ -28,6 +28,10 @@ struct StripsStepOptions {
   bool strips_only = false;
   bool repair = false;
   bool strict = false;
+  /// Threads for the progressive mesh's simplification and the SETS graph
+  /// (lib/core/parallel.h): 0, the caller's task arena (every core, or a
+  /// bake's --jobs threads). The output does not depend on it.
+  unsigned threads = 0;
 };
 
 // What the input gives: a mesh (strips-only), or a progressive mesh.
@@ -50,7 +54,8 @@ struct StripsBuilt {
 
 // The progressive mesh the strips' graph follows: QEM half-edge collapses
 // as far as legal.
-Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress);
+Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
+                                  unsigned threads = 0);
 
 // The strips (and without strips_only the SETS graph) of one input, for a
 // mesh or container input and for each mesh of an asset alike.

@@ -28,12 +28,19 @@
 //   fraction of the cost: most of those vertices are merged into another
 //   fan before they reach the top);
 // - stop: heap empty, the vertex target, or (per candidate) the error limit.
+// - threads: the merges are one greedy sequence; the quadric set-up and the
+//   first key of every vertex run on lib/core/parallel.h. Each set-up part
+//   owns a range of the vertices and walks every triangle, adding only to
+//   its own vertices, so each sum is made in triangle order; each first key
+//   sums its link in star order, as a later re-key does. So the hierarchy is
+//   the same for any thread count.
 #include "lib/fanmerge/fan_build.h"
 
 #include <algorithm>
 #include <cmath>
 #include <new>
 
+#include "lib/core/parallel.h"
 #include "lib/fanmerge/fan_mesh_state.h"
 #include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/mesh_topology.h"
@@ -128,10 +135,14 @@ class VertexHeap {
   std::vector<uint32_t> position_;
 };
 
+// Below this many vertices per part, starting a thread costs more than its
+// share of the set-up or the first keys saves.
+constexpr size_t kMinVerticesPerPart = 8192;
+
 class FanBuilder {
  public:
   FanBuilder(const TriangleMesh& input, const FanBuildOptions& options)
-      : input_(input), options_(options) {}
+      : input_(input), options_(options), scope_(options.threads) {}
 
   Status run(const simplify_internal::MeshTopology& topology, FanBuildResult* result) {
     const size_t n = input_.positions.size();
@@ -148,8 +159,7 @@ class FanBuilder {
     cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
     set_limits();
 
-    for (uint32_t v = 0; v < n; ++v)
-      if (state_.present(v)) push(v);
+    push_all();
     const uint64_t start_vertices = state_.present_count();
     const uint64_t goal = start_vertices > target_ ? start_vertices - target_ : 1;
     uint64_t next_report = 0;
@@ -219,15 +229,27 @@ class FanBuilder {
   }
 
   void setup_quadrics(const simplify_internal::MeshTopology& topology) {
-    quadric_.assign(input_.positions.size(), Quadric());
+    const size_t n = input_.positions.size();
+    quadric_.assign(n, Quadric());
+    const size_t parts = scope_.parts(n, kMinVerticesPerPart);
+    scope_.for_each_part(parts, [&](size_t p) {
+      const IndexRange own = part_range(n, parts, p);
+      add_quadrics(topology, own.begin, own.end);
+    });
+  }
+
+  // Adds every triangle's quadrics to its vertices in [lo, hi).
+  void add_quadrics(const simplify_internal::MeshTopology& topology, size_t lo, size_t hi) {
+    auto owned = [lo, hi](uint32_t v) { return v >= lo && v < hi; };
     const double bw = options_.boundary_weight;
     for (const Triangle& t : input_.triangles) {
+      if (!owned(t[0]) && !owned(t[1]) && !owned(t[2])) continue;
       const Vec3d p0 = to_d(input_.positions[t[0]]);
       const Vec3d p1 = to_d(input_.positions[t[1]]);
       const Vec3d p2 = to_d(input_.positions[t[2]]);
       const Quadric q = sqrt_area_triangle_quadric(p0, p1, p2);
       for (uint32_t v : t)
-        quadric_[v] += q;
+        if (owned(v)) quadric_[v] += q;
       if (!(bw > 0) ||
           (!topology.boundary[t[0]] && !topology.boundary[t[1]] && !topology.boundary[t[2]]))
         continue;
@@ -235,15 +257,15 @@ class FanBuilder {
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = t[k];
         const uint32_t b = t[(k + 1) % 3];
-        if (!topology.boundary[a] || !topology.boundary[b] ||
+        if ((!owned(a) && !owned(b)) || !topology.boundary[a] || !topology.boundary[b] ||
             !is_boundary_half_edge(topology, a, b))
           continue;
         Quadric bq;
         if (!boundary_edge_quadric(to_d(input_.positions[a]), to_d(input_.positions[b]), normal, bw,
                                    BoundaryWeighting::kTimesLength, &bq))
           continue;
-        quadric_[a] += bq;
-        quadric_[b] += bq;
+        if (owned(a)) quadric_[a] += bq;
+        if (owned(b)) quadric_[b] += bq;
       }
     }
   }
@@ -291,15 +313,43 @@ class FanBuilder {
 
   double priority(uint32_t v) {
     link(v, &link_);
+    return priority_of_link(v, link_);
+  }
+
+  double priority_of_link(uint32_t v, const std::vector<uint32_t>& link) const {
     double sum = 0;
-    for (uint32_t u : link_)
+    for (uint32_t u : link)
       sum += delta(u, v);
-    if (options_.degree_weight != 0 && !link_.empty())
-      sum *= std::pow(static_cast<double>(link_.size()) / 6.0, options_.degree_weight);
+    if (options_.degree_weight != 0 && !link.empty())
+      sum *= std::pow(static_cast<double>(link.size()) / 6.0, options_.degree_weight);
     return sum;
   }
 
   void push(uint32_t v) { heap_.set(v, priority(v)); }
+
+  // Every present vertex into the heap in index order, as push() would put
+  // them, with keys computed side by side: link() shares its marks, so each
+  // part lists a link in star order by scanning what it has listed.
+  void push_all() {
+    const size_t n = input_.positions.size();
+    std::vector<double> key(n, 0);
+    const size_t parts = scope_.parts(n, kMinVerticesPerPart);
+    scope_.for_each_part(parts, [&](size_t p) {
+      const IndexRange own = part_range(n, parts, p);
+      std::vector<uint32_t> around;
+      for (size_t v = own.begin; v < own.end; ++v) {
+        if (!state_.present(static_cast<uint32_t>(v))) continue;
+        around.clear();
+        for (uint32_t t : state_.triangles_of(static_cast<uint32_t>(v)))
+          for (uint32_t x : state_.corners(t))
+            if (x != v && std::find(around.begin(), around.end(), x) == around.end())
+              around.push_back(x);
+        key[v] = priority_of_link(static_cast<uint32_t>(v), around);
+      }
+    });
+    for (uint32_t v = 0; v < n; ++v)
+      if (state_.present(v)) heap_.set(v, key[v]);
+  }
 
   Vec3d normal(const Triangle& t) const {
     const Vec3d p0 = to_d(input_.positions[t[0]]);
@@ -469,6 +519,7 @@ class FanBuilder {
 
   const TriangleMesh& input_;
   const FanBuildOptions& options_;
+  const ParallelScope scope_;
   FanMeshState state_;
   FanHierarchy h_;
   FanBuildStats stats_;

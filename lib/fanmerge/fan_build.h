@@ -32,6 +32,10 @@ struct FanBuildOptions {
   /// A fan-merge (and each collapse of its fine path) is refused when it
   /// turns a modified triangle's normal by more than this (fold-over test).
   double max_normal_change_degrees = 90.0;
+  /// Threads for the quadric set-up and the first keys (lib/core/parallel.h):
+  /// 0, the caller's task arena (every core, or a bake's --jobs threads).
+  /// The hierarchy does not depend on it.
+  unsigned threads = 0;
   /// Called now and then with the fraction done (0..1); may be empty.
   std::function<void(double)> progress;
 };

@@ -42,7 +42,6 @@
 #include <memory>
 #include <new>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -575,8 +574,7 @@ Result<SceneDeviation> measure(const Scene& input, const Scene& output,
   if (options.area_samples > kMaxAreaSamples)
     return invalid_input("area_samples " + std::to_string(options.area_samples) +
                          " exceeds the limit of " + std::to_string(kMaxAreaSamples));
-  const unsigned threads =
-      options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = options.threads;
   LODBAKE_ASSIGN_OR_RETURN(const WorldScene in, flatten(input, "input"));
   LODBAKE_ASSIGN_OR_RETURN(const WorldScene out, flatten(output, "output"));
   if (in.primitives.empty()) return invalid_input("input has no triangles");

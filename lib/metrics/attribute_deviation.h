@@ -21,8 +21,8 @@ struct DeviationOptions {
   // over the output's (for the Hausdorff distance's other side); every
   // referenced vertex is sampled on top. Larger: tighter percentiles, slower.
   uint64_t area_samples = 200000;
-  // Worker threads; 0 means std::thread::hardware_concurrency(). The result
-  // does not depend on it.
+  // Threads (lib/core/parallel.h): 0, the caller's task arena (every core,
+  // or a bake's --jobs threads). The result does not depend on it.
   unsigned threads = 0;
 };
 

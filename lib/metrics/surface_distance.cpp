@@ -46,7 +46,6 @@
 #include <exception>
 #include <new>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "lib/metrics/surface_sampling.h"
@@ -231,8 +230,7 @@ Result<SurfaceDistance> measure(const TriangleMesh& a, const TriangleMesh& b,
     return invalid_input("area_samples " + std::to_string(options.area_samples) +
                          " exceeds the limit of " + std::to_string(kMaxAreaSamples));
   }
-  unsigned threads = options.threads;
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = options.threads;
 
   const std::vector<Triangle3> a_triangles = tree_triangles(a);
   const std::vector<Triangle3> b_triangles = tree_triangles(b);

@@ -18,8 +18,9 @@ struct DistanceOptions {
   // is this number up to rounding). Every referenced vertex is sampled on
   // top of these. Larger: tighter maximum, slower.
   uint64_t area_samples = 500000;
-  // Worker threads for the queries; 0 means std::thread::hardware_concurrency().
-  // The result does not depend on it (fixed blocks, summed in block order).
+  // Threads for the tree builds and the queries (lib/core/parallel.h): 0,
+  // the caller's task arena (every core, or a bake's --jobs threads). The
+  // result does not depend on it (fixed blocks, summed in block order).
   unsigned threads = 0;
 };
 

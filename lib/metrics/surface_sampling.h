@@ -1,17 +1,15 @@
 // Internal to lib/metrics: the fixed sample pattern and the fixed-block
-// thread pool that measure_surface_distance and measure_scene_deviation
+// parallel loop that measure_surface_distance and measure_scene_deviation
 // share, so that both spread their samples (and reduce their results) the
 // same way. docs/metrics.md states the pattern.
 #pragma once
 
-#include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
-#include <thread>
 #include <vector>
+
+#include "lib/core/parallel.h"
 
 namespace lodbake {
 namespace metrics {
@@ -27,36 +25,19 @@ std::vector<uint64_t> samples_per_triangle(const std::vector<double>& areas, uin
 // sequence (Roberts 2018) folded from the unit square into the triangle.
 std::array<double, 3> triangle_sample(uint64_t j);
 
-// Runs `work(block)` for blocks [0, blocks) on `threads` threads (the
-// caller being one of them). Returns false when a worker threw. Callers
-// keep one result per block and reduce them in block order, so the thread
-// count never changes the result.
+// Runs `work(block)` for blocks [0, blocks) on `threads` threads of
+// lib/core/parallel.h (0: the caller's task arena, every core or a bake's
+// --jobs threads). Returns false when a block threw. Callers keep one result
+// per block and reduce them in block order, so the thread count never
+// changes the result.
 template <typename Work>
 bool run_blocks(size_t blocks, unsigned threads, const Work& work) {
-  std::atomic<size_t> next{0};
-  std::atomic<bool> failed{false};
-  auto worker = [&]() {
-    try {
-      for (size_t b = next++; b < blocks && !failed; b = next++)
-        work(b);
-    } catch (...) {
-      failed = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  const size_t extra =
-      std::min<size_t>(threads, blocks) > 1 ? std::min<size_t>(threads, blocks) - 1 : 0;
-  for (size_t i = 0; i < extra; ++i) {
-    try {
-      pool.emplace_back(worker);
-    } catch (const std::exception&) {
-      break;  // fewer threads: the remaining ones take the blocks
-    }
+  try {
+    ParallelScope(threads).for_each_part(blocks, [&](size_t b) { work(b); });
+  } catch (...) {
+    return false;
   }
-  worker();
-  for (std::thread& t : pool)
-    t.join();
-  return !failed;
+  return true;
 }
 
 }  // namespace metrics

@@ -14,6 +14,11 @@
 //   are the next arc's start - 1, and the last arc's is the last LoD.
 // - Node ids are given in order of creation within a strip; arcs in order
 //   of LoD. Vertex-to-node lookups scan the few strips each vertex is in.
+// - Threads: a strip's sequences, nodes, arcs and beginnings depend on its
+//   own indices and the contractions alone, and the graph lists them strip
+//   by strip. So consecutive ranges of strips are built apart (each replays
+//   every contraction on its own strips) and their graphs joined in strip
+//   order: the same graph for any number of ranges.
 #include "lib/strips/sets_build.h"
 
 #include <algorithm>
@@ -22,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "lib/core/parallel.h"
 #include "lib/strips/strip_compaction.h"
 
 namespace lodbake {
@@ -29,19 +35,22 @@ namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 
+// The graph of strips [range.begin, range.end): its strip s is the input's
+// range.begin + s.
 class Builder {
  public:
-  Builder(const TriangleStrips& strips, const ProgressiveMesh& pm, SetsBuildStats* stats)
-      : strips_(strips), pm_(pm), stats_(stats) {}
+  Builder(const TriangleStrips& strips, IndexRange range, const ProgressiveMesh& pm,
+          SetsBuildStats* stats)
+      : strips_(strips), range_(range), pm_(pm), stats_(stats) {}
 
   SetsGraph run() {
-    const size_t strip_count = strips_.strip_count();
+    const size_t strip_count = range_.end - range_.begin;
     sequences_.resize(strip_count);
     last_beginning_.assign(strip_count, kNone);
     vertex_nodes_.resize(pm_.full_vertex_count());
     for (uint32_t s = 0; s < strip_count; ++s) {
-      sequences_[s].assign(strips_.indices.begin() + strips_.first[s],
-                           strips_.indices.begin() + strips_.first[s + 1]);
+      sequences_[s].assign(strips_.indices.begin() + strips_.first[range_.begin + s],
+                           strips_.indices.begin() + strips_.first[range_.begin + s + 1]);
       record(s, 0);
     }
     const uint32_t base = static_cast<uint32_t>(pm_.base.vertex_count());
@@ -139,7 +148,7 @@ class Builder {
 
   SetsGraph assemble(uint32_t lod_count) {
     SetsGraph g;
-    const size_t strip_count = strips_.strip_count();
+    const size_t strip_count = range_.end - range_.begin;
     g.vertex_count = static_cast<uint32_t>(pm_.full_vertex_count());
     g.lod_count = lod_count;
     // Nodes grouped by strip, in creation order.
@@ -206,6 +215,7 @@ class Builder {
     uint32_t strip, start, node;
   };
   const TriangleStrips& strips_;
+  const IndexRange range_;
   const ProgressiveMesh& pm_;
   SetsBuildStats* stats_;
   std::vector<std::vector<uint32_t>> sequences_;
@@ -219,10 +229,73 @@ class Builder {
   std::vector<Beginning> beginnings_;
 };
 
+// Appends `part`, the graph of the strips after `all`'s, to `all`.
+void join(SetsGraph* all, const SetsGraph& part) {
+  const uint32_t nodes = static_cast<uint32_t>(all->node_vertex.size());
+  auto shifted = [nodes](uint32_t node) { return node == kSetsEnd ? node : node + nodes; };
+  auto append_offsets = [](std::vector<uint32_t>* to, const std::vector<uint32_t>& from) {
+    const uint32_t base = to->back();
+    for (size_t i = 1; i < from.size(); ++i)
+      to->push_back(base + from[i]);
+  };
+  append_offsets(&all->beginning_first, part.beginning_first);
+  all->beginning_lod.insert(all->beginning_lod.end(), part.beginning_lod.begin(),
+                            part.beginning_lod.end());
+  for (uint32_t node : part.beginning_node)
+    all->beginning_node.push_back(shifted(node));
+  append_offsets(&all->node_first, part.node_first);
+  all->node_vertex.insert(all->node_vertex.end(), part.node_vertex.begin(), part.node_vertex.end());
+  append_offsets(&all->arc_first, part.arc_first);
+  all->arc_lod.insert(all->arc_lod.end(), part.arc_lod.begin(), part.arc_lod.end());
+  append_offsets(&all->successor_first, part.successor_first);
+  for (uint32_t node : part.successors)
+    all->successors.push_back(shifted(node));
+}
+
+// Below this many strips per range, a thread's replay of every contraction
+// costs more than its share of the strips saves.
+constexpr size_t kMinStripsPerPart = 512;
+
+// The p-th of `parts` consecutive ranges of strips holding about as many
+// indices each (a strip's work grows with its length): the strips whose
+// first index lies in the p-th near-equal piece of the indices.
+IndexRange strip_range(const TriangleStrips& strips, size_t parts, size_t p) {
+  const size_t count = strips.strip_count();
+  if (count == 0) return {0, 0};
+  const IndexRange indices = part_range(strips.indices.size(), parts, p);
+  auto first_at = [&](size_t index) {
+    return static_cast<size_t>(
+        std::lower_bound(strips.first.begin(), strips.first.begin() + count, index) -
+        strips.first.begin());
+  };
+  return {first_at(indices.begin), p + 1 == parts ? count : first_at(indices.end)};
+}
+
+SetsGraph build_graph(const TriangleStrips& strips, const ProgressiveMesh& pm, unsigned threads,
+                      SetsBuildStats* stats) {
+  const ParallelScope scope(threads);
+  const size_t parts = scope.parts(strips.strip_count(), kMinStripsPerPart);
+  std::vector<SetsGraph> graphs(parts);
+  std::vector<SetsBuildStats> part_stats(parts);
+  scope.for_each_part(parts, [&](size_t p) {
+    graphs[p] = Builder(strips, strip_range(strips, parts, p), pm, &part_stats[p]).run();
+  });
+  SetsGraph graph = std::move(graphs[0]);
+  *stats = part_stats[0];
+  for (size_t p = 1; p < parts; ++p) {
+    join(&graph, graphs[p]);
+    graphs[p] = SetsGraph();
+    stats->strip_updates += part_stats[p].strip_updates;
+    stats->removed_indices += part_stats[p].removed_indices;
+    stats->emptied_strips += part_stats[p].emptied_strips;
+  }
+  return graph;
+}
+
 }  // namespace
 
 Result<SetsGraph> build_sets(const TriangleStrips& strips, const ProgressiveMesh& pm,
-                             SetsBuildStats* stats) {
+                             SetsBuildStats* stats, unsigned threads) {
   const size_t full = pm.full_vertex_count();
   if (strips.vertex_count != full)
     return invalid_input("the strips index " + std::to_string(strips.vertex_count) +
@@ -240,7 +313,7 @@ Result<SetsGraph> build_sets(const TriangleStrips& strips, const ProgressiveMesh
     if (v >= full) return invalid_input("strip index " + std::to_string(v) + " out of range");
   try {
     SetsBuildStats local;
-    SetsGraph graph = Builder(strips, pm, &local).run();
+    SetsGraph graph = build_graph(strips, pm, threads, &local);
     if (stats != nullptr) *stats = local;
     return graph;
   } catch (const std::bad_alloc&) {

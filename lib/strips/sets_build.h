@@ -28,8 +28,10 @@ struct SetsBuildStats {
 ///      are PM vertex ids (stripify the mesh of mesh_at_lod(pm, full)).
 /// \return the graph (check_sets_structure() holds), kInvalidInput when the
 ///         counts disagree or a split names a vertex that does not exist
-///         yet, kRuntime when memory runs out. Deterministic.
+///         yet, kRuntime when memory runs out. Deterministic: the same
+///         graph and stats for any `threads` (lib/core/parallel.h; 0, the
+///         caller's task arena: every core, or a bake's --jobs threads).
 Result<SetsGraph> build_sets(const TriangleStrips& strips, const ProgressiveMesh& pm,
-                             SetsBuildStats* stats = nullptr);
+                             SetsBuildStats* stats = nullptr, unsigned threads = 0);
 
 }  // namespace lodbake

@@ -353,12 +353,15 @@ TEST(AttributeDeviation, DeterministicAcrossRunsAndThreads) {
   DeviationOptions one = small_options();
   DeviationOptions two = one;
   two.threads = 2;
-  DeviationOptions five = one;
-  five.threads = 5;
+  DeviationOptions seven = one;
+  seven.threads = 7;
+  DeviationOptions every_core = one;
+  every_core.threads = 0;
   const SceneDeviation a = measure_ok(duck, half, one);
   EXPECT_TRUE(bit_equal(a, measure_ok(duck, half, one)));
   EXPECT_TRUE(bit_equal(a, measure_ok(duck, half, two)));
-  EXPECT_TRUE(bit_equal(a, measure_ok(duck, half, five)));
+  EXPECT_TRUE(bit_equal(a, measure_ok(duck, half, seven)));
+  EXPECT_TRUE(bit_equal(a, measure_ok(duck, half, every_core)));
 }
 
 TEST(AttributeDeviation, RealAssetsAgainstThemselvesAndTheirSimplification) {

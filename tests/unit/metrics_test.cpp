@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "lib/meshio/mesh_import.h"
@@ -220,11 +221,56 @@ TEST(SurfaceDistance, DeterministicAcrossRunsAndThreadCounts) {
   EXPECT_GT(one.value().mean, 0);
   // No point moved farther than sqrt(2) * amplitude.
   EXPECT_LE(one.value().hausdorff, amplitude * std::sqrt(2.0) * (1 + 1e-5));
-  for (unsigned threads : {2u, 5u}) {
+  for (unsigned threads : {2u, 7u, 0u}) {
     options.threads = threads;
     auto again = measure_surface_distance(scan, moved, options);
     ASSERT_TRUE(again.is_ok());
     expect_identical(one.value(), again.value());
+  }
+}
+
+// A w x w grid over the unit square with random heights, its vertices and
+// triangles shuffled.
+TriangleMesh random_terrain(uint32_t w, uint32_t seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> height(0.0f, 0.05f);
+  std::vector<uint32_t> slot(w * w);
+  for (uint32_t i = 0; i < slot.size(); ++i)
+    slot[i] = i;
+  std::shuffle(slot.begin(), slot.end(), random);
+  TriangleMesh mesh;
+  mesh.positions.resize(slot.size());
+  for (uint32_t y = 0; y < w; ++y)
+    for (uint32_t x = 0; x < w; ++x)
+      mesh.positions[slot[y * w + x]] = {static_cast<float>(x) / static_cast<float>(w - 1),
+                                         static_cast<float>(y) / static_cast<float>(w - 1),
+                                         height(random)};
+  for (uint32_t y = 0; y + 1 < w; ++y)
+    for (uint32_t x = 0; x + 1 < w; ++x) {
+      const uint32_t a = slot[y * w + x], b = slot[y * w + x + 1];
+      const uint32_t c = slot[(y + 1) * w + x], d = slot[(y + 1) * w + x + 1];
+      mesh.triangles.push_back({a, b, d});
+      mesh.triangles.push_back({a, d, c});
+    }
+  std::shuffle(mesh.triangles.begin(), mesh.triangles.end(), random);
+  return mesh;
+}
+
+TEST(SurfaceDistance, RandomMeshesGiveEqualDoublesForAnyThreadCount) {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    const TriangleMesh a = random_terrain(40 + 10 * seed, seed);
+    const TriangleMesh b = random_terrain(50, 100 + seed);
+    DistanceOptions options = small_budget();
+    options.threads = 1;
+    auto one = measure_surface_distance(a, b, options);
+    ASSERT_TRUE(one.is_ok()) << one.status().message();
+    EXPECT_GT(one.value().hausdorff, 0);
+    for (unsigned threads : {2u, 7u}) {
+      options.threads = threads;
+      auto again = measure_surface_distance(a, b, options);
+      ASSERT_TRUE(again.is_ok());
+      expect_identical(one.value(), again.value());
+    }
   }
 }
 

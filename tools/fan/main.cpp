@@ -331,12 +331,17 @@ int main(int argc, char** argv) {
       "orientation")(
       "compare", po::bool_switch(&request.compare),
       "also build the balanced vertex hierarchy of the mesh and report both side by side: build "
-      "time, internal nodes, leaves, depth, average children, bytes and their ratios");
+      "time, internal nodes, leaves, depth, average children, bytes and their ratios")(
+      "threads", po::value<unsigned>(&request.options.threads)->value_name("N"),
+      "threads for the quadric set-up and the first keys (oneTBB): 0 (default) every core, or "
+      "any count up to 4096; the output is the same for any N");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
     return *code;
   if (request.output.empty()) return tool.usage_error("missing -o OUT.lbk");
+  if (request.options.threads > 4096)
+    return tool.usage_error("--threads takes a count from 0 (every core) to 4096");
   if (tool.has("vertices")) request.options.target_vertices = vertices;
   if (tool.has("ratio")) {
     if (!(ratio > 0 && ratio <= 1)) return tool.usage_error("--ratio takes a value in (0, 1]");

@@ -93,7 +93,9 @@ std::string lod_path(const std::string& pattern, size_t index) {
 Result<nlohmann::json> measure(const Request& request, const TriangleMesh& input,
                                const TriangleMesh& output) {
   if (!request.metrics) return nlohmann::json(nullptr);
-  Result<SurfaceDistance> measured = measure_surface_distance(input, output);
+  DistanceOptions options;
+  options.threads = request.options.threads;
+  Result<SurfaceDistance> measured = measure_surface_distance(input, output, options);
   if (!measured.is_ok()) {
     // The library's "first mesh" / "second mesh" are the input and the result.
     std::string message = measured.status().message();

@@ -93,8 +93,8 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
   }
   Progress progress(tool, "simplifying");
   const auto start = std::chrono::steady_clock::now();
-  Result<ProgressiveMesh> pm =
-      record_pm(loaded.mesh, [&](double fraction) { progress.update(fraction); });
+  Result<ProgressiveMesh> pm = record_pm(
+      loaded.mesh, [&](double fraction) { progress.update(fraction); }, request.threads);
   if (!pm.is_ok()) return tool.fail(request.input, pm.status());
   in->report["simplify_seconds"] = seconds_since(start);
   in->pm = std::move(pm).value();
@@ -206,11 +206,16 @@ int main(int argc, char** argv) {
       "strict", po::bool_switch(&request.strict),
       "refuse a mesh that needs repairing (exit 3) instead of repairing it by default: "
       "non-manifold edges or vertices, degenerate or duplicate triangles, inconsistent "
-      "orientation");
+      "orientation")(
+      "threads", po::value<unsigned>(&request.threads)->value_name("N"),
+      "threads for the simplification and the SETS graph (oneTBB): 0 (default) every core, or "
+      "any count up to 4096; the output is the same for any N");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   if (std::optional<int> code = tool.single_positional("input", "IN", &request.input)) return *code;
   if (request.output.empty()) return tool.usage_error("nothing to write: give -o OUT.lbk");
+  if (request.threads > 4096)
+    return tool.usage_error("--threads takes a count from 0 (every core) to 4096");
   if (same_file(request.input, request.output))
     return tool.usage_error("the output '" + request.output + "' is the input itself");
   if (std::optional<int> code = tool.check_outputs({request.output})) return *code;
