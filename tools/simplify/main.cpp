@@ -363,8 +363,7 @@ int run(const Tool& tool, Request& request) {
       {"schema", kSimplifySchema},
       {"input", request.input},
       {"import", to_json(loaded.import)},
-      {"input_counts",
-       {{"vertices", input_vertices}, {"triangles", input_triangles}}},
+      {"input_counts", {{"vertices", input_vertices}, {"triangles", input_triangles}}},
       {"output_counts",
        {{"vertices", result.mesh.vertex_count()}, {"triangles", result.mesh.triangle_count()}}},
       {"seconds", seconds},
@@ -387,8 +386,7 @@ int run(const Tool& tool, Request& request) {
   if (!ratios.empty()) {
     std::vector<uint64_t> targets;
     for (double r : ratios)
-      targets.push_back(
-          static_cast<uint64_t>(r * static_cast<double>(input_triangles)));
+      targets.push_back(static_cast<uint64_t>(r * static_cast<double>(input_triangles)));
     Result<std::vector<TriangleMesh>> lods = extract_lods(*result.pm, targets);
     if (!lods.is_ok()) return tool.fail(request.input, lods.status());
     for (size_t i = 0; i < lods.value().size(); ++i) {
