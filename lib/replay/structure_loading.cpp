@@ -206,6 +206,24 @@ Result<VtreesStructure> load_vtrees_structure(const Container& decoded, uint32_t
         VtreesDatabase db, VtreesDatabase::create(*out.trees, *refinement.h, refinement.db->data));
     out.db = std::make_unique<VtreesDatabase>(std::move(db));
     out.h = std::move(refinement.h);
+    const Section* wedg = decoded.find(kWedgTag, group);
+    if (wedg != nullptr && decoded.find(kVsplTag, group) != nullptr) {
+      LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
+      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
+      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
+      Result<FrontWedges> front = FrontWedges::create(*out.h, *out.pm, *out.wedges);
+      if (!front.is_ok())
+        return Status(front.status().kind(), "section WEDG: " + front.status().message());
+      out.front = std::make_unique<FrontWedges>(std::move(front).value());
+      Result<VtreesWedgeTable> table = vtrees_wedge_table(*out.trees, *out.pm, *out.wedges);
+      if (!table.is_ok())
+        return Status(table.status().kind(), "section WEDG: " + table.status().message());
+      LODBAKE_RETURN_IF_ERROR(out.db->set_wedges(std::move(table).value()));
+      LODBAKE_ASSIGN_OR_RETURN(
+          VtreesFrontReference reference,
+          VtreesFrontReference::create(*out.h, *out.trees, *out.db->wedges, *out.front));
+      out.reference.emplace(std::move(reference));
+    }
     return out;
   });
 }

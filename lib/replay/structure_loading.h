@@ -113,11 +113,19 @@ Result<StreamStructure> load_stream_structure(const Container& decoded, uint32_t
 
 /// Mode vtrees' database: the hierarchy, the stream's dequantized
 /// refinement data and the vertex trees (VTRE) checked against them by
-/// VtreesDatabase::create().
+/// VtreesDatabase::create(). With VSPL and WEDG in the group (an asset's
+/// hierarchy), the database also carries the wedges (vtrees_wedge_table(),
+/// VtreesDatabase::set_wedges()) and `reference` gives every corner's wedge
+/// by FrontWedges over the whole hierarchy, for --validate; the VSPL must
+/// be the trees' own progressive mesh, or the load fails.
 struct VtreesStructure {
   std::unique_ptr<VertexHierarchy> h;
   std::unique_ptr<VertexTrees> trees;  ///< db points at it
   std::unique_ptr<VtreesDatabase> db;
+  std::unique_ptr<ProgressiveMesh> pm;  // with wedges only
+  std::unique_ptr<PmWedges> wedges;
+  std::unique_ptr<FrontWedges> front;  ///< reference points at it
+  std::optional<VtreesFrontReference> reference;
 };
 Result<VtreesStructure> load_vtrees_structure(const Container& decoded, uint32_t group);
 

@@ -7,7 +7,9 @@
 // paper's trace-up: a fan vertex the client does not hold is read as the
 // first transmitted parent the server sent for it, and then, as every
 // vertex, as its first visible ancestor. The paper's third step (reusing
-// last frame's list) is not done: the list is rebuilt each time.
+// last frame's list) is not done: the list is rebuilt each time. An
+// asset's records name each fan pair's face slot, which gives a triangle
+// its corners' wedges (lib/replay/vtrees_wedges.h).
 #include "lib/replay/vtrees_client.h"
 
 #include <new>
@@ -52,7 +54,9 @@ Result<VtreesClient> VtreesClient::create(const uint8_t* data, size_t size) {
       c.states_[v] = r.state;
       c.visible_[v] = v;
       LODBAKE_RETURN_IF_ERROR(c.store_fan(v, r));
+      LODBAKE_RETURN_IF_ERROR(c.wedges_.add_record(v, r));
       c.received_.base_bits += vtrees_record_bits(r, VertexTreeNodeKind::kBase, c.widths_);
+      c.received_.base_wedge_bits += vtrees_pair_bits(r, c.widths_);
     }
     c.visible_count_ = b;
     c.received_.base_records = b;
@@ -86,12 +90,19 @@ Status VtreesClient::store_fan(uint32_t node, const VtreesNodeRecord& r) {
   node_run_[node] = static_cast<uint32_t>(runs_.size());
   node_runs_[node] = static_cast<uint32_t>(r.run_info.size());
   uint32_t at = static_cast<uint32_t>(fan_.size());
+  uint32_t pair = static_cast<uint32_t>(pair_slot_.size());
   for (uint32_t info : r.run_info) {
     runs_.push_back(info);
     run_start_.push_back(at);
     at += info >> 1;
+    if (widths_.has_wedges()) {
+      run_pair_.push_back(pair);
+      pair += static_cast<uint32_t>(vtrees_pair_count({info}));
+    }
   }
   fan_.insert(fan_.end(), r.fan.begin(), r.fan.end());
+  for (const VtreesPairWedge& p : r.pairs)
+    pair_slot_.push_back(p.slot);
   return Status::ok();
 }
 
@@ -122,6 +133,12 @@ Status VtreesClient::apply(const VtreesItem& it) {
       ++splits_held_;
       LODBAKE_RETURN_IF_ERROR(store_fan(left, it.left));
       LODBAKE_RETURN_IF_ERROR(store_fan(right, it.right));
+      LODBAKE_RETURN_IF_ERROR(wedges_.add_record(vt, it.left));
+      LODBAKE_RETURN_IF_ERROR(wedges_.add_record(vs, it.right));
+      LODBAKE_RETURN_IF_ERROR(wedges_.add_wings(it.wings));
+      received_.split_wedge_bits += vtrees_pair_bits(it.left, widths_) +
+                                    vtrees_pair_bits(it.right, widths_) +
+                                    vtrees_wing_bits(it.wings, widths_);
       visible_[vs] = right;
       visible_[vt] = left;
       ++visible_count_;
@@ -195,13 +212,23 @@ uint64_t VtreesClient::selection_key(uint32_t node) const {
 }
 
 std::vector<Triangle> VtreesClient::triangles() const {
+  return triangles(nullptr);
+}
+
+std::vector<Triangle> VtreesClient::triangles(std::vector<uint32_t>* slots) const {
   std::vector<Triangle> out;
+  const bool with_slots = slots != nullptr && widths_.has_wedges();
+  if (slots != nullptr) slots->clear();
+  uint32_t pair = 0;  // the pair being considered, in pair_slot_
   auto consider = [&](uint32_t v, uint64_t key, uint32_t a, uint32_t c) {
+    const uint32_t slot = with_slots ? pair_slot_[pair] : 0;
+    ++pair;
     a = resolve(a);
     c = resolve(c);
     if (a == v || c == v || a == c) return;  // degenerate
     if (selection_key(visible_[a]) < key || selection_key(visible_[c]) < key) return;
     out.push_back({v, a, c});
+    if (with_slots) slots->push_back(slot);
   };
   for (uint32_t v = 0; v < visible_.size(); ++v) {
     const uint32_t node = visible_[v];
@@ -210,6 +237,7 @@ std::vector<Triangle> VtreesClient::triangles() const {
     for (uint32_t r = node_run_[node]; r < node_run_[node] + node_runs_[node]; ++r) {
       const uint32_t* fan = fan_.data() + run_start_[r];
       const uint32_t len = runs_[r] >> 1;
+      if (with_slots) pair = run_pair_[r];
       // Clockwise neighbours c_j, c_j+1 make the counter-clockwise (v, c_j+1, c_j).
       for (uint32_t j = 0; j + 1 < len; ++j)
         consider(v, key, fan[j + 1], fan[j]);
@@ -217,6 +245,27 @@ std::vector<Triangle> VtreesClient::triangles() const {
     }
   }
   return out;
+}
+
+Result<std::vector<std::array<uint32_t, 3>>> VtreesClient::corner_wedges() const {
+  if (!widths_.has_wedges()) return invalid_input("vtrees client: the trees carry no wedges");
+  try {
+    std::vector<uint32_t> slots;
+    const std::vector<Triangle> tris = triangles(&slots);
+    std::vector<std::array<uint32_t, 3>> out(tris.size());
+    for (size_t f = 0; f < tris.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        out[f][k] = wedges_.wedge(slots[f], tris[f][k]);
+        if (out[f][k] == kNoVertex) {
+          return refuse("no wedge for face slot " + std::to_string(slots[f]) + " at vertex " +
+                        std::to_string(tris[f][k]) + " (triangle " + std::to_string(f) + ")");
+        }
+      }
+    }
+    return out;
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory finding the client's corner wedges");
+  }
 }
 
 }  // namespace lodbake

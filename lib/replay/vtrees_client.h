@@ -5,6 +5,7 @@
 // VisibleVertexList does on the full trees.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
 #include "lib/replay/vtrees_records.h"
+#include "lib/replay/vtrees_wedges.h"
 
 namespace lodbake {
 
@@ -24,6 +26,9 @@ struct VtreesReceived {
   uint64_t trace_bits = 0;
   size_t trace_updates = 0, downs = 0, ups = 0;
   size_t messages = 0;
+  /// An asset's trees: the wedge part of the bits above (the base records'
+  /// pairs; the split items' pairs and wings).
+  uint64_t base_wedge_bits = 0, split_wedge_bits = 0;
 };
 
 class VtreesClient {
@@ -46,6 +51,15 @@ class VtreesClient {
   /// (the resolution level, VisibleVertexList::vertex_state()), degenerate
   /// ones are dropped.
   std::vector<Triangle> triangles() const;
+  /// Whether the trees carry wedge data (an asset's).
+  bool has_wedges() const { return widths_.has_wedges(); }
+  /// The wedge of every corner of triangles(), triangle by triangle: the
+  /// wedge its fan pair's face slot has at the corner's resolved vertex.
+  /// kInvalidInput naming the first corner the records give none for, or
+  /// when the trees carry no wedges.
+  Result<std::vector<std::array<uint32_t, 3>>> corner_wedges() const;
+  /// triangles() with each one's face slot (an asset's trees; else empty).
+  std::vector<Triangle> triangles(std::vector<uint32_t>* slots) const;
 
   const VtreesWidths& widths() const { return widths_; }
   /// The visible node of vertex v (kNoVertex when not visible).
@@ -80,6 +94,9 @@ class VtreesClient {
   std::vector<uint32_t> node_run_, node_runs_;
   std::vector<uint32_t> runs_, run_start_;
   std::vector<uint32_t> fan_;
+  // An asset's trees: run r's fan pairs have face slots pair_slot_[run_pair_[r] ..).
+  std::vector<uint32_t> run_pair_, pair_slot_;
+  VtreesCornerWedges wedges_;
   size_t visible_count_ = 0;
   size_t splits_held_ = 0;
   VtreesReceived received_;

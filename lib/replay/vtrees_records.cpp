@@ -19,7 +19,12 @@
 //   itself keeps the vertex's own id, so the client can use the vertex once
 //   it arrives (the paper: "its ID is also sent");
 // - items of a frame carry a 2-bit kind; a split's left and right records
-//   travel as one item (the list moves down at a node to both children).
+//   travel as one item (the list moves down at a node to both children);
+// - an asset's records name, per fan pair, the progressive mesh's face slot
+//   and its wedge at the node's vertex (the client emits triangles from
+//   fans, so the slot is what ties a triangle to its corners' wedges); a
+//   split adds its wing faces' wing wedges with their carried changes
+//   (lib/replay/vtrees_wedges.h gives the rule).
 #include "lib/replay/vtrees_records.h"
 
 #include <algorithm>
@@ -54,7 +59,73 @@ Result<ByteReader> open(const uint8_t* data, size_t size, VtreesMessageType want
 bool valid_widths(const VtreesWidths& w) {
   return w.base_count >= 1 && uint64_t{w.base_count} + w.split_count < 0xffffffffull &&
          w.run_count_bits >= 0 && w.run_count_bits <= 32 && w.run_length_bits >= 0 &&
-         w.run_length_bits <= 32;
+         w.run_length_bits <= 32 && (w.slot_count == 0) == (w.wedge_count == 0);
+}
+
+const char* pairs_problem(const VtreesNodeRecord& r, const VtreesWidths& w) {
+  if (!w.has_wedges()) return r.pairs.empty() ? nullptr : "wedge data in a mesh's trees";
+  if (r.pairs.size() != vtrees_pair_count(r.run_info)) return "not one wedge pair per fan pair";
+  for (const VtreesPairWedge& p : r.pairs) {
+    if (p.slot >= w.slot_count) return "a fan pair's face slot out of range";
+    if (p.wedge >= w.wedge_count) return "a fan pair's wedge out of range";
+  }
+  return nullptr;
+}
+
+const char* wings_problem(const VtreesItem& it, const VtreesWidths& w) {
+  for (const VtreesWing& g : it.wings) {
+    if (!w.has_wedges() || !g.present) {
+      if (!(g == VtreesWing())) return "wing data where there is none";
+      continue;
+    }
+    if (g.slot >= w.slot_count) return "a wing's face slot out of range";
+    if (g.wedge >= w.wedge_count) return "a wing's wedge out of range";
+    uint32_t above = it.left.vid;
+    for (const auto& [vertex, wedge] : g.changes) {
+      if (vertex >= above) return "a wing's changes do not climb below the split vertex";
+      if (wedge >= w.wedge_count) return "a wing change's wedge out of range";
+      above = vertex;
+    }
+  }
+  return nullptr;
+}
+
+void write_wings(BitWriter* b, const VtreesItem& it, const VtreesWidths& w) {
+  if (!w.has_wedges()) return;
+  for (const VtreesWing& g : it.wings) {
+    b->write(g.present ? 1 : 0, 1);
+    if (!g.present) continue;
+    b->write(g.slot, w.slot_bits());
+    b->write(g.wedge, w.wedge_bits());
+    b->write(static_cast<uint32_t>(g.changes.size()), w.id_bits());
+    for (const auto& [vertex, wedge] : g.changes) {
+      b->write(vertex, w.id_bits());
+      b->write(wedge, w.wedge_bits());
+    }
+  }
+}
+
+bool read_wings(BitReader* b, uint64_t total_bits, VtreesItem* it, const VtreesWidths& w) {
+  if (!w.has_wedges()) return true;
+  for (VtreesWing& g : it->wings) {
+    uint32_t present = 0;
+    if (!b->read(1, &present)) return false;
+    g.present = present != 0;
+    if (!g.present) continue;
+    uint32_t count = 0;
+    if (!b->read(w.slot_bits(), &g.slot) || !b->read(w.wedge_bits(), &g.wedge) ||
+        !b->read(w.id_bits(), &count)) {
+      return false;
+    }
+    // A change takes at least one bit (its vertex when ids have none): bounds the allocation.
+    const uint64_t each = std::max(1, w.id_bits() + w.wedge_bits());
+    if (uint64_t{count} * each > total_bits - b->bits_consumed()) return false;
+    g.changes.resize(count);
+    for (auto& [vertex, wedge] : g.changes) {
+      if (!b->read(w.id_bits(), &vertex) || !b->read(w.wedge_bits(), &wedge)) return false;
+    }
+  }
+  return true;
 }
 
 size_t fan_size(const VtreesNodeRecord& r) {
@@ -98,6 +169,7 @@ const char* record_problem(const VtreesNodeRecord& r, VertexTreeNodeKind kind,
     total += length;
   }
   if (total != r.fan.size()) return "run lengths do not add up to the fan";
+  if (const char* p = pairs_problem(r, w)) return p;
   for (uint32_t v : r.fan) {
     if (v >= existing) return "a fan vertex that does not exist at the node";
     if (v == r.vid) return "a fan vertex is the node's own";
@@ -136,6 +208,12 @@ void write_record(BitWriter* b, const VtreesNodeRecord& r, VertexTreeNodeKind ki
     b->write(info >> 1, w.run_length_bits);
     for (uint32_t k = 0; k < (info >> 1); ++k)
       b->write(r.fan[at++], id);
+  }
+  if (w.has_wedges()) {
+    for (const VtreesPairWedge& p : r.pairs) {
+      b->write(p.slot, w.slot_bits());
+      b->write(p.wedge, w.wedge_bits());
+    }
   }
   if (kind == VertexTreeNodeKind::kBase) return;
   b->write(static_cast<uint32_t>(r.traces.size()), trace_count_bits(r));
@@ -180,6 +258,15 @@ bool read_record(BitReader* b, uint64_t total_bits, VtreesNodeRecord* r, VertexT
       r->fan.push_back(v);
     }
   }
+  if (w.has_wedges()) {
+    const size_t pairs = vtrees_pair_count(r->run_info);
+    // A pair takes at least a bit when the counts are over 1; else none to read.
+    if (w.slot_bits() + w.wedge_bits() > 0 && pairs > remaining()) return false;
+    r->pairs.resize(pairs);
+    for (VtreesPairWedge& p : r->pairs) {
+      if (!b->read(w.slot_bits(), &p.slot) || !b->read(w.wedge_bits(), &p.wedge)) return false;
+    }
+  }
   if (kind == VertexTreeNodeKind::kBase) return true;
   uint32_t traces = 0;
   if (!b->read(trace_count_bits(*r), &traces)) return false;
@@ -201,9 +288,28 @@ int VtreesWidths::split_bits() const {
   return bits_for_count(split_count);
 }
 
+int VtreesWidths::slot_bits() const {
+  return bits_for_count(slot_count);
+}
+
+int VtreesWidths::wedge_bits() const {
+  return bits_for_count(wedge_count);
+}
+
+size_t vtrees_pair_count(const std::vector<uint32_t>& run_info) {
+  size_t pairs = 0;
+  for (uint32_t info : run_info) {
+    const uint32_t length = info >> 1;
+    if (length >= 2) pairs += length - 1;
+    if ((info & 1) && length > 2) ++pairs;
+  }
+  return pairs;
+}
+
 bool VtreesWidths::operator==(const VtreesWidths& o) const {
   return base_count == o.base_count && split_count == o.split_count &&
-         run_count_bits == o.run_count_bits && run_length_bits == o.run_length_bits;
+         run_count_bits == o.run_count_bits && run_length_bits == o.run_length_bits &&
+         slot_count == o.slot_count && wedge_count == o.wedge_count;
 }
 
 bool VtreesNodeRecord::operator==(const VtreesNodeRecord& o) const {
@@ -211,12 +317,12 @@ bool VtreesNodeRecord::operator==(const VtreesNodeRecord& o) const {
     if (float_bits(position[k]) != float_bits(o.position[k])) return false;
   }
   return vid == o.vid && pid == o.pid && state == o.state && run_info == o.run_info &&
-         fan == o.fan && traces == o.traces;
+         fan == o.fan && traces == o.traces && pairs == o.pairs;
 }
 
 bool VtreesItem::operator==(const VtreesItem& o) const {
   return kind == o.kind && split == o.split && vertex == o.vertex && parent == o.parent &&
-         left == o.left && right == o.right;
+         left == o.left && right == o.right && wings[0] == o.wings[0] && wings[1] == o.wings[1];
 }
 
 VtreesWidths vtrees_widths(const VertexTrees& t) {
@@ -257,6 +363,25 @@ uint64_t vtrees_trace_bits(const VtreesNodeRecord& r, const VtreesWidths& w) {
                             static_cast<uint32_t>(w.id_bits()));
 }
 
+uint64_t vtrees_pair_bits(const VtreesNodeRecord& r, const VtreesWidths& w) {
+  if (!w.has_wedges()) return 0;
+  return r.pairs.size() * static_cast<uint64_t>(w.slot_bits() + w.wedge_bits());
+}
+
+uint64_t vtrees_wing_bits(const VtreesWing (&wings)[2], const VtreesWidths& w) {
+  if (!w.has_wedges()) return 0;
+  const auto id = static_cast<uint64_t>(w.id_bits());
+  const auto wedge = static_cast<uint64_t>(w.wedge_bits());
+  uint64_t bits = 0;
+  for (const VtreesWing& g : wings) {
+    bits += 1;
+    if (g.present) {
+      bits += static_cast<uint64_t>(w.slot_bits()) + wedge + id + g.changes.size() * (id + wedge);
+    }
+  }
+  return bits;
+}
+
 uint64_t vtrees_record_bits(const VtreesNodeRecord& r, VertexTreeNodeKind kind,
                             const VtreesWidths& w) {
   const uint64_t id = static_cast<uint32_t>(w.id_bits());
@@ -266,7 +391,7 @@ uint64_t vtrees_record_bits(const VtreesNodeRecord& r, VertexTreeNodeKind kind,
   bits += r.run_info.size() * (1 + uint64_t{static_cast<uint32_t>(w.run_length_bits)}) +
           r.fan.size() * id;
   if (kind != VertexTreeNodeKind::kBase) bits += vtrees_trace_bits(r, w);
-  return bits;
+  return bits + vtrees_pair_bits(r, w);
 }
 
 Result<VtreesMessageType> vtrees_message_type(const uint8_t* data, size_t size) {
@@ -288,7 +413,12 @@ Result<Bytes> encode_vtrees_trees(const VtreesTreesMessage& m) {
     bw.write(w.split_count);
     bw.write(static_cast<uint8_t>(w.run_count_bits));
     bw.write(static_cast<uint8_t>(w.run_length_bits));
-    bw.write(uint16_t{0});
+    bw.write(static_cast<uint8_t>(w.has_wedges() ? 1 : 0));
+    bw.write(uint8_t{0});
+    if (w.has_wedges()) {
+      bw.write(w.slot_count);
+      bw.write(w.wedge_count);
+    }
     BitWriter b(&payload);
     for (uint32_t v = 0; v < m.base.size(); ++v) {
       const VtreesNodeRecord& r = m.base[v];
@@ -311,13 +441,22 @@ Result<Bytes> encode_vtrees_trees(const VtreesTreesMessage& m) {
 Result<VtreesTreesMessage> decode_vtrees_trees(const uint8_t* data, size_t size) {
   LODBAKE_ASSIGN_OR_RETURN(ByteReader r, open(data, size, VtreesMessageType::kTrees, "trees"));
   VtreesTreesMessage m;
-  uint8_t count_bits = 0, length_bits = 0;
-  uint16_t reserved = 0;
+  uint8_t count_bits = 0, length_bits = 0, flags = 0, reserved = 0;
   if (!r.read(&m.widths.base_count) || !r.read(&m.widths.split_count) || !r.read(&count_bits) ||
-      !r.read(&length_bits) || !r.read(&reserved)) {
+      !r.read(&length_bits) || !r.read(&flags) || !r.read(&reserved)) {
     return bad("trees message shorter than its 12 fixed bytes");
   }
-  if (reserved != 0) return bad("nonzero reserved bytes in the trees message");
+  if (reserved != 0 || (flags & ~1u) != 0) {
+    return bad("unknown flags or nonzero reserved byte in the trees message");
+  }
+  if (flags & 1) {
+    if (!r.read(&m.widths.slot_count) || !r.read(&m.widths.wedge_count)) {
+      return bad("trees message with wedges shorter than its 20 fixed bytes");
+    }
+    if (m.widths.slot_count == 0 || m.widths.wedge_count == 0) {
+      return bad("trees message with wedges but no face slot or no wedge");
+    }
+  }
   m.widths.run_count_bits = count_bits;
   m.widths.run_length_bits = length_bits;
   if (!valid_widths(m.widths)) return bad("bad counts or widths in the trees message");
@@ -376,8 +515,10 @@ Result<Bytes> encode_vtrees_frame(const std::vector<VtreesItem>& items, const Vt
                                              existing_at(w, VertexTreeNodeKind::kRight, it.left))) {
             return invalid_input(at + "right record: " + p);
           }
+          if (const char* p = wings_problem(it, w)) return invalid_input(at + p);
           write_record(&b, it.left, VertexTreeNodeKind::kLeft, w);
           write_record(&b, it.right, VertexTreeNodeKind::kRight, w);
+          write_wings(&b, it, w);
           break;
         }
         case VtreesItemKind::kDown:
@@ -446,6 +587,8 @@ Result<std::vector<VtreesItem>> decode_vtrees_frame(const uint8_t* data, size_t 
           if (const char* p = record_problem(it.right, VertexTreeNodeKind::kRight, w, existing)) {
             return bad(at + "right record: " + p);
           }
+          if (!read_wings(&b, total_bits, &it, w)) return bad(at + "truncated wings");
+          if (const char* p = wings_problem(it, w)) return bad(at + p);
           it.split = it.left.vid - w.base_count;
           break;
         }

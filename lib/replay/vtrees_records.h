@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "formats/mesh/triangle_mesh.h"
@@ -64,10 +65,17 @@ struct VtreesWidths {
   uint32_t split_count = 0;  ///< S: splits; vertex ids are < B + S
   int run_count_bits = 0;    ///< bits of a record's run count, 0..32
   int run_length_bits = 0;   ///< bits of a run's length, 0..32
+  /// An asset's trees (wedge data in every record): the progressive mesh's
+  /// face slots and WEDG's wedges, both >= 1; 0 and 0 for a mesh's trees.
+  uint32_t slot_count = 0;
+  uint32_t wedge_count = 0;
   /// bits_for_count(B + S): the paper's 16-bit VID and PID.
   int id_bits() const;
   /// bits_for_count(S): a list move's split id.
   int split_bits() const;
+  bool has_wedges() const { return wedge_count != 0; }
+  int slot_bits() const;   ///< bits_for_count(slot_count)
+  int wedge_bits() const;  ///< bits_for_count(wedge_count)
   bool operator==(const VtreesWidths& o) const;
 };
 
@@ -84,9 +92,23 @@ struct VtreesTrace {
   bool operator==(const VtreesTrace& o) const { return index == o.index && parent == o.parent; }
 };
 
+/// The face a fan pair stands for and that face's wedge at the node's
+/// vertex (an asset's trees only).
+struct VtreesPairWedge {
+  uint32_t slot = 0;   ///< the progressive mesh's face slot
+  uint32_t wedge = 0;  ///< the wedge of that slot's corner at the node's vertex
+  bool operator==(const VtreesPairWedge& o) const { return slot == o.slot && wedge == o.wedge; }
+};
+
+/// The number of fan pairs (triangles) of a record's runs: length - 1 per
+/// open run, length per closed one, in the client's order (each run's
+/// consecutive pairs, then a closed run's last-to-first pair).
+size_t vtrees_pair_count(const std::vector<uint32_t>& run_info);
+
 /// One node record. Base: vid, position, state, fan. Left: vid (B + k for
 /// split k), pid (the parent vertex vs), position, state, fan, traces.
-/// Right: vid (= its left sibling's pid), fan, traces.
+/// Right: vid (= its left sibling's pid), fan, traces. An asset's records
+/// also carry `pairs` (one per fan pair, vtrees_pair_count()).
 struct VtreesNodeRecord {
   uint32_t vid = 0;
   uint32_t pid = 0;
@@ -96,7 +118,24 @@ struct VtreesNodeRecord {
   std::vector<uint32_t> run_info;
   std::vector<uint32_t> fan;
   std::vector<VtreesTrace> traces;
+  std::vector<VtreesPairWedge> pairs;
   bool operator==(const VtreesNodeRecord& o) const;
+};
+
+/// A wing face a split adds (an asset's trees only): its face slot, the
+/// wedge of its wing corner at creation, and that corner's wedge carried
+/// up the collapses where a front has it coarser than the progressive mesh
+/// ever did: `changes` (vertex y, wedge), y strictly decreasing, each
+/// below the split vertex; at an ancestor vertex x of the wing vertex the
+/// wedge is that of the change with the smallest y >= x, else `wedge`.
+struct VtreesWing {
+  bool present = false;
+  uint32_t slot = 0;
+  uint32_t wedge = 0;
+  std::vector<std::pair<uint32_t, uint32_t>> changes;
+  bool operator==(const VtreesWing& o) const {
+    return present == o.present && slot == o.slot && wedge == o.wedge && changes == o.changes;
+  }
 };
 
 /// Node `node`'s record as stored in `trees`, without traces.
@@ -108,6 +147,10 @@ uint64_t vtrees_record_bits(const VtreesNodeRecord& record, VertexTreeNodeKind k
                             const VtreesWidths& widths);
 /// The trace-up part of a left or right record's bits.
 uint64_t vtrees_trace_bits(const VtreesNodeRecord& record, const VtreesWidths& widths);
+/// The wedge part of a record's bits (its pairs; 0 for a mesh's trees).
+uint64_t vtrees_pair_bits(const VtreesNodeRecord& record, const VtreesWidths& widths);
+/// Bits of a split item's two wings (0 for a mesh's trees).
+uint64_t vtrees_wing_bits(const VtreesWing (&wings)[2], const VtreesWidths& widths);
 
 enum class VtreesItemKind : uint8_t {
   kSplit = 0,        ///< split k's left and right records: the list moves down at new nodes
@@ -118,7 +161,9 @@ enum class VtreesItemKind : uint8_t {
 inline constexpr int kVtreesItemTagBits = 2;
 
 /// One item of a frame message. kSplit: `left` and `right` (split =
-/// left.vid - B); kDown, kUp: `split`; kTraceUpdate: `vertex`, `parent`.
+/// left.vid - B) and, for an asset's trees, `wings` (left: the face
+/// (vs, vt, vl), right: (vt, vs, vr)); kDown, kUp: `split`; kTraceUpdate:
+/// `vertex`, `parent`.
 struct VtreesItem {
   VtreesItemKind kind = VtreesItemKind::kSplit;
   uint32_t split = 0;
@@ -126,6 +171,7 @@ struct VtreesItem {
   uint32_t parent = 0;
   VtreesNodeRecord left;
   VtreesNodeRecord right;
+  VtreesWing wings[2];
   bool operator==(const VtreesItem& o) const;
 };
 
@@ -140,18 +186,26 @@ struct VtreesTreesMessage {
 Result<VtreesMessageType> vtrees_message_type(const uint8_t* data, size_t size);
 
 /// Payload: uint32 B, uint32 S, uint8 run count bits, uint8 run length bits,
-/// two zero bytes, then the B base records' bits.
+/// uint8 flags (bit 0: an asset's trees, with wedge data), a zero byte;
+/// with the flag, uint32 face slot count and uint32 wedge count (both >= 1);
+/// then the B base records' bits (with the flag, each fan pair's face slot
+/// and wedge after the fan).
 /// \return kInvalidInput when a record does not fit the widths or the rules
 ///         decode_vtrees_trees() enforces.
 Result<Bytes> encode_vtrees_trees(const VtreesTreesMessage& message);
-/// Refuses B = 0, B + S >= 2^32 - 1, widths over 32, a base record whose
+/// Refuses B = 0, B + S >= 2^32 - 1, widths over 32, unknown flags, a zero
+/// slot or wedge count with the flag, a pair's slot or wedge out of range, a
+/// base record whose
 /// vid is not its index, a fan vertex >= B or equal to the node's own, an
 /// open run under 2 or a closed run under 3 vertices, non-finite
 /// coordinates, nonzero padding, trailing bytes.
 Result<VtreesTreesMessage> decode_vtrees_trees(const uint8_t* data, size_t size);
 
 /// Payload: uint32 item count, then per item its 2-bit kind and body:
-/// kSplit: left and right record; kDown / kUp: split id (split_bits);
+/// kSplit: left and right record (with wedges: their pairs after each fan),
+/// then with wedges per wing a presence bit and, when present, its slot,
+/// wedge, change count (id_bits) and changes (vertex id_bits, wedge);
+/// kDown / kUp: split id (split_bits);
 /// kTraceUpdate: vertex and parent (id_bits each).
 Result<Bytes> encode_vtrees_frame(const std::vector<VtreesItem>& items, const VtreesWidths& widths);
 /// Besides the record rules of decode_vtrees_trees(): a left vid must be a
@@ -159,7 +213,9 @@ Result<Bytes> encode_vtrees_frame(const std::vector<VtreesItem>& items, const Vt
 /// of split k's nodes must exist at split k (< B + k + 1); trace indices
 /// strictly increase below the fan's size, trace parents are below their
 /// vertex, which is a split vertex; a split id < S; a trace update's vertex
-/// is a split vertex and its parent below it; at most kMaxVtreesItems items.
+/// is a split vertex and its parent below it; at most kMaxVtreesItems items;
+/// a wing's slot or wedge out of range, its changes not strictly decreasing
+/// below the split vertex.
 Result<std::vector<VtreesItem>> decode_vtrees_frame(const uint8_t* data, size_t size,
                                                     const VtreesWidths& widths);
 

@@ -25,6 +25,7 @@
 #include <iterator>
 #include <new>
 #include <string>
+#include <utility>
 
 #include "formats/sections/vtre.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
@@ -86,13 +87,30 @@ Result<VtreesDatabase> VtreesDatabase::create(const VertexTrees& trees, const Ve
   }
 }
 
+Status VtreesDatabase::set_wedges(VtreesWedgeTable table) {
+  if (table.pairs.size() != trees->node_count() || table.wings.size() != trees->split_count() ||
+      table.slot_count == 0 || table.wedge_count == 0) {
+    return invalid_input("the wedge data is not that of these vertex trees");
+  }
+  widths.slot_count = table.slot_count;
+  widths.wedge_count = table.wedge_count;
+  wedges = std::move(table);
+  return Status::ok();
+}
+
+VtreesNodeRecord VtreesDatabase::record(uint32_t node) const {
+  VtreesNodeRecord r = vtrees_node_record(*trees, node);
+  if (wedges) r.pairs = wedges->pairs[node];
+  return r;
+}
+
 Result<Bytes> VtreesDatabase::trees_message() const {
   try {
     VtreesTreesMessage m;
     m.widths = widths;
     m.base.reserve(trees->base_vertex_count);
     for (uint32_t v = 0; v < trees->base_vertex_count; ++v)
-      m.base.push_back(vtrees_node_record(*trees, v));
+      m.base.push_back(record(v));
     return encode_vtrees_trees(m);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory encoding the base records");
@@ -183,8 +201,12 @@ void VtreesServerSession::send_split(uint32_t k, std::vector<VtreesItem>* items)
   VtreesItem item;
   item.kind = VtreesItemKind::kSplit;
   item.split = k;
-  item.left = vtrees_node_record(t, left);
-  item.right = vtrees_node_record(t, right);
+  item.left = db_->record(left);
+  item.right = db_->record(right);
+  if (db_->wedges) {
+    item.wings[0] = db_->wedges->wings[k][0];
+    item.wings[1] = db_->wedges->wings[k][1];
+  }
   add_traces(&item.left);
   add_traces(&item.right);
   items->push_back(std::move(item));

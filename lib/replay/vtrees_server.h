@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "formats/mesh/vertex_hierarchy.h"
@@ -17,6 +18,7 @@
 #include "formats/support/status.h"
 #include "lib/replay/stream_view.h"
 #include "lib/replay/vtrees_records.h"
+#include "lib/replay/vtrees_wedges.h"
 #include "lib/vtrees/visible_vertex_list.h"
 
 namespace lodbake {
@@ -38,6 +40,9 @@ struct VtreesDatabase {
   /// for a leaf of the trees).
   std::vector<uint32_t> parent_node;
   std::vector<uint32_t> child_split;
+  /// An asset's trees: every record's wedge data (set_wedges()); empty for
+  /// a mesh's, whose messages then carry none.
+  std::optional<VtreesWedgeTable> wedges;
 
   /// `trees` must outlive the result. \return kInvalidInput when the trees
   /// do not validate, `data` has not one entry per node of `h`, or the
@@ -45,6 +50,12 @@ struct VtreesDatabase {
   /// count, split order, parent vertices or positions).
   static Result<VtreesDatabase> create(const VertexTrees& trees, const VertexHierarchy& h,
                                        const std::vector<NodeRefinement>& data);
+  /// Makes every message carry `table`'s wedge data (widths included).
+  /// kInvalidInput when it is not sized for these trees.
+  Status set_wedges(VtreesWedgeTable table);
+  /// Node `node`'s record as sent (without traces): with its pairs when
+  /// the database has wedges.
+  VtreesNodeRecord record(uint32_t node) const;
   /// The first message of every session: the widths and the base records.
   Result<Bytes> trees_message() const;
 };

@@ -25,6 +25,7 @@
 #include "lib/replay/structure_loading.h"
 #include "lib/replay/vhier_replay.h"
 #include "lib/replay/vtrees_session.h"
+#include "lib/replay/vtrees_wedge_check.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
 
@@ -255,7 +256,8 @@ void check_stream(const Container& decoded, uint32_t group, Findings* f) {
 }
 
 // Mode vtrees: the database over the hierarchy, then a session sending
-// every split; the client's list and triangles must be the server's.
+// every split; the client's list and triangles must be the server's, and
+// on an asset's trees every corner's wedge the hierarchy front's.
 void check_vtrees(const Container& decoded, uint32_t group, Findings* f) {
   const char* who = "mode vtrees";
   Result<VtreesStructure> loaded = load_vtrees_structure(decoded, group);
@@ -287,6 +289,12 @@ void check_vtrees(const Container& decoded, uint32_t group, Findings* f) {
     if (sorted_canonical(session.triangles()) != sorted_canonical(list.triangles())) {
       return f->add(kVtreTag, who,
                     where + ": the client's triangles are not the trees' own selection");
+    }
+    const VtreesStructure& st = loaded.value();
+    if (st.reference &&
+        !f->none(kWedgTag, who, where + ": the client's corners",
+                 check_vtrees_wedges(session.client(), *st.reference, *st.wedges))) {
+      return;
     }
   }
 }

@@ -3,7 +3,9 @@
 // session's downlink: messages back to back, each as long as its header
 // says (the last one takes what remains). A first trees message starts a
 // client, and every later message is decoded under its widths and applied
-// to it; a first frame message is decoded under three fixed width contexts;
+// to it (an asset's client also finds its corners' wedges); a first frame
+// message is decoded under four fixed width contexts, the last one Fox's
+// trees with wedges (tests/unit/vtrees_wedges_test.cpp checks them);
 // scene and end-of-answer messages (a connection's) are decoded anywhere.
 // Whatever decodes must re-encode to the same bytes (one encoding per
 // message); the client may refuse anything, never crash.
@@ -71,11 +73,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       check_frame(data, length, client->widths());
       if (client->receive(data, length).is_ok()) {
         (void)client->triangles();
+        if (client->has_wedges()) (void)client->corner_wedges();
       } else {
         client.reset();  // the state after an error is undefined
       }
     } else if (first) {
-      const VtreesWidths contexts[3] = {{7, 20, 1, 3}, {1, 0, 0, 0}, {300, 70000, 2, 5}};
+      const VtreesWidths contexts[4] = {
+          {7, 20, 1, 3}, {1, 0, 0, 0}, {300, 70000, 2, 5}, {4, 286, 1, 4, 576, 434}};
       for (const VtreesWidths& w : contexts)
         check_frame(data, length, w);
     }

@@ -22,8 +22,8 @@ inline constexpr char kPositionsOnly[] =
 // lodbake-hierarchy with DAGE or VTRE: their progressive mesh has WEDG.
 inline constexpr char kHierarchyPmOnly[] =
     "the hierarchy's progressive mesh (VSPL) keeps the asset's attributes (WEDG), and so do "
-    "VHIE's selective fronts, DAGE's cuts and the client meshes of replay --mode stream; VTRE "
-    "trees hold positions only (not yet)";
+    "VHIE's selective fronts, DAGE's cuts and the client meshes of replay --mode stream and "
+    "--mode vtrees (VTRE's trees index positions; their records take the wedges from WEDG)";
 // lodbake-strips without --strips-only: its progressive mesh has WEDG.
 inline constexpr char kStripsPmOnly[] =
     "the strips' progressive mesh (VSPL) keeps the asset's attributes (WEDG), and so does every "

@@ -163,7 +163,8 @@ int main(int argc, char** argv) {
       "progressive mesh's at that LoD with their orientation, form such a triangulation "
       "and coherent recovery equals fresh recovery, and over an asset that every corner has "
       "its wedge (exit 7 naming the LoD); vtrees: that the "
-      "client's visible vertex list and triangles are the server's every frame and no record "
+      "client's visible vertex list and triangles are the server's every frame, over an asset "
+      "that every corner has the hierarchy front's wedge, and no record "
       "is sent twice (exit 7 naming the frame)")(
       "plot", po::value<std::string>(&request.plot)->value_name("DIR"),
       "draw the paper-style charts as SVG in DIR (made when missing) with gnuplot "

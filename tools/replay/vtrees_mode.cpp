@@ -6,6 +6,7 @@
 // TCP on loopback: --serve (serve_vtrees_clients, a visible vertex list per
 // connection) and --connect (a client that needs no FILE).
 #include <algorithm>
+#include <array>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -24,6 +25,7 @@
 #include "lib/replay/stream_transport.h"
 #include "lib/replay/structure_loading.h"
 #include "lib/replay/vtrees_session.h"
+#include "lib/replay/vtrees_wedge_check.h"
 #include "tools/replay/frame_support.h"
 #include "tools/replay/replay_request.h"
 #include "tools/replay/report_support.h"
@@ -124,6 +126,25 @@ nlohmann::json vtrees_client_json(const VtreesClient& client, const VtreesTotals
           {"select_ms", t.select_ms}};
 }
 
+// An asset's trees: what the wedge data add to the records received (null
+// for a mesh's).
+double wedge_bytes_per_split(const VtreesReceived& got) {
+  return got.left_records == 0 ? 0.0
+                               : static_cast<double>(got.split_wedge_bits) / 8 /
+                                     static_cast<double>(got.left_records);
+}
+
+nlohmann::json vtrees_wedges_json(const Request& request, const VtreesClient& client) {
+  if (!client.has_wedges()) return nlohmann::json();
+  const VtreesReceived& got = client.received();
+  return {{"count", client.widths().wedge_count},
+          {"face_slots", client.widths().slot_count},
+          {"base_bytes", static_cast<double>(got.base_wedge_bits) / 8},
+          {"split_bytes", static_cast<double>(got.split_wedge_bits) / 8},
+          {"mean_split_bytes", wedge_bytes_per_split(got)},
+          {"validated", request.validate}};
+}
+
 // The trees a vtrees report describes: the in-process run has them whole,
 // a --connect client only their widths.
 struct TreesShape {
@@ -154,7 +175,8 @@ nlohmann::json vtrees_report_json(const Request& request, const TreesShape& s,
       {"records", vtrees_records_json(got, t)},
       {"moves", {{"down", got.downs}, {"up", got.ups}}},
       {"client", vtrees_client_json(client, t)},
-      {"overlap_frames", request.validate ? nlohmann::json(overlap_frames) : nlohmann::json()}};
+      {"overlap_frames", request.validate ? nlohmann::json(overlap_frames) : nlohmann::json()},
+      {"wedges", vtrees_wedges_json(request, client)}};
 }
 
 // From "downlink" to "reconstruct".
@@ -176,6 +198,14 @@ void print_vtrees_lines(const VtreesClient& client, const VtreesTotals& t, size_
             << " nodes held, triangles mean " << t.triangles << ", max " << t.max_triangles << "\n";
   std::cout << "reconstruct   " << t.reconstruct_ms << " ms in all (" << t.per_node_us
             << " us per node), triangle selection " << t.select_ms << " ms in all\n";
+  if (client.has_wedges()) {
+    std::cout << "wedges        " << client.widths().wedge_count << " wedges over "
+              << client.widths().slot_count
+              << " face slots: " << static_cast<double>(got.base_wedge_bits) / 8
+              << " B in the base records, " << wedge_bytes_per_split(got)
+              << " B per split received (its records' fan pairs "
+              << "and wings)\n";
+  }
 }
 
 // Whether the client's triangles over its own positions overlap or leave
@@ -280,6 +310,13 @@ int run_vtrees_connect(const Tool& tool, const Request& request) {
     Result<VtreesFrameStats> f = session.frame(path[i]);
     if (!f.is_ok()) return tool.fail(address, frame_failure(i, f.status()));
     frames.push_back(f.value());
+    if (request.validate && session.client().has_wedges()) {
+      Result<std::vector<std::array<uint32_t, 3>>> corners = session.client().corner_wedges();
+      if (!corners.is_ok()) {
+        return tool.fail(
+            address, frame_failure(i, Status(ErrorKind::kValidation, corners.status().message())));
+      }
+    }
     if (request.validate && vtrees_overlap(session.client(), session.triangles())) ++overlap_frames;
     progress.update(static_cast<double>(i + 1) / static_cast<double>(path.size()));
   }
@@ -307,8 +344,9 @@ int run_vtrees_connect(const Tool& tool, const Request& request) {
   print_trees_line(shape);
   print_vtrees_lines(client, tot, node_count);
   if (request.validate) {
-    std::cout << "validate      every answer complete and applied, no record received twice; "
-              << overlap_frames << " of " << frames.size()
+    std::cout << "validate      every answer complete and applied, no record received twice"
+              << (client.has_wedges() ? ", a wedge at every corner" : "") << "; " << overlap_frames
+              << " of " << frames.size()
               << " frames had overlapping or missing triangles (the server's list is checked "
                  "in process only)\n";
   }
@@ -354,6 +392,13 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
           sorted_canonical(session.triangles()) != sorted_canonical(list.triangles())) {
         problem = "the client's triangles are not the trees' own selection for its list";
       }
+      if (problem.empty() && loaded.value().reference) {
+        // An asset's trees: every corner has the wedge of the whole
+        // hierarchy's front for the same face and node.
+        const std::vector<std::string> wedges = check_vtrees_wedges(
+            session.client(), *loaded.value().reference, *loaded.value().wedges);
+        if (!wedges.empty()) problem = "corner wedges: " + wedges.front();
+      }
       if (!problem.empty()) {
         return tool.fail(request.input, frame_failure(i, Status(ErrorKind::kValidation, problem)));
       }
@@ -393,9 +438,10 @@ int run_vtrees(const Tool& tool, const Request& request, const Bytes& bytes) {
   std::cout << "\n";
   print_vtrees_lines(session.client(), tot, trees.node_count());
   if (request.validate) {
-    std::cout << "validate      the client's list and triangles were the server's every frame, "
-                 "no record sent twice; "
-              << overlap_frames << " of " << frames.size()
+    std::cout << "validate      the client's list and triangles were the server's every frame"
+              << (session.client().has_wedges() ? ", every corner's wedge the hierarchy front's"
+                                                : "")
+              << ", no record sent twice; " << overlap_frames << " of " << frames.size()
               << " frames had overlapping or missing triangles (fronts the trees allow and the "
                  "split DAG does not)\n";
   }
