@@ -148,6 +148,11 @@ class CandidateList {
     items_.data[part_start_[p] + part_size_[p]++] = c;
   }
   size_t size() const { return size_; }
+  void release() {
+    scratch_ = Buffer();
+    items_ = Buffer();
+    size_ = 0;
+  }
 
   // Groups the candidates by the upper digit and leaves each group in
   // listing order.
@@ -218,8 +223,12 @@ class CandidateList {
     std::unique_ptr<Candidate[]> data;
     size_t capacity = 0;
   };
+  // A buffer more than twice too large is replaced: the pages the first
+  // passes wrote would otherwise stay resident to the end, when the log is
+  // largest (the candidates fall with the live triangles, pass by pass).
   static void reserve(Buffer* buffer, size_t count) {
-    if (buffer->capacity >= count) return;
+    if (buffer->capacity >= count && buffer->capacity / 2 <= count) return;
+    buffer->data.reset();
     buffer->data.reset(new Candidate[count]);
     buffer->capacity = count;
   }
@@ -356,8 +365,10 @@ class Engine {
     state_.texcoords = std::move(mesh.texcoords);
     triangle_count_ = state_.triangles.size();
     state_.stats.input_triangles = triangle_count_;
-    // At most one collapse per vertex; growing the log by doubling would copy it.
+    // At most one collapse per vertex; growing the log by doubling would copy
+    // it (a reserved page costs no memory until a record is written to it).
     state_.log.reserve(n);
+    if (options.placement == Placement::kOptimal) state_.moved_positions.reserve(2 * n);
 
     vinfo_.resize(n);
     for (size_t v = 0; v < n; ++v) {
@@ -385,6 +396,10 @@ class Engine {
     corners_ = std::move(topology.corners);
     if (!seam_attrs_.empty()) faces_ = std::move(topology.faces);
     setup_quadrics();
+    // The walk reads and moves the positions in vinfo_; run() writes them
+    // back once the walk's arrays are gone, so that the two copies never
+    // coexist with them (6 bytes per triangle of the peak).
+    state_.positions = std::vector<Vec3f>();
     // The walk stops at the first listed cost above max_cost; in optimal
     // placement a cost is an error times a weight, so only try_collapse()
     // can tell, and every candidate is tried.
@@ -410,6 +425,8 @@ class Engine {
     finish_pass(/*rebuild=*/false);
     state_.stats.output_triangles = triangle_count_;
     state_.stats.passes = pass_;
+    release_walk_arrays();
+    state_.positions.resize(vinfo_.size());
     for (size_t v = 0; v < vinfo_.size(); ++v)
       state_.positions[v] = vinfo_[v].position;
     return std::move(state_);
@@ -419,6 +436,18 @@ class Engine {
   bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
   // Vertex order for ties: the input's.
   bool precedes(uint32_t a, uint32_t b) const { return vinfo_[a].input_id < vinfo_[b].input_id; }
+
+  // The arrays only the walk reads, freed before the state's positions are
+  // written back: the peak is then the walk's, not the walk's plus them.
+  void release_walk_arrays() {
+    candidates_.release();
+    quadric_ = std::vector<AlignedQuadric>();
+    corners_ = std::vector<Corner>();
+    faces_ = std::vector<uint32_t>();
+    fill_ = std::vector<uint32_t>();
+    live_triangles_ = std::vector<uint32_t>();
+    live_vertices_ = std::vector<uint32_t>();
+  }
 
   // ---- setup ----
 
@@ -1139,8 +1168,10 @@ class Engine {
     rec.vs = vs;
     rec.vl = vl_;
     rec.vr = vr_;
-    rec.vt_position = vinfo_[vt].position;
-    rec.vs_position = vinfo_[vs].position;
+    if (options_.placement == Placement::kOptimal) {
+      state_.moved_positions.push_back(vinfo_[vt].position);
+      state_.moved_positions.push_back(vinfo_[vs].position);
+    }
     rec.error = static_cast<float>(std::sqrt(error));
 
     if (!seam_attrs_.empty() && !options_.permissive) record_seam_values(vt, vs);

@@ -61,8 +61,8 @@ ProgressiveMesh record_progressive_mesh(const TriangleMesh& input, const EngineS
     s.vs = pm_id[r.vs];
     s.vl = map(r.vl);
     s.vr = map(r.vr);
-    s.vt_position = r.vt_position;
-    s.vs_position = r.vs_position;
+    s.vt_position = state.vt_position(i);
+    s.vs_position = state.vs_position(i);
     s.error = r.error;
     pm.splits.push_back(s);
   }

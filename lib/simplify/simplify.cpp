@@ -145,7 +145,11 @@ TriangleMesh assemble_mesh(const EngineState& state) {
   return out;
 }
 
-Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOptions& options) {
+// `owned`, when given, is `input` itself, handed over by the caller: its
+// positions and triangles are freed once the engine's renumbered copy is
+// checked, so that the engine's is the only copy of the mesh at the peak.
+Result<SimplifyResult> simplify_impl(const TriangleMesh& input, TriangleMesh* owned,
+                                     const SimplifyOptions& options) {
   LODBAKE_RETURN_IF_ERROR(check_options(options));
   LODBAKE_RETURN_IF_ERROR(check_attribute(input.normals, "normals", 3, input));
   LODBAKE_RETURN_IF_ERROR(check_attribute(input.texcoords, "texture coordinates", 2, input));
@@ -175,8 +179,14 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
     LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(input, &unused));
     return valid;
   }
-
+  // Only the attributes are read from the input past this point
+  // (record_progressive_mesh()), and the triangle count, kept here.
   const uint64_t input_triangles = input.triangles.size();
+  if (owned && renumber) {
+    owned->positions = std::vector<Vec3f>();
+    owned->triangles = std::vector<Triangle>();
+  }
+
   EngineSettings settings;
   settings.diagonal = bbox_diagonal(work, topology);
   if (renumber) settings.input_ids = &order;
@@ -224,10 +234,20 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, const SimplifyOp
 
 Result<SimplifyResult> simplify(const TriangleMesh& input, const SimplifyOptions& options) {
   try {
-    return simplify_impl(input, options);
+    return simplify_impl(input, nullptr, options);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while simplifying " +
                          std::to_string(input.triangles.size()) + " triangles");
+  }
+}
+
+Result<SimplifyResult> simplify(TriangleMesh&& input, const SimplifyOptions& options) {
+  const size_t triangles = input.triangles.size();
+  try {
+    return simplify_impl(input, &input, options);
+  } catch (const std::bad_alloc&) {
+    return runtime_error("out of memory while simplifying " + std::to_string(triangles) +
+                         " triangles");
   }
 }
 

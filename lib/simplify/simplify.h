@@ -100,4 +100,10 @@ struct SimplifyResult {
 // vertex index, no pointer order, no unordered iteration in the result).
 Result<SimplifyResult> simplify(const TriangleMesh& input, const SimplifyOptions& options);
 
+// The same result, taking `input`'s positions and triangles once they are
+// checked: the engine's copy is then the only one (18 bytes per input
+// triangle less at the peak). Afterwards `input` holds its attributes only,
+// or, on failure, possibly its positions and triangles too.
+Result<SimplifyResult> simplify(TriangleMesh&& input, const SimplifyOptions& options);
+
 }  // namespace lodbake

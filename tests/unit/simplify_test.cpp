@@ -181,6 +181,47 @@ TEST(Simplify, IsDeterministic) {
   }
 }
 
+// simplify(TriangleMesh&&) frees the input's geometry early; its result is
+// the const& overload's, per-vertex attributes of the PM included (in
+// optimal placement the engine's values move, the PM's are the input's).
+TEST(Simplify, TakingTheInputGivesTheSameResult) {
+  TriangleMesh mesh = load_clean_mesh("cgal_elephant.off");
+  mesh.normals.binding = AttributeBinding::kPerVertex;
+  mesh.normals.components = 3;
+  for (const Vec3f& p : mesh.positions) {
+    const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (int k = 0; k < 3; ++k)
+      mesh.normals.values.push_back(len > 0 ? p[k] / len : 0);
+  }
+  for (int variant = 0; variant < 3; ++variant) {
+    SimplifyOptions options;
+    options.placement = variant == 1 ? Placement::kOptimal : Placement::kHalf;
+    options.height_guard = variant == 2;
+    options.record_pm = variant != 2;
+    options.target_ratio = 0.2;
+    options.threads = 2;
+    const SimplifyResult expected = run(mesh, options);
+    TriangleMesh handed = mesh;
+    Result<SimplifyResult> taken = simplify(std::move(handed), options);
+    ASSERT_TRUE(taken.is_ok()) << taken.status().message();
+    EXPECT_EQ(taken.value().mesh, expected.mesh) << "variant " << variant;
+    ASSERT_EQ(taken.value().pm.has_value(), expected.pm.has_value());
+    if (expected.pm) EXPECT_EQ(*taken.value().pm, *expected.pm) << "variant " << variant;
+    EXPECT_EQ(taken.value().stats.collapses, expected.stats.collapses);
+    EXPECT_TRUE(handed.positions.empty());
+    EXPECT_TRUE(handed.triangles.empty());
+    EXPECT_EQ(handed.normals, mesh.normals);
+  }
+  // A mesh the engine refuses is refused alike.
+  TriangleMesh bad = mesh;
+  bad.triangles.push_back(bad.triangles[0]);
+  const Result<SimplifyResult> by_ref = simplify(bad, SimplifyOptions());
+  const Result<SimplifyResult> by_move = simplify(std::move(bad), SimplifyOptions());
+  ASSERT_FALSE(by_ref.is_ok());
+  ASSERT_FALSE(by_move.is_ok());
+  EXPECT_EQ(by_move.status().message(), by_ref.status().message());
+}
+
 // The guard only adds refusals: on the bunny it refuses thousands of
 // collapses, reaches the same target and gives another sequence.
 TEST(Simplify, HeightGuardRefusesCollapsesAndStillReachesTheTarget) {

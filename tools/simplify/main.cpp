@@ -351,7 +351,13 @@ int run(const Tool& tool, Request& request) {
   Progress progress(tool, "simplifying");
   request.options.progress = [&](double fraction) { progress.update(fraction); };
   auto start = std::chrono::steady_clock::now();
-  Result<SimplifyResult> simplified = simplify(loaded.mesh, request.options);
+  const uint64_t input_vertices = loaded.mesh.vertex_count();
+  const uint64_t input_triangles = loaded.mesh.triangle_count();
+  // Only the metrics read the input's geometry afterwards: without them the
+  // engine takes it, and holds the only copy of the mesh.
+  Result<SimplifyResult> simplified = request.metrics
+                                          ? simplify(loaded.mesh, request.options)
+                                          : simplify(std::move(loaded.mesh), request.options);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!simplified.is_ok()) return tool.fail(request.input, simplified.status());
   const SimplifyResult& result = simplified.value();
@@ -360,8 +366,7 @@ int run(const Tool& tool, Request& request) {
       {"schema", kSimplifySchema},
       {"input", request.input},
       {"import", to_json(loaded.import)},
-      {"input_counts",
-       {{"vertices", loaded.mesh.vertex_count()}, {"triangles", loaded.mesh.triangle_count()}}},
+      {"input_counts", {{"vertices", input_vertices}, {"triangles", input_triangles}}},
       {"output_counts",
        {{"vertices", result.mesh.vertex_count()}, {"triangles", result.mesh.triangle_count()}}},
       {"seconds", seconds},
@@ -384,8 +389,7 @@ int run(const Tool& tool, Request& request) {
   if (!ratios.empty()) {
     std::vector<uint64_t> targets;
     for (double r : ratios)
-      targets.push_back(
-          static_cast<uint64_t>(r * static_cast<double>(loaded.mesh.triangle_count())));
+      targets.push_back(static_cast<uint64_t>(r * static_cast<double>(input_triangles)));
     Result<std::vector<TriangleMesh>> lods = extract_lods(*result.pm, targets);
     if (!lods.is_ok()) return tool.fail(request.input, lods.status());
     for (size_t i = 0; i < lods.value().size(); ++i) {
@@ -431,8 +435,8 @@ int run(const Tool& tool, Request& request) {
     tool.print_json(report);
     return 0;
   }
-  std::cout << "input         " << request.input << ": " << loaded.mesh.vertex_count()
-            << " vertices, " << loaded.mesh.triangle_count() << " triangles\n";
+  std::cout << "input         " << request.input << ": " << input_vertices << " vertices, "
+            << input_triangles << " triangles\n";
   std::cout << "simplified    " << result.mesh.vertex_count() << " vertices, "
             << result.mesh.triangle_count() << " triangles in " << seconds << " s ("
             << result.stats.collapses << " collapses, "
