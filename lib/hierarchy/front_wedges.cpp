@@ -8,20 +8,26 @@
 
 namespace lodbake {
 
+Result<std::vector<uint32_t>> hierarchy_split_order(const VertexHierarchy& h,
+                                                    const ProgressiveMesh& pm) {
+  std::vector<uint32_t> order;
+  LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh own, hierarchy_to_progressive_mesh(h, &order));
+  if (own.base.triangles != pm.base.triangles || own.splits.size() != pm.splits.size())
+    return invalid_input("the progressive mesh beside VHIE is not the hierarchy's own");
+  for (size_t k = 0; k < own.splits.size(); ++k) {
+    const VertexSplit& a = own.splits[k];
+    const VertexSplit& b = pm.splits[k];
+    if (a.vs != b.vs || a.vl != b.vl || a.vr != b.vr)
+      return invalid_input("split " + std::to_string(k) +
+                           " of the progressive mesh beside VHIE is not the hierarchy's");
+  }
+  return order;
+}
+
 Result<FrontWedges> FrontWedges::create(const VertexHierarchy& h, const ProgressiveMesh& pm,
                                         const PmWedges& wedges) {
   try {
-    std::vector<uint32_t> order;
-    LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh own, hierarchy_to_progressive_mesh(h, &order));
-    if (own.base.triangles != pm.base.triangles || own.splits.size() != pm.splits.size())
-      return invalid_input("the progressive mesh beside VHIE is not the hierarchy's own");
-    for (size_t k = 0; k < own.splits.size(); ++k) {
-      const VertexSplit& a = own.splits[k];
-      const VertexSplit& b = pm.splits[k];
-      if (a.vs != b.vs || a.vl != b.vl || a.vr != b.vr)
-        return invalid_input("split " + std::to_string(k) +
-                             " of the progressive mesh beside VHIE is not the hierarchy's");
-    }
+    LODBAKE_ASSIGN_OR_RETURN(std::vector<uint32_t> order, hierarchy_split_order(h, pm));
     LODBAKE_ASSIGN_OR_RETURN(CornerWedges lookup, CornerWedges::create(pm, wedges));
     FrontWedges out(h, std::move(lookup));
     const auto roots = static_cast<uint32_t>(h.root_count());

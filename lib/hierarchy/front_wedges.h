@@ -25,6 +25,12 @@
 
 namespace lodbake {
 
+// The hierarchy's split order (hierarchy_to_progressive_mesh()'s) once `pm`
+// is checked to be the hierarchy's own progressive mesh (its base triangles
+// and every split's vs, vl and vr): what a WEDG beside VHIE is made for.
+Result<std::vector<uint32_t>> hierarchy_split_order(const VertexHierarchy& h,
+                                                    const ProgressiveMesh& pm);
+
 class FrontWedges {
  public:
   /// `pm` must be `h`'s own progressive mesh (the VSPL lodbake-hierarchy

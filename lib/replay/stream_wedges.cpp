@@ -10,6 +10,7 @@
 #include <new>
 
 #include "formats/sections/vhie.h"
+#include "lib/hierarchy/front_wedges.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/simplify/wedge_replay.h"
 
@@ -53,17 +54,7 @@ uint32_t carried(const std::array<uint32_t, 6>& a, uint32_t wedge) {
 Result<StreamWedgeTable> stream_wedge_table(const VertexHierarchy& h, const ProgressiveMesh& pm,
                                             const PmWedges& wedges) {
   try {
-    std::vector<uint32_t> order;
-    LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh own, hierarchy_to_progressive_mesh(h, &order));
-    if (own.base.triangles != pm.base.triangles || own.splits.size() != pm.splits.size())
-      return invalid_input("the progressive mesh beside VHIE is not the hierarchy's own");
-    for (size_t k = 0; k < own.splits.size(); ++k) {
-      const VertexSplit& a = own.splits[k];
-      const VertexSplit& b = pm.splits[k];
-      if (a.vs != b.vs || a.vl != b.vl || a.vr != b.vr)
-        return invalid_input("split " + std::to_string(k) +
-                             " of the progressive mesh beside VHIE is not the hierarchy's");
-    }
+    LODBAKE_ASSIGN_OR_RETURN(std::vector<uint32_t> order, hierarchy_split_order(h, pm));
     LODBAKE_ASSIGN_OR_RETURN(WedgeRefiner replay, WedgeRefiner::create(pm, wedges));
     const std::vector<HierarchyNodeId> ids = hierarchy_node_ids(h);
     const auto roots = static_cast<uint32_t>(h.root_count());

@@ -76,6 +76,21 @@ Status load_corner_wedges(const ProgressiveMesh& pm, const Section& wedg,
   return Status::ok();
 }
 
+// VSPL and WEDG beside the hierarchy, and the front rule over them. A PM
+// or WEDG that is not the hierarchy's own is kInvalidInput.
+Result<FrontWedges> load_front_wedges(const Container& decoded, uint32_t group,
+                                      const VertexHierarchy& h, const Section& wedg,
+                                      std::unique_ptr<ProgressiveMesh>* pm,
+                                      std::unique_ptr<PmWedges>* wedges) {
+  LODBAKE_ASSIGN_OR_RETURN(*pm, load_pm(decoded, group));
+  LODBAKE_ASSIGN_OR_RETURN(PmWedges decoded_wedges, decode_wedg(wedg.data, wedg.size));
+  *wedges = std::make_unique<PmWedges>(std::move(decoded_wedges));
+  Result<FrontWedges> front = FrontWedges::create(h, **pm, **wedges);
+  if (!front.is_ok())
+    return Status(front.status().kind(), "section WEDG: " + front.status().message());
+  return front;
+}
+
 Result<StreamStructure> stream_structure(const Container& decoded, uint32_t group,
                                          bool with_wedges) {
   LODBAKE_ASSIGN_OR_RETURN(const Section* rfin, decoded.require(kRfinTag, group));
@@ -87,13 +102,9 @@ Result<StreamStructure> stream_structure(const Container& decoded, uint32_t grou
   out.db = std::make_unique<StreamHierarchy>(std::move(db));
   const Section* wedg = decoded.find(kWedgTag, group);
   if (with_wedges && wedg != nullptr && decoded.find(kVsplTag, group) != nullptr) {
-    LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
-    LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
-    out.wedges = std::make_unique<PmWedges>(std::move(wedges));
-    Result<FrontWedges> front = FrontWedges::create(*out.h, *out.pm, *out.wedges);
-    if (!front.is_ok())
-      return Status(front.status().kind(), "section WEDG: " + front.status().message());
-    out.front.emplace(std::move(front).value());
+    LODBAKE_ASSIGN_OR_RETURN(
+        FrontWedges front, load_front_wedges(decoded, group, *out.h, *wedg, &out.pm, &out.wedges));
+    out.front.emplace(std::move(front));
     Result<StreamWedgeTable> table = stream_wedge_table(*out.h, *out.pm, *out.wedges);
     if (!table.is_ok())
       return Status(table.status().kind(), "section WEDG: " + table.status().message());
@@ -129,13 +140,9 @@ Result<VhierStructure> load_vhier_structure(const Container& decoded, uint32_t g
     out.refiner.emplace(std::move(refiner));
     const Section* wedg = decoded.find(kWedgTag, group);
     if (wedg != nullptr && decoded.find(kVsplTag, group) != nullptr) {
-      LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
-      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
-      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
-      Result<FrontWedges> front = FrontWedges::create(*out.h, *out.pm, *out.wedges);
-      if (!front.is_ok())
-        return Status(front.status().kind(), "section WEDG: " + front.status().message());
-      out.front.emplace(std::move(front).value());
+      LODBAKE_ASSIGN_OR_RETURN(FrontWedges front, load_front_wedges(decoded, group, *out.h, *wedg,
+                                                                    &out.pm, &out.wedges));
+      out.front.emplace(std::move(front));
     }
     return out;
   });
@@ -208,13 +215,9 @@ Result<VtreesStructure> load_vtrees_structure(const Container& decoded, uint32_t
     out.h = std::move(refinement.h);
     const Section* wedg = decoded.find(kWedgTag, group);
     if (wedg != nullptr && decoded.find(kVsplTag, group) != nullptr) {
-      LODBAKE_ASSIGN_OR_RETURN(out.pm, load_pm(decoded, group));
-      LODBAKE_ASSIGN_OR_RETURN(PmWedges wedges, decode_wedg(wedg->data, wedg->size));
-      out.wedges = std::make_unique<PmWedges>(std::move(wedges));
-      Result<FrontWedges> front = FrontWedges::create(*out.h, *out.pm, *out.wedges);
-      if (!front.is_ok())
-        return Status(front.status().kind(), "section WEDG: " + front.status().message());
-      out.front = std::make_unique<FrontWedges>(std::move(front).value());
+      LODBAKE_ASSIGN_OR_RETURN(FrontWedges front, load_front_wedges(decoded, group, *out.h, *wedg,
+                                                                    &out.pm, &out.wedges));
+      out.front = std::make_unique<FrontWedges>(std::move(front));
       Result<VtreesWedgeTable> table = vtrees_wedge_table(*out.trees, *out.pm, *out.wedges);
       if (!table.is_ok())
         return Status(table.status().kind(), "section WEDG: " + table.status().message());

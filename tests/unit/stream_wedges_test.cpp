@@ -20,6 +20,7 @@
 #include "lib/replay/stream_session.h"
 #include "lib/replay/stream_wedge_check.h"
 #include "lib/scene/scene_lods.h"
+#include "tests/unit/asset_hierarchy_support.h"
 #include "tests/unit/asset_test_support.h"
 #include "tests/unit/test_support.h"
 #include "tests/unit/wire_corruption_support.h"
@@ -30,38 +31,10 @@ namespace {
 using test::kAssets;
 using test::read_asset;
 
-struct Built {
-  VertexHierarchy h;
-  std::vector<NodeRefinement> data;
-  ProgressiveMesh pm;
-  PmWedges wedges;
-};
+using Built = test::AssetHierarchy;
 
 std::vector<Built> build_all(const std::string& asset) {
-  const Scene scene = read_asset(kAssets + asset);
-  std::vector<Built> out;
-  Result<std::vector<MeshCornerWedges>> corners = scene_corner_wedges(scene, LoadOptions());
-  EXPECT_TRUE(corners.is_ok()) << corners.status().message();
-  if (!corners.is_ok()) return out;
-  for (const MeshCornerWedges& c : corners.value()) {
-    Result<BalancedHierarchy> h = build_balanced_hierarchy(c.topology, BalancedBuildOptions());
-    EXPECT_TRUE(h.is_ok()) << h.status().message();
-    if (!h.is_ok()) return {};
-    Built b;
-    b.h = std::move(h).value().hierarchy;
-    Result<std::vector<NodeRefinement>> data = compute_refinement_data(b.h, c.topology);
-    Result<ProgressiveMesh> pm = hierarchy_to_progressive_mesh(b.h);
-    EXPECT_TRUE(data.is_ok() && pm.is_ok());
-    if (!data.is_ok() || !pm.is_ok()) return {};
-    b.data = std::move(data).value();
-    b.pm = std::move(pm).value();
-    Result<PmWedges> wedges = wedges_of_pm(b.pm, c);
-    EXPECT_TRUE(wedges.is_ok()) << wedges.status().message();
-    if (!wedges.is_ok()) return {};
-    b.wedges = std::move(wedges).value();
-    out.push_back(std::move(b));
-  }
-  return out;
+  return test::build_asset_hierarchies(read_asset(kAssets + asset));
 }
 
 // The client's corners equal FrontWedges' on the complete hierarchy, one

@@ -25,6 +25,7 @@
 #include "lib/scene/scene_lods.h"
 #include "lib/simplify/wedge_replay.h"
 #include "lib/vtrees/vertex_tree_builder.h"
+#include "tests/unit/asset_hierarchy_support.h"
 #include "tests/unit/asset_test_support.h"
 #include "tests/unit/test_support.h"
 #include "tests/unit/wire_corruption_support.h"
@@ -37,11 +38,7 @@ using test::read_asset;
 
 // One primitive group's structures; kept behind a pointer since the
 // database points at the trees.
-struct Built {
-  VertexHierarchy h;
-  std::vector<NodeRefinement> data;
-  ProgressiveMesh pm;
-  PmWedges wedges;
+struct Built : test::AssetHierarchy {
   VertexTrees trees;
   std::unique_ptr<VtreesDatabase> db;
   std::optional<FrontWedges> front;
@@ -51,28 +48,13 @@ struct Built {
 // `change` edits the wedge table before the database takes it.
 template <typename Change>
 std::vector<std::unique_ptr<Built>> build_all(const std::string& asset, Change change) {
-  const Scene scene = read_asset(kAssets + asset);
   std::vector<std::unique_ptr<Built>> out;
-  Result<std::vector<MeshCornerWedges>> corners = scene_corner_wedges(scene, LoadOptions());
-  EXPECT_TRUE(corners.is_ok()) << corners.status().message();
-  if (!corners.is_ok()) return out;
-  for (const MeshCornerWedges& c : corners.value()) {
-    Result<BalancedHierarchy> h = build_balanced_hierarchy(c.topology, BalancedBuildOptions());
-    EXPECT_TRUE(h.is_ok()) << h.status().message();
-    if (!h.is_ok()) return {};
+  for (test::AssetHierarchy& a : test::build_asset_hierarchies(read_asset(kAssets + asset))) {
     auto b = std::make_unique<Built>();
-    b->h = std::move(h).value().hierarchy;
-    Result<std::vector<NodeRefinement>> data = compute_refinement_data(b->h, c.topology);
-    Result<ProgressiveMesh> pm = hierarchy_to_progressive_mesh(b->h);
-    EXPECT_TRUE(data.is_ok() && pm.is_ok());
-    if (!data.is_ok() || !pm.is_ok()) return {};
-    b->data = std::move(data).value();
-    b->pm = std::move(pm).value();
-    Result<PmWedges> wedges = wedges_of_pm(b->pm, c);
+    static_cast<test::AssetHierarchy&>(*b) = std::move(a);
     Result<VertexTrees> trees = build_vertex_trees(b->pm);
-    EXPECT_TRUE(wedges.is_ok() && trees.is_ok());
-    if (!wedges.is_ok() || !trees.is_ok()) return {};
-    b->wedges = std::move(wedges).value();
+    EXPECT_TRUE(trees.is_ok());
+    if (!trees.is_ok()) return {};
     b->trees = std::move(trees).value();
     Result<VtreesDatabase> db = VtreesDatabase::create(b->trees, b->h, b->data);
     Result<VtreesWedgeTable> table = vtrees_wedge_table(b->trees, b->pm, b->wedges);

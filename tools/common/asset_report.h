@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 
 #include "formats/sections/meta.h"
 #include "formats/support/file_io.h"
@@ -65,6 +66,21 @@ AssetRun asset_run(const Request& request, const char* schema, const char* progr
   run.schema = schema;
   run.progress = progress;
   return run;
+}
+
+// Sets run->on_scene to read what every mesh's build needs from the scene
+// once: `read(scene)`'s value into *value, or its error into *error (which
+// the build then returns, so that the run stops with it).
+template <typename T, typename Read>
+void read_on_scene(AssetRun* run, Read read, T* value, Status* error) {
+  run->on_scene = [read, value, error](const Scene& scene) {
+    Result<T> all = read(scene);
+    if (all.is_ok()) {
+      *value = std::move(all).value();
+    } else {
+      *error = all.status();
+    }
+  };
 }
 
 // A builder's whole run over an asset (`bytes`: the input's content):

@@ -160,14 +160,9 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   run.attributes = true;
   std::map<uint32_t, MeshCornerWedges> corners;
   Status read_corners = Status::ok();
-  run.on_scene = [&](const Scene& scene) {
-    Result<std::map<uint32_t, MeshCornerWedges>> all = fan_asset_corners(request, scene);
-    if (all.is_ok()) {
-      corners = std::move(all).value();
-    } else {
-      read_corners = all.status();
-    }
-  };
+  read_on_scene(
+      &run, [&](const Scene& scene) { return fan_asset_corners(request, scene); }, &corners,
+      &read_corners);
   return run_asset_build(
       tool, run, fan_meta(request), bytes,
       [&](uint32_t scene_mesh, const TriangleMesh& mesh) -> Result<MeshSections> {

@@ -67,14 +67,9 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   Status read_corners = Status::ok();
   if (request.dage || request.vtre) {
     run.partial_note = kHierarchyPmOnly;
-    run.on_scene = [&](const Scene& scene) {
-      Result<std::map<uint32_t, MeshCornerWedges>> all = asset_corner_wedges(request, scene);
-      if (all.is_ok()) {
-        corners = std::move(all).value();
-      } else {
-        read_corners = all.status();
-      }
-    };
+    read_on_scene(
+        &run, [&](const Scene& scene) { return asset_corner_wedges(request, scene); }, &corners,
+        &read_corners);
   }
   MetaSection meta = make_meta("lodbake-hierarchy");
   meta.options = hierarchy_meta_options(request);

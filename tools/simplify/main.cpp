@@ -151,14 +151,9 @@ int run_asset_pm(const Tool& tool, Request& request, const Bytes& bytes) {
   // is read.
   std::map<uint32_t, MeshPm> pms;
   Status recorded = Status::ok();
-  run.on_scene = [&](const Scene& scene) {
-    Result<std::map<uint32_t, MeshPm>> all = asset_progressive_meshes(request, scene);
-    if (all.is_ok()) {
-      pms = std::move(all).value();
-    } else {
-      recorded = all.status();
-    }
-  };
+  read_on_scene(
+      &run, [&](const Scene& scene) { return asset_progressive_meshes(request, scene); }, &pms,
+      &recorded);
   return run_asset_build(
       tool, run, std::move(meta), bytes,
       [&](uint32_t scene_mesh, const TriangleMesh&) -> Result<MeshSections> {

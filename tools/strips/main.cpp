@@ -111,14 +111,12 @@ int run_asset(const Tool& tool, const Request& request, const Bytes& bytes) {
   Status read_corners = Status::ok();
   if (!request.strips_only) {
     run.partial_note = kStripsPmOnly;
-    run.on_scene = [&](const Scene& scene) {
-      Result<AssetCorners> all = read_asset_corners(scene, request.repair, request.strict);
-      if (all.is_ok()) {
-        corners = std::move(all).value();
-      } else {
-        read_corners = all.status();
-      }
-    };
+    read_on_scene(
+        &run,
+        [&](const Scene& scene) {
+          return read_asset_corners(scene, request.repair, request.strict);
+        },
+        &corners, &read_corners);
   }
   return run_asset_build(
       tool, run, strips_meta(request), bytes,
