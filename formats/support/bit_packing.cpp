@@ -9,14 +9,7 @@
 namespace lodbake {
 
 int bits_for_count(uint64_t count) {
-  if (count <= 1) return 0;
-  uint64_t max_index = count - 1;
-  int bits = 0;
-  while (max_index != 0) {
-    ++bits;
-    max_index >>= 1;
-  }
-  return bits;
+  return count <= 1 ? 0 : bit_width(count - 1);
 }
 
 uint64_t packed_size_bytes(uint64_t values, int bits) {

@@ -10,6 +10,14 @@
 
 namespace lodbake {
 
+/// Bits of `v` up to its highest set bit: 0 for 0, else floor(log2(v)) + 1.
+inline int bit_width(uint64_t v) {
+  int w = 0;
+  for (; v != 0; v >>= 1)
+    ++w;
+  return w;
+}
+
 /// Bits needed to store any index in [0, count): 0 for count <= 1, else
 /// ceil(log2(count)) = bit width of (count - 1). Results are in [0, 64].
 int bits_for_count(uint64_t count);

@@ -29,13 +29,6 @@
 namespace lodbake {
 namespace {
 
-int bit_width(uint64_t v) {
-  int w = 0;
-  for (; v != 0; v >>= 1)
-    ++w;
-  return w;
-}
-
 // a is b or an ancestor of b (same tree, a's heap id a prefix of b's).
 bool is_prefix(const HierarchyNodeId& a, const HierarchyNodeId& b) {
   const int wa = bit_width(a.heap), wb = bit_width(b.heap);

@@ -115,13 +115,6 @@ bool valid_widths(const StreamIdWidths& widths, uint32_t root_count) {
          widths.node_bits >= 1 && widths.node_bits <= 64;
 }
 
-int bit_width(uint64_t v) {
-  int w = 0;
-  for (; v != 0; v >>= 1)
-    ++w;
-  return w;
-}
-
 // Exp-Golomb (order 0) of v < 2^32 - 1: bit_width(v + 1) - 1 zero bits,
 // then v + 1 in bit_width(v + 1) bits, most significant first so that the
 // leading 1 ends the zeros.

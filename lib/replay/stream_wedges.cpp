@@ -10,19 +10,13 @@
 #include <new>
 
 #include "formats/sections/vhie.h"
+#include "formats/support/bit_packing.h"
 #include "lib/hierarchy/front_wedges.h"
 #include "lib/hierarchy/hierarchy_to_pm.h"
 #include "lib/simplify/wedge_replay.h"
 
 namespace lodbake {
 namespace {
-
-int bit_width(uint64_t v) {
-  int w = 0;
-  for (; v != 0; v >>= 1)
-    ++w;
-  return w;
-}
 
 uint32_t depth_of(const HierarchyNodeId& id) {
   return static_cast<uint32_t>(bit_width(id.heap) - 1);
