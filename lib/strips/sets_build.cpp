@@ -14,6 +14,9 @@
 //   are the next arc's start - 1, and the last arc's is the last LoD.
 // - Node ids are given in order of creation within a strip; arcs in order
 //   of LoD. Vertex-to-node lookups scan the few strips each vertex is in.
+// - The working sequences hold node ids, not vertices: within a strip a
+//   node is one vertex, so the compaction (which only compares ids) is the
+//   same, and recording needs no vertex-to-node lookup per index.
 // - Threads: a strip's sequences, nodes, arcs and beginnings depend on its
 //   own indices and the contractions alone, and the graph lists them strip
 //   by strip. So consecutive ranges of strips are built apart (each replays
@@ -34,6 +37,8 @@ namespace lodbake {
 namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
+// In a sequence, the node a contraction's kept vertex gets if it survives.
+constexpr uint32_t kNewNode = 0xFFFFFFFEu;
 
 // The graph of strips [range.begin, range.end): its strip s is the input's
 // range.begin + s.
@@ -49,8 +54,11 @@ class Builder {
     last_beginning_.assign(strip_count, kNone);
     vertex_nodes_.resize(pm_.full_vertex_count());
     for (uint32_t s = 0; s < strip_count; ++s) {
-      sequences_[s].assign(strips_.indices.begin() + strips_.first[range_.begin + s],
-                           strips_.indices.begin() + strips_.first[range_.begin + s + 1]);
+      std::vector<uint32_t>& q = sequences_[s];
+      q.assign(strips_.indices.begin() + strips_.first[range_.begin + s],
+               strips_.indices.begin() + strips_.first[range_.begin + s + 1]);
+      for (uint32_t& v : q)
+        v = node_of(s, v);
       record(s, 0);
     }
     const uint32_t base = static_cast<uint32_t>(pm_.base.vertex_count());
@@ -83,23 +91,38 @@ class Builder {
     return node;
   }
 
+  // b's node in strip s, or kNone when b has none there yet.
+  uint32_t find_node(uint32_t strip, uint32_t vertex) const {
+    for (const auto& [s, node] : vertex_nodes_[vertex])
+      if (s == strip) return node;
+    return kNone;
+  }
+
   void contract(uint32_t lod, uint32_t a, uint32_t b) {
     // The list is moved out: a never appears again, and b's list grows.
     std::vector<std::pair<uint32_t, uint32_t>> entries = std::move(vertex_nodes_[a]);
     vertex_nodes_[a] = {};
-    for (const auto& entry : entries) {
-      const uint32_t s = entry.first;
+    for (const auto& [s, from] : entries) {
       std::vector<uint32_t>& q = sequences_[s];
+      // b's node is created only if b survives the compaction (as the first
+      // record of b in this strip would); until then kNewNode stands for it.
+      const uint32_t existing = find_node(s, b);
+      const uint32_t to = existing == kNone ? kNewNode : existing;
       bool found = false;
       for (uint32_t& v : q) {
-        if (v == a) {
-          v = b;
+        if (v == from) {
+          v = to;
           found = true;
         }
       }
       if (!found) continue;  // a left this strip in an earlier compaction
       const size_t before = q.size();
       compact_strip(&q);
+      if (to == kNewNode) {
+        const uint32_t created =
+            std::find(q.begin(), q.end(), kNewNode) == q.end() ? kNone : node_of(s, b);
+        if (created != kNone) std::replace(q.begin(), q.end(), kNewNode, created);
+      }
       stats_->removed_indices += before - q.size();
       ++stats_->strip_updates;
       record(s, lod);
@@ -110,19 +133,15 @@ class Builder {
   // they differ from the last recorded ones.
   void record(uint32_t s, uint32_t lod) {
     const std::vector<uint32_t>& q = sequences_[s];
-    const uint32_t first = q.empty() ? kNone : node_of(s, q[0]);
+    const uint32_t first = q.empty() ? kNone : q[0];
     if (first != last_beginning_[s]) {
       beginnings_.push_back({s, lod, first});
       last_beginning_[s] = first;
     }
     if (q.empty()) return;
-    nodes_.resize(q.size());
     touched_.clear();
-    for (size_t i = 0; i < q.size(); ++i) {
-      const uint32_t node = node_of(s, q[i]);
-      nodes_[i] = node;
+    for (uint32_t node : q)
       if (count_[node]++ == 0) touched_.push_back(node);
-    }
     uint32_t running = 0;
     for (uint32_t node : touched_) {
       offset_[node] = running;
@@ -130,7 +149,7 @@ class Builder {
     }
     runs_.resize(q.size());
     for (size_t i = 0; i < q.size(); ++i)
-      runs_[offset_[nodes_[i]]++] = i + 1 < q.size() ? nodes_[i + 1] : kNone;
+      runs_[offset_[q[i]]++] = i + 1 < q.size() ? q[i + 1] : kNone;
     for (uint32_t node : touched_) {
       const uint32_t count = count_[node];
       const uint32_t begin = offset_[node] - count;
@@ -223,7 +242,7 @@ class Builder {
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
   std::vector<uint32_t> node_strip_, node_vertex_, node_last_arc_;
   std::vector<uint32_t> count_, offset_;  // scratch per node, zero between records
-  std::vector<uint32_t> nodes_, runs_, touched_;
+  std::vector<uint32_t> runs_, touched_;
   std::vector<Arc> arcs_;
   std::vector<uint32_t> successors_;
   std::vector<Beginning> beginnings_;
