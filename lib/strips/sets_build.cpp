@@ -59,7 +59,7 @@ class Builder {
                strips_.indices.begin() + strips_.first[range_.begin + s + 1]);
       for (uint32_t& v : q)
         v = node_of(s, v);
-      record(s, 0);
+      record(s, 0, nullptr);
     }
     const uint32_t base = static_cast<uint32_t>(pm_.base.vertex_count());
     const uint32_t splits = static_cast<uint32_t>(pm_.splits.size());
@@ -87,6 +87,7 @@ class Builder {
     node_last_arc_.push_back(kNone);
     count_.push_back(0);
     offset_.push_back(0);
+    selected_.push_back(0);
     vertex_nodes_[vertex].push_back({strip, node});
     return node;
   }
@@ -108,30 +109,37 @@ class Builder {
       // record of b in this strip would); until then kNewNode stands for it.
       const uint32_t existing = find_node(s, b);
       const uint32_t to = existing == kNone ? kNewNode : existing;
+      // The nodes whose successor runs may change: b's, those before an
+      // occurrence of a, and what the compaction notes.
+      changed_.clear();
       bool found = false;
-      for (uint32_t& v : q) {
-        if (v == from) {
-          v = to;
+      for (size_t i = 0; i < q.size(); ++i) {
+        if (q[i] == from) {
+          q[i] = to;
           found = true;
+          if (i > 0) changed_.push_back(q[i - 1]);
         }
       }
       if (!found) continue;  // a left this strip in an earlier compaction
       const size_t before = q.size();
-      compact_strip(&q);
-      if (to == kNewNode) {
-        const uint32_t created =
-            std::find(q.begin(), q.end(), kNewNode) == q.end() ? kNone : node_of(s, b);
-        if (created != kNone) std::replace(q.begin(), q.end(), kNewNode, created);
+      compact_strip(&q, &changed_);
+      uint32_t kept = to;
+      if (to == kNewNode && std::find(q.begin(), q.end(), kNewNode) != q.end()) {
+        kept = node_of(s, b);
+        std::replace(q.begin(), q.end(), kNewNode, kept);
       }
+      changed_.push_back(kept);
       stats_->removed_indices += before - q.size();
       ++stats_->strip_updates;
-      record(s, lod);
+      record(s, lod, &changed_);
     }
   }
 
   // Records strip s's sequence at `lod`: a new beginning and new arcs where
-  // they differ from the last recorded ones.
-  void record(uint32_t s, uint32_t lod) {
+  // they differ from the last recorded ones. Every node of the strip holds
+  // its current run as its last arc after each record, so only the nodes in
+  // `changed` (all when null) can need a new arc.
+  void record(uint32_t s, uint32_t lod, const std::vector<uint32_t>* changed) {
     const std::vector<uint32_t>& q = sequences_[s];
     const uint32_t first = q.empty() ? kNone : q[0];
     if (first != last_beginning_[s]) {
@@ -139,17 +147,15 @@ class Builder {
       last_beginning_[s] = first;
     }
     if (q.empty()) return;
-    touched_.clear();
-    for (uint32_t node : q)
-      if (count_[node]++ == 0) touched_.push_back(node);
-    uint32_t running = 0;
-    for (uint32_t node : touched_) {
-      offset_[node] = running;
-      running += count_[node];
+    if (changed == nullptr) {
+      count_runs(q, [](uint32_t) { return true; });
+    } else {
+      for (uint32_t node : *changed)
+        if (node < kNewNode) selected_[node] = 1;
+      count_runs(q, [&](uint32_t node) { return selected_[node] != 0; });
+      for (uint32_t node : *changed)
+        if (node < kNewNode) selected_[node] = 0;
     }
-    runs_.resize(q.size());
-    for (size_t i = 0; i < q.size(); ++i)
-      runs_[offset_[q[i]]++] = i + 1 < q.size() ? q[i + 1] : kNone;
     for (uint32_t node : touched_) {
       const uint32_t count = count_[node];
       const uint32_t begin = offset_[node] - count;
@@ -163,6 +169,28 @@ class Builder {
       arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size()), count});
       successors_.insert(successors_.end(), runs_.begin() + begin, runs_.begin() + begin + count);
     }
+  }
+
+  // The successor runs of q's nodes that pass `wanted`: touched_ lists them
+  // (in order of first occurrence), node n's run is runs_[offset_[n] -
+  // count_[n], offset_[n]).
+  template <typename Wanted>
+  void count_runs(const std::vector<uint32_t>& q, Wanted wanted) {
+    touched_.clear();
+    size_t total = 0;
+    for (uint32_t node : q) {
+      if (!wanted(node)) continue;
+      ++total;
+      if (count_[node]++ == 0) touched_.push_back(node);
+    }
+    uint32_t running = 0;
+    for (uint32_t node : touched_) {
+      offset_[node] = running;
+      running += count_[node];
+    }
+    runs_.resize(total);
+    for (size_t i = 0; i < q.size(); ++i)
+      if (wanted(q[i])) runs_[offset_[q[i]]++] = i + 1 < q.size() ? q[i + 1] : kNone;
   }
 
   SetsGraph assemble(uint32_t lod_count) {
@@ -242,7 +270,8 @@ class Builder {
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
   std::vector<uint32_t> node_strip_, node_vertex_, node_last_arc_;
   std::vector<uint32_t> count_, offset_;  // scratch per node, zero between records
-  std::vector<uint32_t> runs_, touched_;
+  std::vector<uint8_t> selected_;         // scratch per node, zero between records
+  std::vector<uint32_t> runs_, touched_, changed_;
   std::vector<Arc> arcs_;
   std::vector<uint32_t> successors_;
   std::vector<Beginning> beginnings_;

@@ -26,18 +26,20 @@ bool degenerate(uint32_t a, uint32_t b, uint32_t c) {
   return !is_real_triangle(a, b, c);
 }
 
-}  // namespace
-
-void compact_strip(std::vector<uint32_t>* sequence) {
+// Without `changed`, the calls that note ids compile away.
+template <bool kNote>
+void compact(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed) {
   std::vector<uint32_t>& s = *sequence;
   // Tail: keep up to the last non-degenerate window.
   size_t n = s.size();
   while (n >= 3 && degenerate(s[n - 3], s[n - 2], s[n - 1]))
     --n;
   if (n < 3) {
+    if (kNote) changed->insert(changed->end(), s.begin(), s.end());
     s.clear();
     return;
   }
+  if (kNote && n < s.size()) changed->insert(changed->end(), s.begin() + (n - 1), s.end());
   // The sequence is s[0, w) followed by s[r, n); the pair considered is
   // (s[r], s[r + 1]).
   size_t w = 0, r = 0;
@@ -52,6 +54,11 @@ void compact_strip(std::vector<uint32_t>* sequence) {
                              (!(l2 && r2) || degenerate(p2, p1, q2)) &&
                              (!(l1 && r3) || degenerate(p1, q2, q3));
       if (removable) {
+        if (kNote) {
+          changed->push_back(x);
+          changed->push_back(y);
+          if (l1) changed->push_back(p1);
+        }
         r += 2;
         for (int k = 0; k < 3 && w > 0; ++k)
           s[--r] = s[--w];
@@ -61,6 +68,16 @@ void compact_strip(std::vector<uint32_t>* sequence) {
     s[w++] = s[r++];
   }
   s.resize(w);
+}
+
+}  // namespace
+
+void compact_strip(std::vector<uint32_t>* sequence) {
+  compact<false>(sequence, nullptr);
+}
+
+void compact_strip(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed) {
+  compact<true>(sequence, changed);
 }
 
 }  // namespace lodbake

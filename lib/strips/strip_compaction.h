@@ -16,4 +16,11 @@ namespace lodbake {
 /// A sequence without any non-degenerate window becomes empty. Linear time.
 void compact_strip(std::vector<uint32_t>* sequence);
 
+/// The same compaction, appending to `changed` (which it does not clear) a
+/// superset of the ids whose successor runs it may change: every removed
+/// id, and every id that is left before a removal. An id not appended has
+/// the same successor at each of its occurrences (lib/strips/sets_build.cpp
+/// re-records only the ids appended).
+void compact_strip(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed);
+
 }  // namespace lodbake
