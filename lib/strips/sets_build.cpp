@@ -77,6 +77,16 @@ class Builder {
   struct Arc {
     uint32_t node, start, succ_begin, succ_count;
   };
+  // What a record needs of a node, side by side (one cache line or two
+  // instead of the far-apart arc and successors): its last arc's run, by
+  // length (0: no arc yet), start in successors_ and first two successors
+  // (most runs have one or two), and scratch that is zero between records.
+  struct Node {
+    uint32_t last_count = 0, last_succ = 0;
+    uint32_t last_head[2] = {kNone, kNone};
+    uint32_t count = 0, offset = 0;
+    uint8_t selected = 0;
+  };
 
   uint32_t node_of(uint32_t strip, uint32_t vertex) {
     for (const auto& [s, node] : vertex_nodes_[vertex])
@@ -84,10 +94,7 @@ class Builder {
     const uint32_t node = static_cast<uint32_t>(node_strip_.size());
     node_strip_.push_back(strip);
     node_vertex_.push_back(vertex);
-    node_last_arc_.push_back(kNone);
-    count_.push_back(0);
-    offset_.push_back(0);
-    selected_.push_back(0);
+    node_.push_back(Node());
     vertex_nodes_[vertex].push_back({strip, node});
     return node;
   }
@@ -151,29 +158,32 @@ class Builder {
       count_runs(q, [](uint32_t) { return true; });
     } else {
       for (uint32_t node : *changed)
-        if (node < kNewNode) selected_[node] = 1;
-      count_runs(q, [&](uint32_t node) { return selected_[node] != 0; });
+        if (node < kNewNode) node_[node].selected = 1;
+      count_runs(q, [&](uint32_t node) { return node_[node].selected != 0; });
       for (uint32_t node : *changed)
-        if (node < kNewNode) selected_[node] = 0;
+        if (node < kNewNode) node_[node].selected = 0;
     }
     for (uint32_t node : touched_) {
-      const uint32_t count = count_[node];
-      const uint32_t begin = offset_[node] - count;
-      count_[node] = 0;
-      const uint32_t last = node_last_arc_[node];
-      if (last != kNone && arcs_[last].succ_count == count &&
-          std::equal(runs_.begin() + begin, runs_.begin() + begin + count,
-                     successors_.begin() + arcs_[last].succ_begin))
+      Node& nd = node_[node];
+      const uint32_t count = nd.count;
+      const uint32_t* run = runs_.data() + (nd.offset - count);
+      nd.count = 0;
+      if (nd.last_count == count && run[0] == nd.last_head[0] &&
+          (count == 1 || run[1] == nd.last_head[1]) &&
+          (count <= 2 || std::equal(run + 2, run + count, successors_.begin() + nd.last_succ + 2)))
         continue;
-      node_last_arc_[node] = static_cast<uint32_t>(arcs_.size());
+      nd.last_count = count;
+      nd.last_succ = static_cast<uint32_t>(successors_.size());
+      nd.last_head[0] = run[0];
+      nd.last_head[1] = count > 1 ? run[1] : kNone;
       arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size()), count});
-      successors_.insert(successors_.end(), runs_.begin() + begin, runs_.begin() + begin + count);
+      successors_.insert(successors_.end(), run, run + count);
     }
   }
 
   // The successor runs of q's nodes that pass `wanted`: touched_ lists them
-  // (in order of first occurrence), node n's run is runs_[offset_[n] -
-  // count_[n], offset_[n]).
+  // (in order of first occurrence), node n's run is runs_[node_[n].offset -
+  // node_[n].count, node_[n].offset).
   template <typename Wanted>
   void count_runs(const std::vector<uint32_t>& q, Wanted wanted) {
     touched_.clear();
@@ -181,16 +191,16 @@ class Builder {
     for (uint32_t node : q) {
       if (!wanted(node)) continue;
       ++total;
-      if (count_[node]++ == 0) touched_.push_back(node);
+      if (node_[node].count++ == 0) touched_.push_back(node);
     }
     uint32_t running = 0;
     for (uint32_t node : touched_) {
-      offset_[node] = running;
-      running += count_[node];
+      node_[node].offset = running;
+      running += node_[node].count;
     }
     runs_.resize(total);
     for (size_t i = 0; i < q.size(); ++i)
-      if (wanted(q[i])) runs_[offset_[q[i]]++] = i + 1 < q.size() ? q[i + 1] : kNone;
+      if (wanted(q[i])) runs_[node_[q[i]].offset++] = i + 1 < q.size() ? q[i + 1] : kNone;
   }
 
   SetsGraph assemble(uint32_t lod_count) {
@@ -268,9 +278,8 @@ class Builder {
   std::vector<std::vector<uint32_t>> sequences_;
   std::vector<uint32_t> last_beginning_;
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
-  std::vector<uint32_t> node_strip_, node_vertex_, node_last_arc_;
-  std::vector<uint32_t> count_, offset_;  // scratch per node, zero between records
-  std::vector<uint8_t> selected_;         // scratch per node, zero between records
+  std::vector<uint32_t> node_strip_, node_vertex_;
+  std::vector<Node> node_;
   std::vector<uint32_t> runs_, touched_, changed_;
   std::vector<Arc> arcs_;
   std::vector<uint32_t> successors_;
