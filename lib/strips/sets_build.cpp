@@ -50,14 +50,18 @@ class Builder {
 
   SetsGraph run() {
     const size_t strip_count = range_.end - range_.begin;
-    sequences_.resize(strip_count);
+    // Sequences only shrink: each keeps its strip's slot in one pool.
+    const uint32_t pool_begin = strips_.first[range_.begin];
+    pool_.assign(strips_.indices.begin() + pool_begin,
+                 strips_.indices.begin() + strips_.first[range_.end]);
+    sequence_first_.resize(strip_count);
+    sequence_size_.resize(strip_count);
     last_beginning_.assign(strip_count, kNone);
     vertex_nodes_.resize(pm_.full_vertex_count());
     for (uint32_t s = 0; s < strip_count; ++s) {
-      std::vector<uint32_t>& q = sequences_[s];
-      q.assign(strips_.indices.begin() + strips_.first[range_.begin + s],
-               strips_.indices.begin() + strips_.first[range_.begin + s + 1]);
-      for (uint32_t& v : q)
+      sequence_first_[s] = strips_.first[range_.begin + s] - pool_begin;
+      sequence_size_[s] = strips_.first[range_.begin + s + 1] - strips_.first[range_.begin + s];
+      for (uint32_t& v : sequence(s))
         v = node_of(s, v);
       record(s, 0, nullptr);
     }
@@ -68,8 +72,8 @@ class Builder {
       contract(lod, base + k, pm_.splits[k].vs);
     }
     stats_->contractions = splits;
-    for (const std::vector<uint32_t>& q : sequences_)
-      stats_->emptied_strips += q.empty();
+    for (uint32_t size : sequence_size_)
+      stats_->emptied_strips += size == 0;
     return assemble(splits + 1);
   }
 
@@ -77,6 +81,17 @@ class Builder {
   struct Arc {
     uint32_t node, start, succ_begin, succ_count;
   };
+  // A strip's current sequence in pool_.
+  struct Sequence {
+    uint32_t* data;
+    size_t count;
+    uint32_t* begin() const { return data; }
+    uint32_t* end() const { return data + count; }
+    size_t size() const { return count; }
+    bool empty() const { return count == 0; }
+    uint32_t& operator[](size_t i) const { return data[i]; }
+  };
+  Sequence sequence(uint32_t s) { return {pool_.data() + sequence_first_[s], sequence_size_[s]}; }
   // What a record needs of a node, side by side (one cache line or two
   // instead of the far-apart arc and successors): its last arc's run, by
   // length (0: no arc yet), start in successors_ and first two successors
@@ -111,7 +126,7 @@ class Builder {
     std::vector<std::pair<uint32_t, uint32_t>> entries = std::move(vertex_nodes_[a]);
     vertex_nodes_[a] = {};
     for (const auto& [s, from] : entries) {
-      std::vector<uint32_t>& q = sequences_[s];
+      const Sequence q = sequence(s);
       // b's node is created only if b survives the compaction (as the first
       // record of b in this strip would); until then kNewNode stands for it.
       const uint32_t existing = find_node(s, b);
@@ -129,14 +144,15 @@ class Builder {
       }
       if (!found) continue;  // a left this strip in an earlier compaction
       const size_t before = q.size();
-      compact_strip(&q, &changed_);
+      sequence_size_[s] = static_cast<uint32_t>(compact_strip(q.data, q.size(), &changed_));
+      const Sequence kept_q = sequence(s);
       uint32_t kept = to;
-      if (to == kNewNode && std::find(q.begin(), q.end(), kNewNode) != q.end()) {
+      if (to == kNewNode && std::find(kept_q.begin(), kept_q.end(), kNewNode) != kept_q.end()) {
         kept = node_of(s, b);
-        std::replace(q.begin(), q.end(), kNewNode, kept);
+        std::replace(kept_q.begin(), kept_q.end(), kNewNode, kept);
       }
       changed_.push_back(kept);
-      stats_->removed_indices += before - q.size();
+      stats_->removed_indices += before - kept_q.size();
       ++stats_->strip_updates;
       record(s, lod, &changed_);
     }
@@ -147,7 +163,7 @@ class Builder {
   // its current run as its last arc after each record, so only the nodes in
   // `changed` (all when null) can need a new arc.
   void record(uint32_t s, uint32_t lod, const std::vector<uint32_t>* changed) {
-    const std::vector<uint32_t>& q = sequences_[s];
+    const Sequence q = sequence(s);
     const uint32_t first = q.empty() ? kNone : q[0];
     if (first != last_beginning_[s]) {
       beginnings_.push_back({s, lod, first});
@@ -185,7 +201,7 @@ class Builder {
   // (in order of first occurrence), node n's run is runs_[node_[n].offset -
   // node_[n].count, node_[n].offset).
   template <typename Wanted>
-  void count_runs(const std::vector<uint32_t>& q, Wanted wanted) {
+  void count_runs(const Sequence& q, Wanted wanted) {
     touched_.clear();
     size_t total = 0;
     for (uint32_t node : q) {
@@ -275,7 +291,8 @@ class Builder {
   const IndexRange range_;
   const ProgressiveMesh& pm_;
   SetsBuildStats* stats_;
-  std::vector<std::vector<uint32_t>> sequences_;
+  std::vector<uint32_t> pool_;  // the strips' sequences (node ids)
+  std::vector<uint32_t> sequence_first_, sequence_size_;
   std::vector<uint32_t> last_beginning_;
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
   std::vector<uint32_t> node_strip_, node_vertex_;

@@ -28,18 +28,16 @@ bool degenerate(uint32_t a, uint32_t b, uint32_t c) {
 
 // Without `changed`, the calls that note ids compile away.
 template <bool kNote>
-void compact(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed) {
-  std::vector<uint32_t>& s = *sequence;
+size_t compact(uint32_t* s, size_t size, std::vector<uint32_t>* changed) {
   // Tail: keep up to the last non-degenerate window.
-  size_t n = s.size();
+  size_t n = size;
   while (n >= 3 && degenerate(s[n - 3], s[n - 2], s[n - 1]))
     --n;
   if (n < 3) {
-    if (kNote) changed->insert(changed->end(), s.begin(), s.end());
-    s.clear();
-    return;
+    if (kNote) changed->insert(changed->end(), s, s + size);
+    return 0;
   }
-  if (kNote && n < s.size()) changed->insert(changed->end(), s.begin() + (n - 1), s.end());
+  if (kNote && n < size) changed->insert(changed->end(), s + (n - 1), s + size);
   // The sequence is s[0, w) followed by s[r, n); the pair considered is
   // (s[r], s[r + 1]).
   size_t w = 0, r = 0;
@@ -67,17 +65,21 @@ void compact(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed) {
     }
     s[w++] = s[r++];
   }
-  s.resize(w);
+  return w;
 }
 
 }  // namespace
 
 void compact_strip(std::vector<uint32_t>* sequence) {
-  compact<false>(sequence, nullptr);
+  sequence->resize(compact<false>(sequence->data(), sequence->size(), nullptr));
 }
 
 void compact_strip(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed) {
-  compact<true>(sequence, changed);
+  sequence->resize(compact<true>(sequence->data(), sequence->size(), changed));
+}
+
+size_t compact_strip(uint32_t* sequence, size_t size, std::vector<uint32_t>* changed) {
+  return compact<true>(sequence, size, changed);
 }
 
 }  // namespace lodbake

@@ -3,6 +3,7 @@
 // 2006, section 3.2).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -22,5 +23,8 @@ void compact_strip(std::vector<uint32_t>* sequence);
 /// the same successor at each of its occurrences (lib/strips/sets_build.cpp
 /// re-records only the ids appended).
 void compact_strip(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed);
+
+/// The same on sequence[0, size), in place; returns the new size.
+size_t compact_strip(uint32_t* sequence, size_t size, std::vector<uint32_t>* changed);
 
 }  // namespace lodbake
