@@ -100,7 +100,6 @@ class Builder {
     uint32_t last_count = 0, last_succ = 0;
     uint32_t last_head[2] = {kNone, kNone};
     uint32_t count = 0, offset = 0;
-    uint8_t selected = 0;
   };
 
   uint32_t node_of(uint32_t strip, uint32_t vertex) {
@@ -110,6 +109,7 @@ class Builder {
     node_strip_.push_back(strip);
     node_vertex_.push_back(vertex);
     node_.push_back(Node());
+    selected_.push_back(0);
     vertex_nodes_[vertex].push_back({strip, node});
     return node;
   }
@@ -174,10 +174,10 @@ class Builder {
       count_runs(q, [](uint32_t) { return true; });
     } else {
       for (uint32_t node : *changed)
-        if (node < kNewNode) node_[node].selected = 1;
-      count_runs(q, [&](uint32_t node) { return node_[node].selected != 0; });
+        if (node < kNewNode) selected_[node] = 1;
+      count_runs(q, [&](uint32_t node) { return selected_[node] != 0; });
       for (uint32_t node : *changed)
-        if (node < kNewNode) node_[node].selected = 0;
+        if (node < kNewNode) selected_[node] = 0;
     }
     for (uint32_t node : touched_) {
       Node& nd = node_[node];
@@ -297,6 +297,9 @@ class Builder {
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
   std::vector<uint32_t> node_strip_, node_vertex_;
   std::vector<Node> node_;
+  // Per node, scratch zero between records: one byte, as it is read for
+  // every index of a changed strip.
+  std::vector<uint8_t> selected_;
   std::vector<uint32_t> runs_, touched_, changed_;
   std::vector<Arc> arcs_;
   std::vector<uint32_t> successors_;
