@@ -16,7 +16,13 @@
 //   of LoD. Vertex-to-node lookups scan the few strips each vertex is in.
 // - The working sequences hold node ids, not vertices: within a strip a
 //   node is one vertex, so the compaction (which only compares ids) is the
-//   same, and recording needs no vertex-to-node lookup per index.
+//   same, and recording needs no vertex-to-node lookup per index. They sit
+//   in one pool, each in its input strip's slot (they only shrink).
+// - After a contraction only some nodes can have a new successor run: b's,
+//   those before an occurrence of a, and those the compaction removes or
+//   leaves before a removal; every other node's last arc is still its run.
+//   So a record compares those alone (on the dragon, about 4 of a changed
+//   strip's 50 indices), against the last run kept beside the node.
 // - Threads: a strip's sequences, nodes, arcs and beginnings depend on its
 //   own indices and the contractions alone, and the graph lists them strip
 //   by strip. So consecutive ranges of strips are built apart (each replays
