@@ -69,10 +69,11 @@ Status prepare_mesh(const LoadOptions& options, LoadedMesh* loaded) {
   }
   if (repair) {
     RepairReport report;
-    LODBAKE_RETURN_IF_ERROR(repair_mesh(loaded->mesh, &report));
+    MeshCheckReport after;
+    LODBAKE_RETURN_IF_ERROR(repair_mesh(loaded->mesh, &report, &after));
     loaded->repair = report;
     loaded->repaired_by_default = !options.repair;
-    loaded->check_after_repair = check_mesh(loaded->mesh);
+    loaded->check_after_repair = std::move(after);
     final_check = &*loaded->check_after_repair;
   }
   LODBAKE_RETURN_IF_ERROR(options.policy ? check_usable(*final_check, *options.policy)
