@@ -27,7 +27,8 @@ std::string count_text(uint64_t count, const char* singular, const char* plural_
   return std::to_string(count) + " " + (count == 1 ? singular : plural_form);
 }
 
-Status repair(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_after) {
+Status repair(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_after,
+              const PartRunner& run_parts) {
   RepairReport r;
   SoupRemovals removals;
   LODBAKE_ASSIGN_OR_RETURN(RepairSoup soup, build_clean_soup(mesh, &removals));
@@ -56,7 +57,7 @@ Status repair(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_a
   // here takes the dragon's import from seconds to a fraction of one.
   TriangleMesh repaired;
   LODBAKE_ASSIGN_OR_RETURN(r.removed_unreferenced_vertices, soup_to_mesh(&soup, mesh, &repaired));
-  MeshCheckReport after = check_mesh(repaired);
+  MeshCheckReport after = check_mesh(repaired, run_parts);
   if (after.non_manifold_edges != 0 || after.non_manifold_vertices != 0 ||
       after.inconsistent_orientation_edges != 0) {
     r.split_non_manifold_edges = count_non_manifold_edges(soup);
@@ -69,7 +70,7 @@ Status repair(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_a
       if (soup.reversed(t)) ++r.flipped_triangles;
     }
     LODBAKE_ASSIGN_OR_RETURN(r.removed_unreferenced_vertices, soup_to_mesh(&soup, mesh, &repaired));
-    after = check_mesh(repaired);
+    after = check_mesh(repaired, run_parts);
   }
   if (after.inconsistent_orientation_edges != 0 && after.non_manifold_edges == 0 &&
       after.non_manifold_vertices == 0) {
@@ -136,9 +137,10 @@ std::vector<std::string> RepairReport::actions() const {
   return lines;
 }
 
-Status repair_mesh(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_after) {
+Status repair_mesh(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_after,
+                   const PartRunner& run_parts) {
   try {
-    return repair(mesh, report, check_after);
+    return repair(mesh, report, check_after, run_parts);
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while repairing the mesh");
   } catch (const std::exception& e) {

@@ -48,8 +48,9 @@ struct RepairReport {
 /// vertices, when no triangle is left, or when a piece is not orientable;
 /// with kRuntime when CGAL throws or memory runs out. `check_after`, when
 /// given, receives check_mesh() of the repaired mesh, which the repair
-/// computes anyway as its postcondition.
-Status repair_mesh(TriangleMesh& mesh, RepairReport* report,
-                   MeshCheckReport* check_after = nullptr);
+/// computes anyway as its postcondition; the check hands its parts to
+/// `run_parts` (as check_mesh()).
+Status repair_mesh(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_after = nullptr,
+                   const PartRunner& run_parts = nullptr);
 
 }  // namespace lodbake
