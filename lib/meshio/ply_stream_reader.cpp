@@ -240,15 +240,20 @@ Status PlyStreamReader::pass(Want want, const std::function<void(uint64_t, const
             return invalid_input("the body ends or is malformed in the list of " +
                                  item(element.name.c_str(), i));
           const bool indices = face_element && slot == kSlotIndices;
-          if (indices && n != 3)
-            return unsupported(item("face", i) + " has " + std::to_string(n) +
-                               " vertices: --memory-limit reads triangles only");
           for (int64_t j = 0; j < n; ++j) {
             int64_t index = 0;
             if (!src.read_int(p.type, &index))
               return invalid_input("the body ends or is malformed in the list of " +
                                    item(element.name.c_str(), i));
             if (!indices) continue;
+            // Read whole first: a list running past the end is a broken
+            // file, not a polygon.
+            if (n != 3) {
+              if (j + 1 == n)
+                return unsupported(item("face", i) + " has " + std::to_string(n) +
+                                   " vertices: --memory-limit reads triangles only");
+              continue;
+            }
             if (index < 0 || static_cast<uint64_t>(index) >= vertices)
               return invalid_input(item("face", i) + ": vertex index " + std::to_string(index) +
                                    " out of range (" + std::to_string(vertices) + " vertices)");

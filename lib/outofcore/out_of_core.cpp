@@ -120,6 +120,9 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
                          std::to_string(plan.input_vertices * sizeof(Vec3f)) +
                          " bytes, more than half of --memory-limit");
   const uint64_t faces = std::max<uint64_t>(reader->face_count(), 1);
+  // What the arrays that grow with a block may take: the limit less the
+  // program itself.
+  const uint64_t usable = limit - std::min(limit / 2, kProgramBytes);
 
   // Pass 1: positions and their box.
   std::vector<Vec3f> positions(plan.input_vertices);
@@ -182,7 +185,7 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
       if (!s.target_triangles || by_ratio > target) target = by_ratio;
     }
     plan.final_triangles = target;
-    const uint64_t merge_capacity = limit / kEngineBytesPerTriangle;
+    const uint64_t merge_capacity = usable / kEngineBytesPerTriangle;
     if (target > merge_capacity)
       return runtime_error("the target of " + std::to_string(target) +
                            " triangles needs more than --memory-limit in the final pass (at " +
@@ -197,7 +200,7 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
     plan.block_ratio = std::max(block_ratio, ratio);
   }
 
-  plan.block_budget = std::max<uint64_t>(limit / kEngineBytesPerTriangle, 1);
+  plan.block_budget = std::max<uint64_t>(usable / kEngineBytesPerTriangle, 1);
   partition_blocks(counts, plan.block_budget, &grid);
   if (grid.block_count > kMaxBlocks)
     return runtime_error("--memory-limit would cut the mesh into " +

@@ -28,6 +28,10 @@ namespace lodbake {
 // its input mesh take at their peak, rounded up from measurements
 // (docs/lab/out-of-core.md): the budget of a block and of the merge.
 inline constexpr uint64_t kEngineBytesPerTriangle = 180;
+// The program itself (code, libraries, thread stacks, allocator slack),
+// resident whatever the mesh: about 20 MiB measured, kept out of the blocks'
+// share of --memory-limit.
+inline constexpr uint64_t kProgramBytes = uint64_t{24} << 20;
 // Fine cells along the longest side of the box, to place block borders.
 inline constexpr uint32_t kFineGridResolution = 64;
 // More blocks than this means a limit far too small for the mesh.

@@ -593,7 +593,7 @@ int main(int argc, char** argv) {
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   const bool out_of_core = tool.has("memory-limit") || tool.has("stage");
-  const bool needs_mesh = !out_of_core || ooc.stage.empty() || ooc.stage == "split";
+  const bool needs_mesh = ooc.stage != "block" && ooc.stage != "merge";
   if (needs_mesh) {
     if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
       return *code;
@@ -603,7 +603,7 @@ int main(int argc, char** argv) {
   request.metrics = !tool.has("no-metrics");
   if (!out_of_core && (tool.has("work") || tool.has("block")))
     return tool.usage_error("--work and --block belong to a --memory-limit run");
-  if (out_of_core && ooc.stage.empty() && request.output.empty())
+  if (out_of_core && ooc.stage.empty() && request.output.empty() && request.pm_output.empty())
     return tool.usage_error("nothing to write: give -o OUT");
   if (!out_of_core && request.output.empty() && request.pm_output.empty())
     return tool.usage_error("nothing to write: give -o OUT and/or --pm OUT.lbk");
