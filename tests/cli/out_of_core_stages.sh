@@ -23,6 +23,13 @@ blocks=$(sed -n 's/^ *"blocks": \([0-9]*\),$/\1/p' "$work/t1/report.json")
 [ "${blocks:-0}" -ge 4 ] || fail "expected several blocks, got '${blocks:-none}'"
 cmp "$work/t1/out.ply" "$work/t3/out.ply" > /dev/null || fail "--threads 1 and 3 differ"
 
+# A failing run (here a target larger than the limit allows)
+# leaves neither output nor work files.
+mkdir "$work/failed"
+"$simplify" "$mesh" -o "$work/failed/out.ply" --ratio 0.5 --memory-limit 4M --quiet \
+  2> /dev/null && fail "a target above the limit succeeded"
+[ -z "$(ls -A "$work/failed")" ] || fail "a failed run left $(ls -A "$work/failed")"
+
 staged=$work/staged
 "$simplify" "$mesh" --stage split --work "$staged" --ratio 0.1 --memory-limit 4M --quiet \
   > /dev/null || fail "split failed"
