@@ -161,6 +161,7 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
     bool first = true;
     for (size_t v = 0; v < positions.size(); ++v) {
       if (!referenced[v]) continue;
+      ++plan.referenced_vertices;
       if (first) rlo = rhi = positions[v];
       first = false;
       for (int k = 0; k < 3; ++k) {
@@ -279,6 +280,7 @@ std::string plan_text(const OutOfCorePlan& plan) {
   nlohmann::json j = {{"version", 1},
                       {"memory_limit", plan.memory_limit},
                       {"input_vertices", plan.input_vertices},
+                      {"referenced_vertices", plan.referenced_vertices},
                       {"input_triangles", plan.input_triangles},
                       {"dropped_degenerate", plan.dropped_degenerate},
                       {"diagonal", plan.diagonal},
@@ -350,6 +352,7 @@ Result<OutOfCorePlan> read_plan(const std::string& work) {
     OutOfCorePlan plan;
     plan.memory_limit = j.at("memory_limit").get<uint64_t>();
     plan.input_vertices = j.at("input_vertices").get<uint64_t>();
+    plan.referenced_vertices = j.at("referenced_vertices").get<uint64_t>();
     plan.input_triangles = j.at("input_triangles").get<uint64_t>();
     plan.dropped_degenerate = j.at("dropped_degenerate").get<uint64_t>();
     plan.diagonal = j.at("diagonal").get<double>();

@@ -53,7 +53,8 @@ struct OutOfCoreOptions {
 // simplification.
 struct OutOfCorePlan {
   uint64_t memory_limit = 0;
-  uint64_t input_vertices = 0;
+  uint64_t input_vertices = 0;       // in the file
+  uint64_t referenced_vertices = 0;  // used by a triangle kept
   uint64_t input_triangles = 0;     // triangles kept (after dropping degenerate ones)
   uint64_t dropped_degenerate = 0;  // faces with a repeated vertex
   double diagonal = 0;              // of the referenced vertices' box

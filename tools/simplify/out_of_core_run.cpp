@@ -70,7 +70,7 @@ void print_result(const Tool& tool, const OutOfCoreRequest& request, const OutOf
     tool.print_json(
         {{"schema", "lodbake.simplify/1"},
          {"input", request.input},
-         {"input_counts", {{"vertices", plan.input_vertices}, {"triangles", plan.input_triangles}}},
+         {"input_counts", {{"vertices", plan.referenced_vertices}, {"triangles", plan.input_triangles}}},
          {"output_counts",
           {{"vertices", merged.mesh.vertex_count()}, {"triangles", merged.mesh.triangle_count()}}},
          {"seconds", seconds},
@@ -88,7 +88,7 @@ void print_result(const Tool& tool, const OutOfCoreRequest& request, const OutOf
                                              {"triangles", merged.mesh.triangle_count()}}})}});
     return;
   }
-  std::cout << "input         " << request.input << ": " << plan.input_vertices << " vertices, "
+  std::cout << "input         " << request.input << ": " << plan.referenced_vertices << " vertices, "
             << plan.input_triangles << " triangles\n";
   std::cout << "out of core   " << plan.block_count() << " blocks of at most " << plan.block_budget
             << " triangles, stitched to " << merged.stitched_triangles
@@ -158,7 +158,7 @@ int run_out_of_core(const Tool& tool, const OutOfCoreRequest& request) {
                        {"input", request.input},
                        {"stage", "split"},
                        {"input_counts",
-                        {{"vertices", plan.value().input_vertices},
+                        {{"vertices", plan.value().referenced_vertices},
                          {"triangles", plan.value().input_triangles}}},
                        {"out_of_core", plan_json(plan.value(), request.work)}});
     } else {
