@@ -55,10 +55,10 @@ struct OutOfCorePlan {
   uint64_t memory_limit = 0;
   uint64_t input_vertices = 0;       // in the file
   uint64_t referenced_vertices = 0;  // used by a triangle kept
-  uint64_t input_triangles = 0;     // triangles kept (after dropping degenerate ones)
-  uint64_t dropped_degenerate = 0;  // faces with a repeated vertex
-  double diagonal = 0;              // of the referenced vertices' box
-  uint64_t block_budget = 0;        // triangles per block at most (unless one fine cell holds more)
+  uint64_t input_triangles = 0;      // triangles kept (after dropping degenerate ones)
+  uint64_t dropped_degenerate = 0;   // faces with a repeated vertex
+  double diagonal = 0;               // of the referenced vertices' box
+  uint64_t block_budget = 0;  // triangles per block at most (unless one fine cell holds more)
   std::vector<uint64_t> block_triangles;
   std::optional<double> block_ratio;        // each block's target ratio (unset: max_error only)
   std::optional<uint64_t> final_triangles;  // the final target (unset: max_error only)

@@ -180,9 +180,8 @@ TEST(BlockStitcher, JoinsSharedVerticesById) {
 // A bumpy n x n height field as PLY text (ASCII) or binary little-endian.
 std::string grid_ply(int n, bool binary) {
   std::ostringstream out;
-  out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii")
-      << " 1.0\nelement vertex " << n * n
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
+  out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\nelement vertex "
+      << n * n << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
       << 2 * (n - 1) * (n - 1) << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -220,8 +219,9 @@ Result<Streamed> stream(const std::string& text) {
   LODBAKE_ASSIGN_OR_RETURN(std::unique_ptr<PlyStreamReader> reader,
                            PlyStreamReader::open(&in, text.size()));
   Streamed s;
-  LODBAKE_RETURN_IF_ERROR(reader->for_each_vertex(
-      [&](uint64_t, const float* p) { s.positions.push_back({p[0], p[1], p[2]}); }));
+  LODBAKE_RETURN_IF_ERROR(reader->for_each_vertex([&](uint64_t, const float* p) {
+    s.positions.push_back({p[0], p[1], p[2]});
+  }));
   LODBAKE_RETURN_IF_ERROR(reader->for_each_triangle([&](uint64_t, const uint32_t* t) {
     s.triangles.push_back({t[0], t[1], t[2]});
     return Status::ok();
@@ -274,9 +274,10 @@ TEST(PlyStreamReader, RefusesBadBodies) {
 class OutOfCoreStages : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() /
-            ("lodbake_ooc_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-             "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    root_ =
+        fs::temp_directory_path() /
+        ("lodbake_ooc_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     fs::create_directories(root_);
     input_ = (root_ / "grid.ply").string();

@@ -70,7 +70,8 @@ void print_result(const Tool& tool, const OutOfCoreRequest& request, const OutOf
     tool.print_json(
         {{"schema", "lodbake.simplify/1"},
          {"input", request.input},
-         {"input_counts", {{"vertices", plan.referenced_vertices}, {"triangles", plan.input_triangles}}},
+         {"input_counts",
+          {{"vertices", plan.referenced_vertices}, {"triangles", plan.input_triangles}}},
          {"output_counts",
           {{"vertices", merged.mesh.vertex_count()}, {"triangles", merged.mesh.triangle_count()}}},
          {"seconds", seconds},
@@ -88,8 +89,8 @@ void print_result(const Tool& tool, const OutOfCoreRequest& request, const OutOf
                                              {"triangles", merged.mesh.triangle_count()}}})}});
     return;
   }
-  std::cout << "input         " << request.input << ": " << plan.referenced_vertices << " vertices, "
-            << plan.input_triangles << " triangles\n";
+  std::cout << "input         " << request.input << ": " << plan.referenced_vertices
+            << " vertices, " << plan.input_triangles << " triangles\n";
   std::cout << "out of core   " << plan.block_count() << " blocks of at most " << plan.block_budget
             << " triangles, stitched to " << merged.stitched_triangles
             << " triangles, estimated peak " << plan.peak_estimate << " bytes\n";
