@@ -91,8 +91,9 @@ void print_result(const Tool& tool, const OutOfCoreRequest& request, const OutOf
   }
   std::cout << "input         " << request.input << ": " << plan.referenced_vertices
             << " vertices, " << plan.input_triangles << " triangles\n";
-  std::cout << "out of core   " << plan.block_count() << " blocks of at most " << plan.block_budget
-            << " triangles, stitched to " << merged.stitched_triangles
+  std::cout << "out of core   " << plan.block_count()
+            << (plan.block_count() == 1 ? " block" : " blocks") << " of at most "
+            << plan.block_budget << " triangles, stitched to " << merged.stitched_triangles
             << " triangles, estimated peak " << plan.peak_estimate << " bytes\n";
   std::cout << "simplified    " << merged.mesh.vertex_count() << " vertices, "
             << merged.mesh.triangle_count() << " triangles in " << seconds
