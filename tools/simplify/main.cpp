@@ -333,6 +333,7 @@ int run(const Tool& tool, Request& request) {
   load.strict = request.strict;
   load.per_vertex_attributes = !request.pm_output.empty() || !request.ratios.empty();
   load.drop_unreferenced = true;
+  load.threads = request.options.threads;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
 
