@@ -380,6 +380,9 @@ class Engine {
       info.flags = topology.boundary[v] ? kBoundary : 0;
       info.input_id = settings.input_ids ? (*settings.input_ids)[v] : static_cast<uint32_t>(v);
     }
+    // vinfo_ holds the input ids now; run() gives them back (2 bytes per
+    // triangle of the peak).
+    if (settings.input_ids) *settings.input_ids = std::vector<uint32_t>();
     alias_.resize(n);
     for (uint32_t v = 0; v < n; ++v)
       alias_[v] = v;
@@ -429,6 +432,11 @@ class Engine {
     state_.positions.resize(vinfo_.size());
     for (size_t v = 0; v < vinfo_.size(); ++v)
       state_.positions[v] = vinfo_[v].position;
+    if (settings_.input_ids) {
+      settings_.input_ids->resize(vinfo_.size());
+      for (size_t v = 0; v < vinfo_.size(); ++v)
+        (*settings_.input_ids)[v] = vinfo_[v].input_id;
+    }
     return std::move(state_);
   }
 
@@ -444,7 +452,6 @@ class Engine {
     quadric_ = std::vector<AlignedQuadric>();
     corners_ = std::vector<Corner>();
     faces_ = std::vector<uint32_t>();
-    fill_ = std::vector<uint32_t>();
     live_triangles_ = std::vector<uint32_t>();
     live_vertices_ = std::vector<uint32_t>();
   }
@@ -671,7 +678,6 @@ class Engine {
     const size_t live = live_triangles_.size();
     const size_t live_v = live_vertices_.size();
     const size_t parts = threads_.parts(live, kParallelListing / 2);
-    if (rebuild) fill_.resize(vinfo_.size());
     std::vector<size_t> kept_triangles(parts);
     threads_.for_each_part(parts, [&](size_t p) {
       if (rebuild) {
@@ -707,8 +713,7 @@ class Engine {
       if (info.count == 0) continue;
       live_vertices_[kept++] = v;
       info.start = sum;
-      info.size = info.count;
-      fill_[v] = sum;
+      info.size = 0;  // counts the corners filled in below, up to `count`
       sum += info.count;
     }
     live_vertices_.resize(kept);
@@ -725,7 +730,8 @@ class Engine {
         const Triangle& t = state_.triangles[f];
         for (int k = 0; k < 3; ++k) {
           if (t[k] < lo || t[k] >= hi) continue;
-          const uint32_t slot = fill_[t[k]]++;
+          VertexInfo& info = vinfo_[t[k]];
+          const uint32_t slot = info.start + info.size++;
           corners_[slot] = {t[(k + 1) % 3], t[(k + 2) % 3]};
           if (faces) faces_[slot] = f;
         }
@@ -1251,7 +1257,6 @@ class Engine {
   std::vector<uint32_t> faces_;
   std::vector<uint32_t> alias_;  // a removed vertex's survivor; itself while alive
   std::vector<uint8_t> locked_;  // touched in this pass
-  std::vector<uint32_t> fill_;   // finish_pass(): next corner slot of each vertex
   std::vector<MeshAttribute*> seam_attrs_;
   std::vector<std::vector<uint32_t>> seam_value_;  // per seam attribute, per removed vertex
   std::vector<AlignedQuadric> quadric_;
