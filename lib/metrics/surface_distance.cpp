@@ -44,6 +44,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <iterator>
 #include <new>
 #include <string>
 #include <vector>
@@ -95,6 +96,67 @@ struct FirstVertexMap {
 using Primitive =
     CGAL::AABB_primitive<uint32_t, TriangleMap, FirstVertexMap, CGAL::Tag_true, CGAL::Tag_false>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using PointAndId = Tree::Point_and_primitive_id;
+
+// The reference points of primitives [p, ...) with their ids, made as read:
+// what AABB_tree::accelerate_distance_queries() copies into a vector before
+// the KD-tree copies them again (32 bytes per triangle of the peak).
+class ReferencePoints {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = PointAndId;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const PointAndId*;
+  using reference = PointAndId;
+
+  ReferencePoints(const Primitive* p, FirstVertexMap map) : p_(p), map_(map) {}
+  PointAndId operator*() const { return PointAndId(get(map_, p_->id()), p_->id()); }
+  ReferencePoints& operator++() {
+    ++p_;
+    return *this;
+  }
+  bool operator==(const ReferencePoints& o) const { return p_ == o.p_; }
+  bool operator!=(const ReferencePoints& o) const { return p_ != o.p_; }
+
+ private:
+  const Primitive* p_;
+  FirstVertexMap map_;
+};
+
+// The tree's primitives in its own (built) order, which is the order of
+// the leaves from left to right; null unless they lie contiguously from
+// the leftmost leaf's first primitive, as CGAL 5's tree stores them. `range`
+// is how many primitives lie under `node`; `next` the one expected next.
+using TreeNode = CGAL::AABB_node<CGAL::AABB_traits<Kernel, Primitive>>;
+bool leaves_in_order(const TreeNode& node, size_t range, const Primitive** next) {
+  auto leaf = [next](const Primitive& p) {
+    if (*next && &p != *next) return false;
+    *next = &p + 1;
+    return true;
+  };
+  switch (range) {
+    case 2:
+      return leaf(node.left_data()) && leaf(node.right_data());
+    case 3:
+      return leaf(node.left_data()) && leaves_in_order(node.right_child(), 2, next);
+    default:
+      return leaves_in_order(node.left_child(), range / 2, next) &&
+             leaves_in_order(node.right_child(), range - range / 2, next);
+  }
+}
+
+// accelerate_distance_queries() without its copy of the reference points:
+// the same points in the same order, so the same KD-tree and hints.
+void accelerate(Tree* tree, const TriangleMesh& mesh) {
+  const Primitive* first = nullptr;
+  if (tree->size() > 1 && leaves_in_order(*tree->root_node(), tree->size(), &first) && first) {
+    const Primitive* begin = first - tree->size();
+    tree->accelerate_distance_queries(ReferencePoints(begin, FirstVertexMap{&mesh}),
+                                      ReferencePoints(first, FirstVertexMap{&mesh}));
+    return;
+  }
+  tree->accelerate_distance_queries();
+}
 
 constexpr size_t kBlockSamples = 4096;
 constexpr uint64_t kMaxAreaSamples = uint64_t{1} << 30;
@@ -280,7 +342,7 @@ Result<SurfaceDistance> measure(const TriangleMesh& a, const TriangleMesh& b,
     tree.rebuild(to_triangles->begin(), to_triangles->end(), TriangleMap{&to}, FirstVertexMap{&to});
     // The tree holds its own copy of the indices.
     *to_triangles = std::vector<uint32_t>();
-    tree.accelerate_distance_queries();
+    accelerate(&tree, to);
     const Samples samples = make_samples(from, budget);
     LODBAKE_ASSIGN_OR_RETURN(*result, one_sided(samples, tree, spacing, threads));
     return Status::ok();
