@@ -490,6 +490,11 @@ class Engine {
         if (is_set(v, kBoundary)) vinfo_[v].flags |= kNoRemove | kFixed;
       }
     }
+    if (!options_.locked_vertices.empty()) {
+      for (size_t v = 0; v < n; ++v) {
+        if (options_.locked_vertices[vinfo_[v].input_id]) vinfo_[v].flags |= kNoRemove | kFixed;
+      }
+    }
     mark_coincident_boundary_vertices();
     // A vertex whose corners carry different attribute values lies on a seam:
     // removing or moving it would drag one side's values across the other,
