@@ -278,6 +278,13 @@ class Builder {
   // The candidates of live vertices [begin, end) in vertex order; sets
   // *capped when the height cap held one back.
   void list_candidates(size_t begin, size_t end, std::vector<Candidate>* out, bool* capped) const {
+    // A manifold vertex has at most one neighbour more than faces: the list
+    // is reserved once instead of doubling (round 1's is the largest block
+    // the build holds).
+    size_t bound = 0;
+    for (size_t i = begin; i < end; ++i)
+      bound += vertex_faces_[live_[i]].size() + 1;
+    out->reserve(out->size() + bound);
     std::vector<uint32_t> ring;
     for (size_t i = begin; i < end; ++i) {
       const uint32_t u = live_[i];
@@ -343,15 +350,13 @@ class Builder {
       if (capped[p]) capped_ = true;
     }
     sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
-    std::vector<uint32_t> ring;
     uint64_t made = 0;
     for (const Candidate& c : candidates) {
       if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) continue;
       uint32_t vl = kNone;
       uint32_t vr = kNone;
       if (!legal(c.u, c.t, &vl, &vr)) continue;
-      neighbours(c.u, &ring);
-      for (uint32_t w : ring)
+      for (uint32_t w : ring_u_)  // u's ring, as legal() left it
         near_[w] = round;
       used_[c.u] = used_[c.t] = round;
       collapse(c.u, c.t, vl, round, c.cost);
