@@ -349,18 +349,58 @@ class Builder {
       std::vector<Candidate>().swap(listed[p]);
       if (capped[p]) capped_ = true;
     }
-    sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
     uint64_t made = 0;
-    for (const Candidate& c : candidates) {
-      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) continue;
+    auto take = [&](const Candidate& c) {
+      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) return;
       uint32_t vl = kNone;
       uint32_t vr = kNone;
-      if (!legal(c.u, c.t, &vl, &vr)) continue;
+      if (!legal(c.u, c.t, &vl, &vr)) return;
       for (uint32_t w : ring_u_)  // u's ring, as legal() left it
         near_[w] = round;
       used_[c.u] = used_[c.t] = round;
       collapse(c.u, c.t, vl, round, c.cost);
       ++made;
+    };
+    // Without a NaN cost the key is a strict total order ((u, t) is listed
+    // once), so the sorted order is the one there is: the sorted chunks are
+    // merged on the fly as the walk reads them, without the merge's copy of
+    // the list. A NaN cost keeps sort_in_chunks' merge, whose order the
+    // comparisons fix.
+    const bool strict = std::none_of(candidates.begin(), candidates.end(),
+                                     [](const Candidate& c) { return std::isnan(c.cost); });
+    if (!strict || candidates.size() <= kSortChunk) {
+      sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
+      for (const Candidate& c : candidates)
+        take(c);
+      return made;
+    }
+    threads_->for_each_chunk(candidates.size(), kSortChunk, [&](size_t, IndexRange range) {
+      std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(range.begin),
+                candidates.begin() + static_cast<std::ptrdiff_t>(range.end));
+    });
+    // A min-heap of each chunk's next candidate.
+    struct Head {
+      Candidate c;
+      size_t next;
+      size_t end;
+    };
+    auto later = [](const Head& a, const Head& b) { return b.c < a.c; };
+    std::vector<Head> heads;
+    for (size_t begin = 0; begin < candidates.size(); begin += kSortChunk) {
+      const size_t end = std::min(candidates.size(), begin + kSortChunk);
+      heads.push_back({candidates[begin], begin + 1, end});
+    }
+    std::make_heap(heads.begin(), heads.end(), later);
+    while (!heads.empty()) {
+      std::pop_heap(heads.begin(), heads.end(), later);
+      Head& h = heads.back();
+      take(h.c);
+      if (h.next == h.end) {
+        heads.pop_back();
+        continue;
+      }
+      h.c = candidates[h.next++];
+      std::push_heap(heads.begin(), heads.end(), later);
     }
     return made;
   }
