@@ -83,7 +83,57 @@ std::string output_path(const std::string& out_dir, const std::string& path) {
 
 namespace {
 
-// One input's steps in order; a failed step skips the ones after it.
+// One step: from the cache, or baked and its files written. `earlier` holds
+// the files of the steps `step` merges (package).
+StepReport bake_step(const InputPlan& plan, const BakeOptions& options, const StepPlan& step,
+                     const Result<Bytes>& bytes, const std::optional<BakeCache>& cache,
+                     const std::string& key,
+                     const std::map<std::string, std::vector<Bytes>>& earlier, InputMeshes* meshes,
+                     std::vector<Bytes>* files) {
+  StepReport s;
+  s.step = step.step;
+  const auto start = std::chrono::steady_clock::now();
+  Status status = bytes.status();
+  std::optional<StepResult> hit;
+  if (status.is_ok() && cache && !options.force) hit = cache->load(key, step);
+  std::map<std::string, std::vector<Bytes>> read_back;
+  if (status.is_ok() && !hit && options.only_step)
+    status = read_earlier(plan, options.out_dir, step, &read_back);
+  Result<StepResult> made = hit ? Result<StepResult>(std::move(*hit))
+                            : status.is_ok()
+                                ? run_bake_step(step, plan.input, bytes.value(),
+                                                options.only_step ? read_back : earlier, meshes)
+                                : Result<StepResult>(status);
+  if (made.is_ok()) status = write_outputs(options.out_dir, made.value().files);
+  if (made.is_ok() && status.is_ok()) {
+    s.status = hit ? "cached" : "baked";
+    s.warnings = made.value().warnings;
+    s.report = made.value().report;
+    if (cache && !hit) {
+      // A cache that cannot be written costs the next run time, not this
+      // run its outputs.
+      Status stored = cache->store(key, made.value());
+      if (!stored.is_ok()) s.warnings.push_back("cache: " + stored.message());
+    }
+    for (auto& [path, file] : made.value().files) {
+      s.outputs.emplace_back(output_path(options.out_dir, path), file.size());
+      files->push_back(std::move(file));
+    }
+  } else {
+    const Status& failed = made.is_ok() ? status : made.status();
+    s.status = "failed";
+    s.error = failed.message();
+    s.error_kind = failed.kind();
+  }
+  s.seconds = seconds_since(start);
+  return s;
+}
+
+// One input's steps. The steps that build from the input share nothing but
+// its loaded meshes, so they run side by side on the bake's threads (a
+// single large scan keeps every thread busy where one builder alone would
+// not); package runs after them, on their files, and is skipped when one of
+// them failed. Every report and file is the same as when they run in turn.
 InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
                        const std::function<void(const std::string&)>& step_started) {
   InputReport report;
@@ -91,7 +141,6 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
   const auto input_start = std::chrono::steady_clock::now();
   report.status = "ok";
   Result<Bytes> bytes = read_file(plan.input);
-  std::map<std::string, std::vector<Bytes>> earlier;
   std::optional<BakeCache> cache;
   nlohmann::json fingerprint;
   if (options.cache_dir && bytes.is_ok()) {
@@ -99,58 +148,59 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
     fingerprint = input_fingerprint(plan.input, bytes.value());
   }
   std::map<std::string, std::string> keys;  // step -> its cache key
-  for (const StepPlan& step : plan.steps) {
-    std::string key;
+  std::vector<size_t> builds, merges;       // indices into plan.steps, to run
+  for (size_t i = 0; i < plan.steps.size(); ++i) {
+    const StepPlan& step = plan.steps[i];
     if (cache) {
       std::vector<std::string> merged;
       if (step.step == "package")
         for (const nlohmann::json& from : step.options["from"])
           merged.push_back(keys[from.get<std::string>()]);
-      key = keys[step.step] = step_key(fingerprint, step, merged);
+      keys[step.step] = step_key(fingerprint, step, merged);
     }
     if (options.only_step && step.step != *options.only_step) continue;
-    StepReport s;
-    s.step = step.step;
-    if (report.status == "failed") {
-      s.status = "skipped";
-      report.steps.push_back(std::move(s));
+    (step.step == "package" ? merges : builds).push_back(i);
+  }
+
+  InputMeshes meshes;
+  std::vector<StepReport> reports(plan.steps.size());
+  std::vector<std::vector<Bytes>> files(plan.steps.size());
+  const std::map<std::string, std::vector<Bytes>> none;
+  auto run = [&](size_t i, const std::map<std::string, std::vector<Bytes>>& earlier) {
+    step_started(plan.steps[i].step);
+    reports[i] = bake_step(plan, options, plan.steps[i], bytes, cache, keys[plan.steps[i].step],
+                           earlier, &meshes, &files[i]);
+  };
+  // Isolated: a thread that waits for this input's last step must not take
+  // up another input meanwhile, which would hold both inputs' meshes.
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, builds.size(), 1),
+        [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t k = range.begin(); k != range.end(); ++k)
+            run(builds[k], none);
+        },
+        tbb::simple_partitioner());
+  });
+  bool failed = false;
+  for (size_t i : builds)
+    failed = failed || reports[i].status == "failed";
+  std::map<std::string, std::vector<Bytes>> earlier;
+  for (size_t i : builds)
+    earlier[plan.steps[i].step] = std::move(files[i]);
+  for (size_t i : merges) {
+    if (failed) {
+      reports[i].step = plan.steps[i].step;
+      reports[i].status = "skipped";
       continue;
     }
-    step_started(step.step);
-    const auto start = std::chrono::steady_clock::now();
-    Status status = bytes.status();
-    std::optional<StepResult> hit;
-    if (status.is_ok() && cache && !options.force) hit = cache->load(key, step);
-    if (status.is_ok() && !hit && options.only_step)
-      status = read_earlier(plan, options.out_dir, step, &earlier);
-    Result<StepResult> made = hit ? Result<StepResult>(std::move(*hit))
-                              : status.is_ok()
-                                  ? run_bake_step(step, plan.input, bytes.value(), earlier)
-                                  : Result<StepResult>(status);
-    if (made.is_ok()) status = write_outputs(options.out_dir, made.value().files);
-    if (made.is_ok() && status.is_ok()) {
-      s.status = hit ? "cached" : "baked";
-      s.warnings = made.value().warnings;
-      s.report = made.value().report;
-      if (cache && !hit) {
-        // A cache that cannot be written costs the next run time, not this
-        // run its outputs.
-        Status stored = cache->store(key, made.value());
-        if (!stored.is_ok()) s.warnings.push_back("cache: " + stored.message());
-      }
-      for (auto& [path, file] : made.value().files) {
-        s.outputs.emplace_back(output_path(options.out_dir, path), file.size());
-        earlier[step.step].push_back(std::move(file));
-      }
-    } else {
-      const Status& failed = made.is_ok() ? status : made.status();
-      s.status = "failed";
-      s.error = failed.message();
-      s.error_kind = failed.kind();
-      report.status = "failed";
-    }
-    s.seconds = seconds_since(start);
-    report.steps.push_back(std::move(s));
+    run(i, earlier);
+    failed = failed || reports[i].status == "failed";
+  }
+  for (size_t i = 0; i < plan.steps.size(); ++i) {
+    if (reports[i].step.empty()) continue;  // not asked for (--step)
+    if (reports[i].status == "failed") report.status = "failed";
+    report.steps.push_back(std::move(reports[i]));
   }
   report.seconds = seconds_since(input_start);
   return report;

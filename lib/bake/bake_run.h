@@ -1,6 +1,7 @@
-// Runs bake plans (lib/bake/recipe.h): every input's steps in order, each
-// step's files written atomically once all of them are made, a failed step
-// ending its input's run. Outputs are a function of the plans alone.
+// Runs bake plans (lib/bake/recipe.h): every input's building steps side by
+// side on one import of it, then package; each step's files written
+// atomically once all of them are made, a failed step failing its input.
+// Outputs are a function of the plans alone.
 #pragma once
 
 #include <cstdint>
@@ -17,21 +18,20 @@
 namespace lodbake {
 
 struct BakeOptions {
-  std::string out_dir = ".";  // the plans' outputs are relative to it
-  unsigned jobs = 0;          // inputs baked at once; 0: one per core (bake_jobs())
-  bool keep_going = false;    // run the other inputs after one failed
-  std::optional<std::string> only_step;
+  std::string out_dir = ".";             // the plans' outputs are relative to it
+  unsigned jobs = 0;                     // inputs baked at once; 0: one per core (bake_jobs())
+  bool keep_going = false;               // run the other inputs after one failed
+  std::optional<std::string> only_step;  // run this step alone (package: its inputs made before)
   // The content cache (lib/bake/bake_cache.h): a step whose key is there is
   // copied from it, not baked; a baked step is stored. None: no cache.
   std::optional<std::string> cache_dir;
-  bool force = false;  // bake every step, and store it again  // run this step alone (its inputs
-                       // made before)
+  bool force = false;  // bake every step, and store it again
 };
 
 struct StepReport {
   std::string step;
-  // "baked", "cached" (copied from the cache), "failed", or "skipped" (an
-  // earlier step failed)
+  // "baked", "cached" (copied from the cache), "failed", or "skipped"
+  // (package, when a step of its input failed)
   std::string status;
   double seconds = 0;
   std::vector<std::pair<std::string, uint64_t>> outputs;  // file (in out_dir), bytes

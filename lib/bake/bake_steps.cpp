@@ -32,9 +32,9 @@ LoadOptions load_options(const nlohmann::json& options) {
 
 // Loads a mesh input as the tools' load_input() does; its notes and
 // warnings go to the step's warnings.
-Status load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
-            LoadedMesh* loaded, StepResult* out) {
-  LODBAKE_RETURN_IF_ERROR(load_mesh_bytes(input, bytes, options, loaded));
+Status load(InputMeshes* meshes, const std::string& input, const Bytes& bytes,
+            const LoadOptions& options, LoadedMesh* loaded, StepResult* out) {
+  LODBAKE_RETURN_IF_ERROR(meshes->load(input, bytes, options, loaded));
   for (const std::string& warning : loaded->import.warnings)
     out->warnings.push_back(warning);
   const MeshCheckReport& check =
@@ -76,7 +76,7 @@ Status build_over_asset(const std::string& input, const Bytes& bytes, MetaSectio
 }
 
 Status run_pack(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
-                StepResult* out) {
+                InputMeshes* meshes, StepResult* out) {
   const int quantize = o["quantize"].get<int>();
   if (is_asset(input, bytes)) {
     ImportReport imported;
@@ -98,7 +98,7 @@ Status run_pack(const nlohmann::json& o, const std::string& input, const Bytes& 
   }
   const LoadOptions load_with = load_options(o);
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
   LODBAKE_ASSIGN_OR_RETURN(PackedMesh packed, pack_mesh(loaded.mesh, meta_input(input, loaded),
                                                         load_with.repair, quantize));
   out->report["triangles"] = loaded.mesh.triangle_count();
@@ -135,7 +135,7 @@ SimplifyStepOptions simplify_options(const nlohmann::json& o) {
 }
 
 Status run_simplify(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
-                    StepResult* out) {
+                    InputMeshes* meshes, StepResult* out) {
   SimplifyStepOptions request = simplify_options(o);
   if (request.options.height_guard && request.options.placement != Placement::kHalf)
     return Status(ErrorKind::kUsage, "steps.simplify: height_guard needs placement 'half'");
@@ -160,7 +160,7 @@ Status run_simplify(const nlohmann::json& o, const std::string& input, const Byt
   LoadOptions load_with = load_options(o);
   load_with.per_vertex_attributes = true;
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
   request.options.record_pm = true;
   LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
   LODBAKE_ASSIGN_OR_RETURN(
@@ -175,7 +175,7 @@ Status run_simplify(const nlohmann::json& o, const std::string& input, const Byt
 // OUT --error E` writes (a PM recorded to the largest error would not
 // give the smaller ones: the engine's passes are scaled by the limit).
 Status run_lods_by_error(const StepPlan& step, const std::string& input, const Bytes& bytes,
-                         StepResult* out) {
+                         InputMeshes* meshes, StepResult* out) {
   const nlohmann::json& o = step.options;
   const std::vector<double> errors = o["errors"].get<std::vector<double>>();
   const std::string format = o["format"].get<std::string>();
@@ -205,7 +205,7 @@ Status run_lods_by_error(const StepPlan& step, const std::string& input, const B
     return Status::ok();
   }
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_options(o), &loaded, out));
   for (size_t level = 0; level < errors.size(); ++level) {
     SimplifyStepOptions request = simplify_options(o);
     request.options.max_error = errors[level];
@@ -224,9 +224,9 @@ Status run_lods_by_error(const StepPlan& step, const std::string& input, const B
 }
 
 Status run_lods(const StepPlan& step, const std::string& input, const Bytes& bytes,
-                StepResult* out) {
+                InputMeshes* meshes, StepResult* out) {
   const nlohmann::json& o = step.options;
-  if (!o["errors"].is_null()) return run_lods_by_error(step, input, bytes, out);
+  if (!o["errors"].is_null()) return run_lods_by_error(step, input, bytes, meshes, out);
   SimplifyStepOptions request = simplify_options(o);
   const std::vector<double> ratios = o["ratios"].get<std::vector<double>>();
   const std::string format = o["format"].get<std::string>();
@@ -251,7 +251,7 @@ Status run_lods(const StepPlan& step, const std::string& input, const Bytes& byt
   LoadOptions load_with = load_options(o);
   load_with.per_vertex_attributes = true;
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
   request.options.target_ratio = *std::min_element(ratios.begin(), ratios.end());
   request.options.record_pm = true;
   LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
@@ -275,7 +275,7 @@ Status run_lods(const StepPlan& step, const std::string& input, const Bytes& byt
 }
 
 Status run_hierarchy(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
-                     StepResult* out) {
+                     InputMeshes* meshes, StepResult* out) {
   HierarchyStepOptions request;
   request.sections.clear();
   for (const nlohmann::json& s : o["sections"])
@@ -305,7 +305,7 @@ Status run_hierarchy(const nlohmann::json& o, const std::string& input, const By
         out);
   }
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_options(o), &loaded, out));
   loaded.mesh.normals = MeshAttribute();
   loaded.mesh.texcoords = MeshAttribute();
   LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt built, build_hierarchy_sections(request, loaded.mesh));
@@ -323,7 +323,7 @@ Status run_hierarchy(const nlohmann::json& o, const std::string& input, const By
 }
 
 Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
-               StepResult* out) {
+               InputMeshes* meshes, StepResult* out) {
   FanStepOptions request;
   request.repair = o["repair"] == "repair";
   request.strict = o["repair"] == "strict";
@@ -349,7 +349,7 @@ Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& b
         out);
   }
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_options(o), &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_options(o), &loaded, out));
   LODBAKE_ASSIGN_OR_RETURN(FanBuilt built, build_fan(request.options, loaded.mesh));
   MetaSection meta = fan_meta(request);
   meta.input = meta_input(input, loaded);
@@ -366,7 +366,7 @@ Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& b
 }
 
 Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
-                  StepResult* out) {
+                  InputMeshes* meshes, StepResult* out) {
   StripsStepOptions request;
   request.strips_only = o["strips_only"].get<bool>();
   request.repair = o["repair"] == "repair";
@@ -392,7 +392,7 @@ Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes
   // Without strips_only the simplification records a progressive mesh.
   load_with.per_vertex_attributes = !request.strips_only;
   LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(input, bytes, load_with, &loaded, out));
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
   StripsInput in;
   in.meta = meta_input(input, loaded);
   if (request.strips_only) {
@@ -446,23 +446,44 @@ Status run_package(const StepPlan& step, const std::map<std::string, std::vector
 
 }  // namespace
 
+Status InputMeshes::load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
+                         LoadedMesh* loaded) {
+  // The options a bake step can vary; the rest are the same for all.
+  const std::string key = std::to_string(options.repair) + std::to_string(options.strict) +
+                          std::to_string(options.per_vertex_attributes) +
+                          std::to_string(options.drop_unreferenced);
+  Entry* entry = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_ptr<Entry>& slot = entries_[key];
+    if (!slot) slot = std::make_unique<Entry>();
+    entry = slot.get();
+  }
+  std::call_once(entry->once,
+                 [&] { entry->status = load_mesh_bytes(input, bytes, options, &entry->loaded); });
+  if (!entry->status.is_ok()) return entry->status;
+  *loaded = entry->loaded;
+  return Status::ok();
+}
+
 Result<StepResult> run_bake_step(const StepPlan& step, const std::string& input, const Bytes& bytes,
-                                 const std::map<std::string, std::vector<Bytes>>& earlier) {
+                                 const std::map<std::string, std::vector<Bytes>>& earlier,
+                                 InputMeshes* meshes) {
   StepResult out;
   const nlohmann::json& o = step.options;
   Status status = Status::ok();
   if (step.step == "pack") {
-    status = run_pack(o, input, bytes, &out);
+    status = run_pack(o, input, bytes, meshes, &out);
   } else if (step.step == "simplify") {
-    status = run_simplify(o, input, bytes, &out);
+    status = run_simplify(o, input, bytes, meshes, &out);
   } else if (step.step == "lods") {
-    status = run_lods(step, input, bytes, &out);
+    status = run_lods(step, input, bytes, meshes, &out);
   } else if (step.step == "hierarchy") {
-    status = run_hierarchy(o, input, bytes, &out);
+    status = run_hierarchy(o, input, bytes, meshes, &out);
   } else if (step.step == "fan") {
-    status = run_fan(o, input, bytes, &out);
+    status = run_fan(o, input, bytes, meshes, &out);
   } else if (step.step == "strips") {
-    status = run_strips(o, input, bytes, &out);
+    status = run_strips(o, input, bytes, meshes, &out);
   } else if (step.step == "package") {
     status = run_package(step, earlier, &out);
   } else {

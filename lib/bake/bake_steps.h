@@ -6,6 +6,8 @@
 #pragma once
 
 #include <map>
+#include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -14,6 +16,7 @@
 #include "formats/support/file_io.h"
 #include "formats/support/status.h"
 #include "lib/bake/recipe.h"
+#include "lib/ingest/load_mesh.h"
 
 namespace lodbake {
 
@@ -23,11 +26,31 @@ struct StepResult {
   nlohmann::json report = nlohmann::json::object();  // counts the tool reports
 };
 
+// The meshes one input's steps load. Each set of load options is imported
+// once and every step gets a copy: parsing, checking and repairing a large
+// scan costs as much as some steps. Safe to use from steps running side by
+// side; a failed load fails every step that asks for it, with its status.
+class InputMeshes {
+ public:
+  Status load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
+              LoadedMesh* loaded);
+
+ private:
+  struct Entry {
+    std::once_flag once;
+    Status status = Status::ok();
+    LoadedMesh loaded;
+  };
+  std::mutex mutex_;
+  std::map<std::string, std::unique_ptr<Entry>> entries_;  // by the options that matter
+};
+
 // Runs `step` on `input` (its content `bytes`; referenced buffers and
 // images are read next to it). `earlier` holds the files of the input's
-// earlier steps by step name (package merges them). Deterministic; fails
-// with the status the tool would print.
+// earlier steps by step name (package merges them); `meshes` the input's
+// loaded meshes. Deterministic; fails with the status the tool would print.
 Result<StepResult> run_bake_step(const StepPlan& step, const std::string& input, const Bytes& bytes,
-                                 const std::map<std::string, std::vector<Bytes>>& earlier);
+                                 const std::map<std::string, std::vector<Bytes>>& earlier,
+                                 InputMeshes* meshes);
 
 }  // namespace lodbake

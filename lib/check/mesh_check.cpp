@@ -326,19 +326,42 @@ void check_duplicates(const TriangleMesh& mesh, const Classified& c, MeshCheckRe
 
 }  // namespace
 
-MeshCheckReport check_mesh(const TriangleMesh& mesh) {
+MeshCheckReport check_mesh(const TriangleMesh& mesh, const PartRunner& run_parts) {
   MeshCheckReport r;
   r.vertices = mesh.positions.size();
   r.triangles = mesh.triangles.size();
   Classified c = classify_triangles(mesh, &r);
   std::vector<uint8_t> finite;
   check_vertices(mesh, c, &r, &finite);
-  check_zero_area(mesh, c, finite, &r);
+  // The checks below read the mesh and write report fields of their own, so
+  // they run side by side; the heaviest (edges and fans) go first.
+  uint64_t used_vertices = 0;
+  const std::function<void(size_t)> check_part = [&](size_t part) {
+    switch (part) {
+      case 0:
+        check_edges(mesh, c, &r);
+        break;
+      case 1:
+        used_vertices = check_vertex_fans(mesh, c, &r);
+        break;
+      case 2:
+        check_duplicates(mesh, c, &r);
+        break;
+      case 3:
+        r.components = count_components(mesh, c);
+        break;
+      default:
+        check_zero_area(mesh, c, finite, &r);
+        break;
+    }
+  };
+  if (run_parts) {
+    run_parts(5, check_part);
+  } else {
+    for (size_t part = 0; part < 5; ++part)
+      check_part(part);
+  }
   r.degenerate_triangles = r.repeated_index_triangles + r.zero_area_triangles;
-  check_edges(mesh, c, &r);
-  uint64_t used_vertices = check_vertex_fans(mesh, c, &r);
-  r.components = count_components(mesh, c);
-  check_duplicates(mesh, c, &r);
 
   if (r.components == 1 && r.closed() && r.manifold() && r.inconsistent_orientation_edges == 0) {
     int64_t euler = static_cast<int64_t>(used_vertices) - static_cast<int64_t>(r.edges) +

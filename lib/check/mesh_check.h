@@ -6,6 +6,8 @@
 // docs/mesh-check.md.
 #pragma once
 
+#include <functional>
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -96,8 +98,12 @@ struct MeshCheckReport {
 };
 
 /// Checks `mesh`. Linear time apart from small per-vertex sorts; never fails
-/// (out-of-range indices are counted, not followed).
-MeshCheckReport check_mesh(const TriangleMesh& mesh);
+/// (out-of-range indices are counted, not followed). Its independent parts
+/// are handed to `run_parts` when given (ParallelScope::for_each_part: the
+/// check stays free of a thread library, as the replay runtime links it);
+/// the report is the same however they run.
+using PartRunner = std::function<void(size_t parts, const std::function<void(size_t)>& part)>;
+MeshCheckReport check_mesh(const TriangleMesh& mesh, const PartRunner& run_parts = nullptr);
 
 /// The index-structure part of check_mesh() that says whether `mesh` is a
 /// triangulation: out-of-range and repeated indices, edges (boundary,

@@ -2,6 +2,7 @@
 
 #include "formats/container/container_layout.h"
 #include "formats/sections/open_container.h"
+#include "lib/core/parallel.h"
 #include "lib/core/sha256.h"
 #include "lib/core/unreferenced_vertices.h"
 #include "lib/ingest/container_mesh.h"
@@ -54,7 +55,11 @@ Status prepare_mesh(const LoadOptions& options, LoadedMesh* loaded) {
     loaded->seam_vertices = loaded->mesh.positions.size() - before;
   }
 
-  loaded->check = check_mesh(loaded->mesh);
+  const ParallelScope scope(options.threads);
+  const PartRunner run_parts = [&scope](size_t parts, const std::function<void(size_t)>& part) {
+    scope.for_each_part(parts, part);
+  };
+  loaded->check = check_mesh(loaded->mesh, run_parts);
   const MeshCheckReport* final_check = &loaded->check;
   bool repair = options.repair;
   if (!repair && options.policy && loaded->check.triangles != 0) {
@@ -69,10 +74,11 @@ Status prepare_mesh(const LoadOptions& options, LoadedMesh* loaded) {
   }
   if (repair) {
     RepairReport report;
-    LODBAKE_RETURN_IF_ERROR(repair_mesh(loaded->mesh, &report));
+    MeshCheckReport after;
+    LODBAKE_RETURN_IF_ERROR(repair_mesh(loaded->mesh, &report, &after, run_parts));
     loaded->repair = report;
     loaded->repaired_by_default = !options.repair;
-    loaded->check_after_repair = check_mesh(loaded->mesh);
+    loaded->check_after_repair = std::move(after);
     final_check = &*loaded->check_after_repair;
   }
   LODBAKE_RETURN_IF_ERROR(options.policy ? check_usable(*final_check, *options.policy)

@@ -42,6 +42,9 @@ struct LoadOptions {
   // reader could parse" (the linter's choice). The default is what the
   // edge-collapse engine and every structure built on it need.
   std::optional<UsePolicy> policy = UsePolicy::two_manifold();
+  // The threads the check may use (the tool's --threads; 0: the caller's
+  // task arena, every core at the top level or a bake's --jobs).
+  unsigned threads = 0;
 };
 
 struct LoadedMesh {

@@ -54,6 +54,7 @@
 #include "formats/sections/vspl_compact.h"
 #include "formats/sections/vtre.h"
 #include "formats/support/string_format.h"
+#include "lib/core/parallel.h"
 
 namespace lodbake {
 namespace {
@@ -298,8 +299,21 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     return invalid_input("VSPL is kept but BASE is dropped: VSPL needs its BASE");
 
   std::optional<TriangleMesh> written_base;  // the BASE as a reader will decode it
-  for (const std::string& tag : out_order) {
+  // One section of the output, made by encode(); dropped ones only report.
+  struct Encoded {
+    bool write = false;
+    bool dropped = false;
+    Bytes stored;
+    SectionCodec codec = SectionCodec::kRaw;
+    uint64_t decoded_size = 0;
+    bool required = false;
     PackedSection report;
+  };
+  auto encode = [&](const std::string& tag, Encoded* out) -> Status {
+    PackedSection& report = out->report;
+    Bytes& stored = out->stored;
+    SectionCodec& codec = out->codec;
+    uint64_t& decoded_size = out->decoded_size;
     report.tag = tag;
     report.group = index == kDroppedGroup ? 0 : index;
     auto it = chosen.find(tag);
@@ -310,18 +324,17 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
       report.stored_before = s.entry.stored_size;
     }
     if (!wanted(tag)) {
-      if (it == chosen.end()) continue;
+      if (it == chosen.end()) return Status::ok();
       report.action = "dropped";
-      dropped->push_back(std::move(report));
-      continue;
+      out->dropped = true;
+      return Status::ok();
     }
-    Bytes stored;
-    SectionCodec codec = SectionCodec::kRaw;
-    uint64_t decoded_size = 0;
+    out->write = true;
     // Known tags get the registry's required flag whatever the input said
     // (inputs written before the flags were settled, or by other writers);
     // an unknown section keeps its own.
-    bool required = section_required(tag);
+    bool& required = out->required;
+    required = section_required(tag);
     if (tag == kMetaTag) {
       // Counts describe group 0's sections (docs/format.md "META"): those of
       // sections left out go too, or the output would not validate.
@@ -475,9 +488,34 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
     report.codec_after = codec_text(static_cast<uint16_t>(codec));
     report.stored_after = stored.size();
     report.decoded_after = decoded_size;
-    LODBAKE_RETURN_IF_ERROR(
-        writer->add_stored_section(tag, std::move(stored), codec, decoded_size, required, index));
-    result->sections.push_back(std::move(report));
+    return Status::ok();
+  };
+
+  // META and BASE first, one after the other: the sections after them are
+  // coded against the BASE as written. Those are independent of each other
+  // (the three VSPLs, FANH, VTRE and SETS of a bake's package take most of
+  // its time), so they are coded side by side and written in order.
+  std::vector<Encoded> encoded(out_order.size());
+  size_t serial = 0;
+  while (serial < out_order.size() &&
+         (out_order[serial] == kMetaTag || out_order[serial] == kBaseTag)) {
+    LODBAKE_RETURN_IF_ERROR(encode(out_order[serial], &encoded[serial]));
+    ++serial;
+  }
+  std::vector<Status> statuses(out_order.size(), Status::ok());
+  const ParallelScope scope(options.threads);
+  scope.for_each_part(out_order.size() - serial, [&](size_t k) {
+    statuses[serial + k] = encode(out_order[serial + k], &encoded[serial + k]);
+  });
+  for (const Status& status : statuses)
+    LODBAKE_RETURN_IF_ERROR(status);
+  for (size_t i = 0; i < out_order.size(); ++i) {
+    Encoded& e = encoded[i];
+    if (e.dropped) dropped->push_back(std::move(e.report));
+    if (!e.write) continue;
+    LODBAKE_RETURN_IF_ERROR(writer->add_stored_section(out_order[i], std::move(e.stored), e.codec,
+                                                       e.decoded_size, e.required, index));
+    result->sections.push_back(std::move(e.report));
   }
   return Status::ok();
 }

@@ -40,6 +40,10 @@ struct RepackOptions {
   std::vector<std::string> keep;
   /// Tags not written.
   std::vector<std::string> drop;
+  /// The threads a group's sections after BASE are coded on (ParallelScope:
+  /// 0 is the caller's arena, every core or a bake's --jobs); the output is
+  /// the same bytes for any count.
+  unsigned threads = 0;
 };
 
 /// What happened to one section of the output (or a dropped one).

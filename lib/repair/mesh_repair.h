@@ -9,6 +9,7 @@
 
 #include "formats/mesh/triangle_mesh.h"
 #include "formats/support/status.h"
+#include "lib/check/mesh_check.h"
 
 namespace lodbake {
 
@@ -45,7 +46,11 @@ struct RepairReport {
 /// On failure `mesh` is left unchanged. Fails with kInvalidInput when an
 /// index or attribute is out of range, when the mesh has 2^32 or more
 /// vertices, when no triangle is left, or when a piece is not orientable;
-/// with kRuntime when CGAL throws or memory runs out.
-Status repair_mesh(TriangleMesh& mesh, RepairReport* report);
+/// with kRuntime when CGAL throws or memory runs out. `check_after`, when
+/// given, receives check_mesh() of the repaired mesh, which the repair
+/// computes anyway as its postcondition; the check hands its parts to
+/// `run_parts` (as check_mesh()).
+Status repair_mesh(TriangleMesh& mesh, RepairReport* report, MeshCheckReport* check_after = nullptr,
+                   const PartRunner& run_parts = nullptr);
 
 }  // namespace lodbake

@@ -100,7 +100,7 @@ double bbox_diagonal(const TriangleMesh& mesh, const simplify_internal::MeshTopo
 
 // The simplified mesh: live triangles in input order, referenced vertices in
 // input order.
-TriangleMesh assemble_mesh(const EngineState& state) {
+TriangleMesh assemble_mesh(const EngineState& state, std::vector<uint32_t>* sources) {
   TriangleMesh out;
   std::vector<uint32_t> remap(state.positions.size(), kNoVertex);
   for (size_t t = 0; t < state.triangles.size(); ++t) {
@@ -142,6 +142,7 @@ TriangleMesh assemble_mesh(const EngineState& state) {
       }
     }
   }
+  *sources = std::move(order);
   return out;
 }
 
@@ -151,6 +152,9 @@ TriangleMesh assemble_mesh(const EngineState& state) {
 Result<SimplifyResult> simplify_impl(const TriangleMesh& input, TriangleMesh* owned,
                                      const SimplifyOptions& options) {
   LODBAKE_RETURN_IF_ERROR(check_options(options));
+  if (!options.locked_vertices.empty() && options.locked_vertices.size() != input.positions.size())
+    return invalid_input("locked_vertices has " + std::to_string(options.locked_vertices.size()) +
+                         " flags for " + std::to_string(input.positions.size()) + " vertices");
   LODBAKE_RETURN_IF_ERROR(check_attribute(input.normals, "normals", 3, input));
   LODBAKE_RETURN_IF_ERROR(check_attribute(input.texcoords, "texture coordinates", 2, input));
   if (options.record_pm && (input.normals.binding == AttributeBinding::kPerCorner ||
@@ -216,7 +220,7 @@ Result<SimplifyResult> simplify_impl(const TriangleMesh& input, TriangleMesh* ow
   // Both only read the state.
   auto assemble = [&](size_t task) {
     if (task == 0) {
-      result.mesh = assemble_mesh(state);
+      result.mesh = assemble_mesh(state, &result.vertex_sources);
     } else if (options.record_pm) {
       result.pm = simplify_internal::record_progressive_mesh(input, state);
     }

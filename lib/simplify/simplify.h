@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "formats/mesh/progressive_mesh.h"
 #include "formats/mesh/triangle_mesh.h"
@@ -42,6 +43,9 @@ struct SimplifyOptions {
                                   // length (faces: sqrt(area)), 10 being meshoptimizer's border
                                   // weight; optimal placement: this (faces: 1)
   bool lock_border = false;       // never move or remove boundary vertices
+  // Empty, or one flag per input vertex: nonzero, the vertex is never moved
+  // or removed (the out-of-core blocks lock a band along their cuts).
+  std::vector<uint8_t> locked_vertices;
   double max_normal_change_degrees = 150.0;  // refuse collapses turning a face normal more
   bool permissive = false;                   // allow collapses across texture seams
   // Assets, without `permissive`: seams stay until keeping them costs more
@@ -88,7 +92,10 @@ struct SimplifyStats {
 };
 
 struct SimplifyResult {
-  TriangleMesh mesh;                  // the simplified mesh (unused vertices removed)
+  TriangleMesh mesh;  // the simplified mesh (unused vertices removed)
+  // The input vertex each of mesh's vertices is (increasing): what joins
+  // separately simplified pieces of one mesh again (lib/outofcore).
+  std::vector<uint32_t> vertex_sources;
   std::optional<ProgressiveMesh> pm;  // when SimplifyOptions::record_pm
   SimplifyStats stats;
 };

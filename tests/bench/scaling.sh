@@ -10,11 +10,17 @@
 # same bytes (the benchmark fails otherwise). meshoptimizer 0.18
 # (bench_simplify --peers meshopt, one thread, to the same 10%) is the speed
 # reference. Times depend on the machine's load; peaks hardly do.
+# The out-of-core run (lodbake-simplify --memory-limit, at a quarter of the
+# in-core --pm peak just measured) against the in-core one, both writing the
+# mesh with --no-metrics and the first thread count: wall and peak rows, and
+# a second table of their Hausdorff and mean distance to the input
+# (BENCH_DIR/mesh_distance; left out above 20M triangles, whose metrics take
+# more memory than the runs).
 #
 #   tests/bench/scaling.sh [--levels 0,1,2,3] [--threads 1,2] TOOLS_DIR BENCH_DIR DRAGON_PLY WORK_DIR
 #
 # TOOLS_DIR holds lodbake-simplify and lodbake-hierarchy, BENCH_DIR
-# bench_simplify.
+# bench_simplify and mesh_distance.
 set -euo pipefail
 levels=0,1,2,3
 thread_counts=1,2
@@ -84,6 +90,7 @@ hierarchy_threads=false
 
 echo "| mesh | triangles | step | threads | wall s | CPU s | peak MiB | bytes/triangle |"
 echo "|---|---:|---|---:|---:|---:|---:|---:|"
+distances=""
 IFS=, read -r -a level_list <<< "$levels"
 IFS=, read -r -a thread_list <<< "$thread_counts"
 for level in "${level_list[@]}"; do
@@ -96,6 +103,7 @@ for level in "${level_list[@]}"; do
     timed "$tris" "simplify --pm --ratio 0.1 --no-metrics" "$n" \
       "$tools/lodbake-simplify" "$file" --pm "$out.pm.lbk" --ratio 0.1 --no-metrics \
       --threads "$n" --quiet
+    [[ -n $first ]] || read -r _ _ _ incore_kib < "$work/time"
     if $hierarchy_threads; then
       timed "$tris" "hierarchy" "$n" \
         "$tools/lodbake-hierarchy" "$file" -o "$out.hier.lbk" --threads "$n" --quiet
@@ -116,6 +124,20 @@ for level in "${level_list[@]}"; do
     rm -f "$out".*.lbk
   done
   rm -f "$first".*.lbk
+  n=${thread_list[0]}
+  limit=$((incore_kib / 4))K
+  timed "$tris" "simplify -o --ratio 0.1 --no-metrics, in core" "$n" \
+    "$tools/lodbake-simplify" "$file" -o "$work/$name.incore.ply" --ratio 0.1 --no-metrics \
+    --threads "$n" --quiet
+  timed "$tris" "simplify -o --ratio 0.1 --memory-limit $limit" "$n" \
+    "$tools/lodbake-simplify" "$file" -o "$work/$name.ooc.ply" --ratio 0.1 --memory-limit "$limit" \
+    --threads "$n" --quiet
+  if [[ $tris -le 20000000 ]]; then
+    distances+=$("$bench/mesh_distance" "$file" "$work/$name.incore.ply" "$work/$name.ooc.ply" |
+      awk -v m="$name" -v l="$limit" '{ printf "| %s | %s | %.3g | %.3g |\n", m,
+        (NR == 1 ? "in core" : "--memory-limit " l), $3, $5 }')$'\n'
+  fi
+  rm -f "$work/$name.incore.ply" "$work/$name.ooc.ply"
   # meshoptimizer's wall and CPU seconds (bench_simplify's "seconds" and
   # "cpu s", from its TriangleMesh to the result), with as few metric
   # samples as it takes.
@@ -124,3 +146,9 @@ for level in "${level_list[@]}"; do
       printf "| %s | %.2fM | meshoptimizer 0.18, 10%% | 1 | %.2f | %.2f | - | - |\n",
              m, t / 1e6, $5, $6 }'
 done
+if [[ -n $distances ]]; then
+  echo
+  echo "| mesh | run | Hausdorff / diagonal | mean / diagonal |"
+  echo "|---|---|---:|---:|"
+  printf '%s' "$distances"
+fi

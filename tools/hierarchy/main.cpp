@@ -105,6 +105,7 @@ int run(const Tool& tool, const Request& request) {
   load.repair = request.repair;
   load.strict = request.strict;
   load.drop_unreferenced = true;
+  load.threads = request.options.threads;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
   in.mesh = std::move(loaded.mesh);

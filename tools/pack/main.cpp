@@ -51,6 +51,7 @@ struct PackOptions {
   std::string drop;
   std::string keep;
   bool allow_outside = false;
+  unsigned threads = 0;  // 0: every core
 };
 
 // "A,B" -> {"A", "B"}; every tag must be 4 printable characters.
@@ -182,6 +183,7 @@ int pack(const Tool& tool, const std::string& input, const PackOptions& options)
   load.repair = options.repair;
   load.strict = options.strict;
   load.drop_unreferenced = true;
+  load.threads = options.threads;
   LoadedMesh loaded;
   if (int code = load_input(tool, input, load, &loaded); code != 0) return code;
 
@@ -348,7 +350,11 @@ int main(int argc, char** argv) {
       "containers: write only these sections (and META)")(
       "allow-outside", po::bool_switch(&options.allow_outside),
       "asset: let its URIs (glTF) or material libraries and maps (OBJ) name files outside "
-      "its folder (refused by default)");
+      "its folder (refused by default)")(
+      "threads", po::value<unsigned>(&options.threads)->value_name("N"),
+      "threads for the mesh check and, with containers, for coding a group's sections "
+      "after BASE side by side (oneTBB): 0 (default) every core, or 1 to 4096; the output "
+      "is the same bytes for any N");
   tool.positional("input", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
   const std::vector<std::string> inputs = tool.positionals("input");
@@ -361,6 +367,8 @@ int main(int argc, char** argv) {
                             std::to_string(options.qp));
   if (options.cl < 0 || options.cl > 10)
     return tool.usage_error("--cl takes 0 to 10, not " + std::to_string(options.cl));
+  if (options.threads > 4096)
+    return tool.usage_error("--threads takes a count from 0 (every core) to 4096");
   if (tool.has("error-bits") &&
       (options.error_bits < kMinSignificantBits || options.error_bits > kMaxSignificantBits))
     return tool.usage_error("--error-bits takes 1 to 24 bits, not " +
@@ -424,6 +432,7 @@ int main(int argc, char** argv) {
   repack_options.draco = options.draco;
   repack_options.draco_options.quantization_bits = options.qp;
   repack_options.draco_options.compression_level = options.cl;
+  repack_options.threads = options.threads;
   if (std::optional<int> code = tool.check_outputs({options.output})) return *code;
   return tool.run([&] { return repack(tool, inputs, options, repack_options); });
 }

@@ -34,6 +34,7 @@
 #include "tools/common/cli.h"
 #include "tools/common/deviation_report.h"
 #include "tools/common/mesh_report.h"
+#include "tools/simplify/out_of_core_run.h"
 
 namespace lodbake::cli {
 namespace {
@@ -332,6 +333,7 @@ int run(const Tool& tool, Request& request) {
   load.strict = request.strict;
   load.per_vertex_attributes = !request.pm_output.empty() || !request.ratios.empty();
   load.drop_unreferenced = true;
+  load.threads = request.options.threads;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
 
@@ -451,6 +453,51 @@ int run(const Tool& tool, Request& request) {
   return 0;
 }
 
+// What a --memory-limit run takes, checked before it starts.
+std::optional<int> check_out_of_core(const Tool& tool, const Request& request,
+                                     const OutOfCoreRequest& ooc) {
+  if (!request.pm_output.empty())
+    return tool.usage_error(
+        "--pm is not recorded out of core (--memory-limit): a progressive mesh needs the whole "
+        "mesh in memory");
+  if (!request.ratios.empty()) return tool.usage_error("--lods is not available out of core");
+  if (request.repair)
+    return tool.usage_error("--repair is not available out of core: blocks are read as they are");
+  if (!request.weight_option.empty())
+    return tool.usage_error(request.weight_option + " applies to assets, not out of core");
+  const std::string& stage = ooc.stage;
+  if (!stage.empty() && stage != "split" && stage != "block" && stage != "merge")
+    return tool.usage_error("--stage takes split, block or merge, not '" + stage + "'");
+  if (!stage.empty() && ooc.work.empty())
+    return tool.usage_error("--stage " + stage + " needs --work DIR");
+  if ((stage.empty() || stage == "split") && !tool.has("memory-limit"))
+    return tool.usage_error("--stage split needs --memory-limit SIZE");
+  if (stage == "block" && !tool.has("block"))
+    return tool.usage_error("--stage block needs --block N");
+  if (stage != "block" && tool.has("block"))
+    return tool.usage_error("--block belongs to --stage block");
+  if ((stage == "split" || stage == "block") && !request.output.empty())
+    return tool.usage_error("--stage " + stage + " writes into --work; -o belongs to merge");
+  if (stage == "merge" && request.output.empty())
+    return tool.usage_error("--stage merge needs -o OUT");
+  // The later stages take the split's options from the plan: giving others
+  // there would be ignored, so it is refused.
+  if (stage == "block" || stage == "merge") {
+    for (const char* name :
+         {"memory-limit", "ratio", "triangles", "error", "placement", "boundary-weight",
+          "lock-border", "max-normal-change", "height-guard", "height-guard-factor"})
+      if (tool.has(name) && !tool.args()[name].defaulted())
+        return tool.usage_error(std::string("--") + name +
+                                " belongs to the split: the later stages read it from the plan");
+  }
+  if ((stage.empty() || stage == "split") && !request.options.target_ratio &&
+      !request.options.target_triangles && !request.options.max_error)
+    return tool.usage_error("--memory-limit needs a target: --ratio, --triangles or --error");
+  if (!ooc.work.empty() && !request.output.empty() && same_file(request.input, request.output))
+    return tool.usage_error("the output is the input mesh itself");
+  return std::nullopt;
+}
+
 }  // namespace
 }  // namespace lodbake::cli
 
@@ -472,6 +519,7 @@ int main(int argc, char** argv) {
             "mesh). A mesh left above its target because no collapse is legal is one\n"
             "warning line and still exit 0 (JSON: target_reached false, and why).");
   Request request;
+  OutOfCoreRequest ooc;
   double ratio = 0, error = 0;
   uint64_t triangles = 0;
   std::string seam_release;
@@ -533,13 +581,32 @@ int main(int argc, char** argv) {
       "count up to 4096; the output is the same bytes for every count")(
       "no-metrics",
       "skip measuring the Hausdorff and mean distance, and the UV and normal deviation, to the "
-      "input");
+      "input")("memory-limit", po::value<std::string>(&ooc.memory_limit)->value_name("SIZE"),
+               "simplify a PLY mesh larger than memory in spatial blocks held to about SIZE "
+               "(512M, 2G; docs/simplify.md \"Larger than memory\"); no --pm, --lods or metrics")(
+      "stage", po::value<std::string>(&ooc.stage)->value_name("split|block|merge"),
+      "run one stage of a --memory-limit run: split MESH into blocks in --work, simplify block "
+      "--block N there, or merge the blocks into -o OUT")(
+      "block", po::value<uint32_t>(&ooc.block)->value_name("N"), "the block of --stage block")(
+      "work", po::value<std::string>(&ooc.work)->value_name("DIR"),
+      "the folder of a --memory-limit run's blocks (default: a new folder beside -o, removed "
+      "at the end)");
   tool.positional("mesh", -1);
   if (std::optional<int> done = tool.parse(argc, argv)) return *done;
-  if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
-    return *code;
+  const bool out_of_core = tool.has("memory-limit") || tool.has("stage");
+  const bool needs_mesh = ooc.stage != "block" && ooc.stage != "merge";
+  if (needs_mesh) {
+    if (std::optional<int> code = tool.single_positional("mesh", "MESH", &request.input))
+      return *code;
+  } else if (!tool.positionals("mesh").empty()) {
+    return tool.usage_error("--stage " + ooc.stage + " reads its mesh from --work, not MESH");
+  }
   request.metrics = !tool.has("no-metrics");
-  if (request.output.empty() && request.pm_output.empty())
+  if (!out_of_core && (tool.has("work") || tool.has("block")))
+    return tool.usage_error("--work and --block belong to a --memory-limit run");
+  if (out_of_core && ooc.stage.empty() && request.output.empty() && request.pm_output.empty())
+    return tool.usage_error("nothing to write: give -o OUT");
+  if (!out_of_core && request.output.empty() && request.pm_output.empty())
     return tool.usage_error("nothing to write: give -o OUT and/or --pm OUT.lbk");
   if (tool.has("ratio")) {
     if (!(ratio > 0 && ratio <= 1)) return tool.usage_error("--ratio takes a value in (0, 1]");
@@ -615,6 +682,14 @@ int main(int argc, char** argv) {
   if (!request.output.empty() && !request.pm_output.empty() &&
       same_output_path(request.output, request.pm_output))
     return tool.usage_error("-o and --pm name the same file '" + request.pm_output + "'");
+  if (out_of_core) {
+    if (std::optional<int> code = check_out_of_core(tool, request, ooc)) return *code;
+    ooc.input = request.input;
+    ooc.output = request.output;
+    ooc.options = request.options;
+    if (std::optional<int> code = tool.check_outputs({ooc.output})) return *code;
+    return tool.run([&] { return run_out_of_core(tool, ooc); });
+  }
   std::vector<std::string> outputs = {request.ratios.empty() ? request.output : ""};
   for (size_t i = 0; i < request.ratios.size(); ++i)
     outputs.push_back(lod_path(request.output, i));

@@ -82,6 +82,7 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
   load.strict = request.strict;
   load.per_vertex_attributes = !request.strips_only;  // the simplification records a PM
   load.drop_unreferenced = true;
+  load.threads = request.threads;
   LoadedMesh loaded;
   if (int code = load_input(tool, request.input, load, &loaded); code != 0) return code;
   in->meta = meta_input(request.input, loaded);
