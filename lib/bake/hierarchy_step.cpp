@@ -67,8 +67,8 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
   const HierarchyShape& shape = out.shape;
   std::vector<HierarchySection>& sections = out.sections;
   // VHIE + RFIN need the hierarchy alone, DAGE and VTRE its progressive
-  // mesh alone: each chain runs on its own thread (when there are two) and
-  // writes its own slots, assembled below in section order.
+  // mesh alone: DAGE and VTRE are built side by side (when there are two
+  // threads), each writing its own slots, assembled below in section order.
   const ParallelScope threads(request.options.threads);
   double refinement_seconds = 0, pm_seconds = 0, dag_seconds = 0, vtre_seconds = 0;
   Status refined = Status::ok(), converted = Status::ok(), dag_made = Status::ok(),
@@ -128,10 +128,11 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
     threads.for_each_part(after.size(), [&](size_t k) { after[k](); });
     return Status::ok();
   };
-  std::vector<std::function<void()>> chains;
-  if (request.vhie) chains.emplace_back([&] { refined = refine(); });
-  if (request.dage || request.vtre) chains.emplace_back([&] { converted = convert(); });
-  threads.for_each_part(chains.size(), [&](size_t k) { chains[k](); });
+  // The two chains one after the other: side by side they held both
+  // chains' structures at once (the 3.49M-triangle dragon: 1.31 GB with 2
+  // threads against 0.94 GB with 1) for the refinement's short time.
+  if (request.vhie) refined = refine();
+  if (refined.is_ok() && (request.dage || request.vtre)) converted = convert();
   // The first failure in section order, as the steps one after the other.
   LODBAKE_RETURN_IF_ERROR(refined);
   LODBAKE_RETURN_IF_ERROR(converted);

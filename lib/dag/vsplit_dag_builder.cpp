@@ -29,24 +29,29 @@
 
 namespace lodbake {
 
-Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm) {
+Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm, bool dependencies_only) {
   try {
     LODBAKE_ASSIGN_OR_RETURN(SplitSimulator sim, SplitSimulator::create(pm));
     SplitLineage out;
     const size_t splits = pm.splits.size();
     out.base_vertex_count = static_cast<uint32_t>(pm.base.vertex_count());
-    out.triangles = pm.base.triangles;
-    out.triangles.reserve(pm.base.triangles.size() + 8 * splits);
-    out.changed_by.assign(out.triangles.size(), kNoVertex);
-    out.face_slot.resize(out.triangles.size());
-    for (size_t t = 0; t < out.face_slot.size(); ++t)
-      out.face_slot[t] = static_cast<uint32_t>(t);
-    std::vector<uint32_t> creator(out.triangles.size(), kNoVertex);
-    std::vector<uint32_t> slot_triangle(out.triangles.size());
+    // Triangles are counted, and stored unless only dependencies are asked.
+    const bool keep = !dependencies_only;
+    uint32_t triangle_count = static_cast<uint32_t>(pm.base.triangles.size());
+    if (keep) {
+      out.triangles = pm.base.triangles;
+      out.triangles.reserve(pm.base.triangles.size() + 8 * splits);
+      out.changed_by.assign(out.triangles.size(), kNoVertex);
+      out.face_slot.resize(out.triangles.size());
+      for (size_t t = 0; t < out.face_slot.size(); ++t)
+        out.face_slot[t] = static_cast<uint32_t>(t);
+    }
+    std::vector<uint32_t> creator(triangle_count, kNoVertex);
+    std::vector<uint32_t> slot_triangle(triangle_count);
     for (size_t t = 0; t < slot_triangle.size(); ++t)
       slot_triangle[t] = static_cast<uint32_t>(t);
     out.created_offsets.reserve(splits + 1);
-    out.created_offsets.push_back(static_cast<uint32_t>(out.triangles.size()));
+    out.created_offsets.push_back(triangle_count);
     out.dependency_offsets.reserve(splits + 1);
     out.dependency_offsets.push_back(0);
 
@@ -80,19 +85,21 @@ Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm) {
       deps.clear();
       for (uint32_t slot : effect.moved) {
         const uint32_t old = slot_triangle[slot];
-        out.changed_by[old] = split;
         if (creator[old] != kNoVertex) deps.push_back(creator[old]);
-        slot_triangle[slot] = static_cast<uint32_t>(out.triangles.size());
+        slot_triangle[slot] = triangle_count++;
+        creator.push_back(split);
+        if (!keep) continue;
+        out.changed_by[old] = split;
         out.triangles.push_back(sim.faces()[slot]);
         out.face_slot.push_back(slot);
-        creator.push_back(split);
         out.changed_by.push_back(kNoVertex);
       }
       for (uint32_t slot : effect.added) {
-        slot_triangle.push_back(static_cast<uint32_t>(out.triangles.size()));
+        slot_triangle.push_back(triangle_count++);
+        creator.push_back(split);
+        if (!keep) continue;
         out.triangles.push_back(sim.faces()[slot]);
         out.face_slot.push_back(slot);
-        creator.push_back(split);
         out.changed_by.push_back(kNoVertex);
       }
       for (HalfEdgeKey e : before) {
@@ -109,7 +116,7 @@ Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm) {
       deps.erase(std::unique(deps.begin(), deps.end()), deps.end());
       out.dependencies.insert(out.dependencies.end(), deps.begin(), deps.end());
       out.dependency_offsets.push_back(static_cast<uint32_t>(out.dependencies.size()));
-      out.created_offsets.push_back(static_cast<uint32_t>(out.triangles.size()));
+      out.created_offsets.push_back(triangle_count);
     }
     return out;
   } catch (const std::bad_alloc&) {
@@ -162,7 +169,8 @@ Result<VsplitDag> reduce_dependencies(const SplitLineage& lineage) {
 }
 
 Result<VsplitDag> build_vsplit_dag(const ProgressiveMesh& pm) {
-  LODBAKE_ASSIGN_OR_RETURN(SplitLineage lineage, build_split_lineage(pm));
+  LODBAKE_ASSIGN_OR_RETURN(SplitLineage lineage,
+                           build_split_lineage(pm, /*dependencies_only=*/true));
   return reduce_dependencies(lineage);
 }
 

@@ -49,7 +49,9 @@ struct SplitLineage {
 /// of (real or virtual) triangles by another set with the same outline.
 /// \return kInvalidInput when a record does not fit the mesh (the errors of
 ///         PmRefiner::split_next()), kRuntime when memory runs out.
-Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm);
+/// With `dependencies_only`, triangles, changed_by and face_slot stay empty
+/// (what reduce_dependencies() reads is the same).
+Result<SplitLineage> build_split_lineage(const ProgressiveMesh& pm, bool dependencies_only = false);
 
 /// The transitive reduction of the lineage's dependencies: node i keeps
 /// parent p unless p is an ancestor of another of i's parents.

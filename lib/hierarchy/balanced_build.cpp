@@ -46,8 +46,10 @@
 // Threads (lib/core/parallel.h): a round lists its candidates in vertex
 // ranges concatenated in range order (the serial list) and sorts them in
 // fixed chunks, so every thread count walks the same sorted list; the walk
-// itself stays serial (each collapse blocks the ones after it). With more
-// than one thread the orderings finish side by side, each on its own copy.
+// itself stays serial (each collapse blocks the ones after it). The
+// orderings finish one after the other on one state, rewound to the shared
+// point between them (side by side, each on a copy, cost a state per
+// ordering: docs/lab/hierarchy-memory.md).
 #include "lib/hierarchy/balanced_build.h"
 
 #include <algorithm>
@@ -133,6 +135,9 @@ class Builder {
     used_.assign(n, 0);
     near_.assign(n, 0);
     removed_.assign(n, 0);
+    for (uint32_t v = 0; v < n; ++v) {
+      if (!vertex_faces_[v].empty()) live_.push_back(v);
+    }
 
     // Round 0 is the input itself.
     level_vertices_.push_back(n);
@@ -143,6 +148,63 @@ class Builder {
 
   void set_ordering(int ordering) { ordering_ = ordering; }
   Result<BalancedHierarchy> result() const { return pack(); }
+
+  // What the rounds after this point change, so that restore() can rewind
+  // the build to it: the orderings finish one after the other on one state
+  // instead of each on a copy (a copy holds every per-vertex array; this
+  // holds the live vertices' and faces' entries only).
+  void checkpoint() {
+    // Only the roots' parents change later: a removed vertex's node has one.
+    drop_removed();
+    Checkpoint& c = checkpoint_;
+    c = Checkpoint();
+    c.live = live_;
+    c.quadric.reserve(live_.size());
+    c.faces.reserve(live_.size());
+    c.node_of.reserve(live_.size());
+    for (uint32_t v : live_) {
+      c.quadric.push_back(quadric_[v]);
+      c.faces.push_back(vertex_faces_[v]);
+      c.node_of.push_back(node_of_[v]);
+    }
+    for (uint32_t f = 0; f < tris_.size(); ++f) {
+      if (!face_alive_[f]) continue;
+      c.live_faces.push_back(f);
+      c.tris.push_back(tris_[f]);
+    }
+    c.node_count = nodes_.size();
+    c.round = round_;
+    c.cap = cap_;
+    c.level_vertices = level_vertices_;
+  }
+
+  void restore() {
+    const Checkpoint& c = checkpoint_;
+    // Stamps of the rewound rounds would match the rounds run again.
+    for (uint32_t& r : used_)
+      if (r >= c.round) r = 0;
+    for (uint32_t& r : near_)
+      if (r >= c.round) r = 0;
+    // Only a live vertex's faces, quadric and node change after the
+    // checkpoint; vertices removed since are live there.
+    for (size_t i = 0; i < c.live.size(); ++i) {
+      const uint32_t v = c.live[i];
+      quadric_[v] = c.quadric[i];
+      vertex_faces_[v] = c.faces[i];
+      node_of_[v] = c.node_of[i];
+      nodes_[c.node_of[i]].parent = kNone;
+      removed_[v] = 0;
+    }
+    for (size_t i = 0; i < c.live_faces.size(); ++i) {
+      tris_[c.live_faces[i]] = c.tris[i];
+      face_alive_[c.live_faces[i]] = 1;
+    }
+    nodes_.resize(c.node_count);
+    live_ = c.live;
+    round_ = c.round;
+    cap_ = c.cap;
+    level_vertices_ = c.level_vertices;
+  }
 
   // Levels until at most `vertices` remain or no collapse is legal.
   void build_until(uint64_t vertices) {
@@ -213,11 +275,19 @@ class Builder {
     return static_cast<float>(e);
   }
 
-  // The candidates of vertices [begin, end) in vertex order; sets
+  // The candidates of live vertices [begin, end) in vertex order; sets
   // *capped when the height cap held one back.
   void list_candidates(size_t begin, size_t end, std::vector<Candidate>* out, bool* capped) const {
+    // A manifold vertex has at most one neighbour more than faces: the list
+    // is reserved once instead of doubling (round 1's is the largest block
+    // the build holds).
+    size_t bound = 0;
+    for (size_t i = begin; i < end; ++i)
+      bound += vertex_faces_[live_[i]].size() + 1;
+    out->reserve(out->size() + bound);
     std::vector<uint32_t> ring;
-    for (auto u = static_cast<uint32_t>(begin); u < end; ++u) {
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t u = live_[i];
       if (vertex_faces_[u].empty()) continue;
       const uint32_t hu = nodes_[node_of_[u]].height;
       if (hu + 1 > cap_) {
@@ -244,13 +314,22 @@ class Builder {
     }
   }
 
+  void drop_removed() {
+    live_.erase(std::remove_if(live_.begin(), live_.end(),
+                               [&](uint32_t v) { return vertex_faces_[v].empty(); }),
+                live_.end());
+  }
+
   uint64_t run_round(uint32_t round) {
-    const size_t n = mesh_.positions.size();
+    // The live vertices, in vertex order: the same list as all vertices
+    // with the removed ones skipped, without visiting them every round.
+    drop_removed();
+    const size_t n = live_.size();
     const size_t parts = threads_->parts(n, kMinListPart);
-    candidates_.clear();
+    std::vector<Candidate> candidates;
     if (parts == 1) {
       bool held_back = false;
-      list_candidates(0, n, &candidates_, &held_back);
+      list_candidates(0, n, &candidates, &held_back);
       capped_ = capped_ || held_back;
     }
     std::vector<std::vector<Candidate>> listed(parts == 1 ? 0 : parts);
@@ -261,25 +340,67 @@ class Builder {
       list_candidates(range.begin, range.end, &listed[p], &part_capped);
       capped[p] = part_capped ? 1 : 0;
     });
+    size_t total = 0;
+    for (const std::vector<Candidate>& part : listed)
+      total += part.size();
+    candidates.reserve(total);
     for (size_t p = 0; p < listed.size(); ++p) {
-      candidates_.insert(candidates_.end(), listed[p].begin(), listed[p].end());
+      candidates.insert(candidates.end(), listed[p].begin(), listed[p].end());
       std::vector<Candidate>().swap(listed[p]);
       if (capped[p]) capped_ = true;
     }
-    sort_in_chunks(*threads_, &candidates_, kSortChunk, std::less<Candidate>());
-    std::vector<uint32_t> ring;
     uint64_t made = 0;
-    for (const Candidate& c : candidates_) {
-      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) continue;
+    auto take = [&](const Candidate& c) {
+      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) return;
       uint32_t vl = kNone;
       uint32_t vr = kNone;
-      if (!legal(c.u, c.t, &vl, &vr)) continue;
-      neighbours(c.u, &ring);
-      for (uint32_t w : ring)
+      if (!legal(c.u, c.t, &vl, &vr)) return;
+      for (uint32_t w : ring_u_)  // u's ring, as legal() left it
         near_[w] = round;
       used_[c.u] = used_[c.t] = round;
       collapse(c.u, c.t, vl, round, c.cost);
       ++made;
+    };
+    // Without a NaN cost the key is a strict total order ((u, t) is listed
+    // once), so the sorted order is the one there is: the sorted chunks are
+    // merged on the fly as the walk reads them, without the merge's copy of
+    // the list. A NaN cost keeps sort_in_chunks' merge, whose order the
+    // comparisons fix.
+    const bool strict = std::none_of(candidates.begin(), candidates.end(),
+                                     [](const Candidate& c) { return std::isnan(c.cost); });
+    if (!strict || candidates.size() <= kSortChunk) {
+      sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
+      for (const Candidate& c : candidates)
+        take(c);
+      return made;
+    }
+    threads_->for_each_chunk(candidates.size(), kSortChunk, [&](size_t, IndexRange range) {
+      std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(range.begin),
+                candidates.begin() + static_cast<std::ptrdiff_t>(range.end));
+    });
+    // A min-heap of each chunk's next candidate.
+    struct Head {
+      Candidate c;
+      size_t next;
+      size_t end;
+    };
+    auto later = [](const Head& a, const Head& b) { return b.c < a.c; };
+    std::vector<Head> heads;
+    for (size_t begin = 0; begin < candidates.size(); begin += kSortChunk) {
+      const size_t end = std::min(candidates.size(), begin + kSortChunk);
+      heads.push_back({candidates[begin], begin + 1, end});
+    }
+    std::make_heap(heads.begin(), heads.end(), later);
+    while (!heads.empty()) {
+      std::pop_heap(heads.begin(), heads.end(), later);
+      Head& h = heads.back();
+      take(h.c);
+      if (h.next == h.end) {
+        heads.pop_back();
+        continue;
+      }
+      h.c = candidates[h.next++];
+      std::push_heap(heads.begin(), heads.end(), later);
     }
     return made;
   }
@@ -468,7 +589,19 @@ class Builder {
   std::vector<uint8_t> removed_;
   std::vector<uint32_t> used_;
   std::vector<uint32_t> near_;
-  std::vector<Candidate> candidates_;
+  std::vector<uint32_t> live_;  // vertices with faces, ascending, and some removed
+  struct Checkpoint {
+    std::vector<uint32_t> live;
+    std::vector<Quadric> quadric;
+    std::vector<std::vector<uint32_t>> faces;
+    std::vector<uint32_t> node_of;
+    std::vector<uint32_t> live_faces;
+    std::vector<Triangle> tris;
+    size_t node_count = 0;
+    uint32_t round = 0;
+    uint32_t cap = 0;
+    std::vector<uint64_t> level_vertices;
+  } checkpoint_;
   std::vector<uint32_t> ring_u_;
   std::vector<uint32_t> ring_t_;
   std::vector<uint64_t> level_vertices_;
@@ -483,8 +616,6 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
                          " vertices, a hierarchy holds fewer than 2^31");
   }
   try {
-    // Each ordering is deterministic; the one with the fewest id bits wins
-    // (then the shallower, then the one with fewer roots, then the first).
     const ParallelScope threads(options.threads);
     const int orderings = std::max(1, std::min(3, options.orderings));
     Builder shared(mesh, options, 0, threads);
@@ -494,33 +625,17 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
     // the trees' heights are decided; sharing the rest makes three
     // orderings cost little more than one.
     shared.build_until(orderings > 1 ? mesh.positions.size() / 16 : 0);
-    std::vector<std::optional<Result<BalancedHierarchy>>> built(orderings);
-    auto finish = [&](Builder builder, int ordering) {
-      builder.set_ordering(ordering);
-      builder.build_until(0);
-      built[ordering] = builder.result();
-    };
-    if (threads.threads() > 1) {
-      // Side by side, each on a copy of the shared state (the last takes
-      // it): more memory than one after the other, the same hierarchies.
-      std::vector<std::optional<Builder>> copies(orderings);
-      for (int ordering = 0; ordering + 1 < orderings; ++ordering)
-        copies[ordering].emplace(shared);
-      copies[orderings - 1].emplace(std::move(shared));
-      threads.for_each_part(static_cast<size_t>(orderings), [&](size_t ordering) {
-        finish(std::move(*copies[ordering]), static_cast<int>(ordering));
-        copies[ordering].reset();
-      });
-    } else {
-      for (int ordering = 0; ordering < orderings; ++ordering)
-        finish(ordering + 1 == orderings ? std::move(shared) : shared, ordering);
-    }
-    // Each ordering is deterministic; the one with the fewest id bits wins
-    // (then the shallower, then the one with fewer roots, then the first).
+    // One after the other on the one state, rewound between them; the best
+    // so far is kept (fewest id bits, then shallower, then fewer roots, then
+    // the first). The listing and sorting of each round stay parallel.
+    if (orderings > 1) shared.checkpoint();
     std::optional<BalancedHierarchy> best;
     HierarchyShape best_shape;
     for (int ordering = 0; ordering < orderings; ++ordering) {
-      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy one, std::move(*built[ordering]));
+      if (ordering > 0) shared.restore();
+      shared.set_ordering(ordering);
+      shared.build_until(0);
+      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy one, shared.result());
       const HierarchyShape shape = hierarchy_shape(one.hierarchy);
       if (!best || shape.id_bits < best_shape.id_bits ||
           (shape.id_bits == best_shape.id_bits &&

@@ -23,10 +23,9 @@ struct BalancedBuildOptions {
   /// from the state shared down to 1/16 of the vertices; the hierarchy with
   /// the fewest <tree-id, node-id> bits is kept.
   int orderings = 3;
-  /// Threads of the parallel steps (candidate listing and sorting, the
-  /// orderings run side by side): 0 runs them on the caller's task arena
-  /// (every core, or a bake's --jobs threads). The hierarchy is the same
-  /// for every count.
+  /// Threads of the parallel steps (candidate listing and sorting): 0 runs them on the caller's
+  /// task arena (every core, or a bake's --jobs threads). The hierarchy is the same for every
+  /// count.
   unsigned threads = 0;
 };
 

@@ -25,7 +25,6 @@ Result<ProgressiveMesh> hierarchy_to_progressive_mesh(const VertexHierarchy& h,
       pm_vertex[r] = r;
     // First the order (the refiner decides the partial order), then a
     // replay that reads each split's wings in the state just before it.
-    LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner replay, SelectiveRefiner::create(h));
     std::vector<uint32_t> order;
     order.reserve((n - roots) / 2);
     {
@@ -35,6 +34,9 @@ Result<ProgressiveMesh> hierarchy_to_progressive_mesh(const VertexHierarchy& h,
         LODBAKE_RETURN_IF_ERROR(first.split_with_dependencies(s, &order));
       }
     }
+    // Created once the first refiner is gone: one refiner at a time.
+    LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner replay, SelectiveRefiner::create(h));
+    pm.splits.reserve(order.size());
     for (uint32_t s : order) {
       const uint32_t left = h.first_child[s];
       const uint32_t right = left + 1;
