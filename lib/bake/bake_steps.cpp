@@ -448,10 +448,14 @@ Status run_package(const StepPlan& step, const std::map<std::string, std::vector
 
 Status InputMeshes::load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
                          LoadedMesh* loaded) {
-  // The options a bake step can vary; the rest are the same for all.
+  // Parsed once; checked and repaired once per set of the options a step
+  // can vary. The seam split changes nothing on a mesh without per-corner
+  // attributes (a scan), so there the steps with and without it share one.
+  std::call_once(parsed_once_, [&] { parsed_status_ = parse_mesh_bytes(input, bytes, &parsed_); });
+  if (!parsed_status_.is_ok()) return parsed_status_;
+  const bool split = options.per_vertex_attributes && has_per_corner_attributes(parsed_.mesh);
   const std::string key = std::to_string(options.repair) + std::to_string(options.strict) +
-                          std::to_string(options.per_vertex_attributes) +
-                          std::to_string(options.drop_unreferenced);
+                          std::to_string(split) + std::to_string(options.drop_unreferenced);
   Entry* entry = nullptr;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -459,8 +463,10 @@ Status InputMeshes::load(const std::string& input, const Bytes& bytes, const Loa
     if (!slot) slot = std::make_unique<Entry>();
     entry = slot.get();
   }
-  std::call_once(entry->once,
-                 [&] { entry->status = load_mesh_bytes(input, bytes, options, &entry->loaded); });
+  std::call_once(entry->once, [&] {
+    entry->loaded = parsed_;
+    entry->status = prepare_mesh(options, &entry->loaded);
+  });
   if (!entry->status.is_ok()) return entry->status;
   *loaded = entry->loaded;
   return Status::ok();

@@ -26,9 +26,10 @@ struct StepResult {
   nlohmann::json report = nlohmann::json::object();  // counts the tool reports
 };
 
-// The meshes one input's steps load. Each set of load options is imported
-// once and every step gets a copy: parsing, checking and repairing a large
-// scan costs as much as some steps. Safe to use from steps running side by
+// The meshes one input's steps load. The input is parsed once and checked
+// and repaired once per set of load options that can give another mesh;
+// every step gets a copy: parsing, checking and repairing a large scan
+// costs as much as some steps. Safe to use from steps running side by
 // side; a failed load fails every step that asks for it, with its status.
 class InputMeshes {
  public:
@@ -41,6 +42,9 @@ class InputMeshes {
     Status status = Status::ok();
     LoadedMesh loaded;
   };
+  std::once_flag parsed_once_;
+  Status parsed_status_ = Status::ok();
+  LoadedMesh parsed_;  // as parsed, before any check
   std::mutex mutex_;
   std::map<std::string, std::unique_ptr<Entry>> entries_;  // by the options that matter
 };

@@ -20,6 +20,16 @@ Status load_mesh(const std::string& path, const LoadOptions& options, LoadedMesh
 
 Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& options,
                        LoadedMesh* loaded) {
+  LODBAKE_RETURN_IF_ERROR(parse_mesh_bytes(path, std::move(bytes), loaded));
+  return prepare_mesh(options, loaded);
+}
+
+bool has_per_corner_attributes(const TriangleMesh& mesh) {
+  return mesh.normals.binding == AttributeBinding::kPerCorner ||
+         mesh.texcoords.binding == AttributeBinding::kPerCorner;
+}
+
+Status parse_mesh_bytes(const std::string& path, Bytes bytes, LoadedMesh* loaded) {
   loaded->file_bytes = bytes.size();
   loaded->sha256 = sha256_hex(bytes.data(), bytes.size());
   // Another tool's output (its magic, or a .lbk name so that a broken
@@ -41,14 +51,11 @@ Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& 
   } else {
     LODBAKE_ASSIGN_OR_RETURN(loaded->mesh, import_mesh(path, bytes, &loaded->import));
   }
-  bytes = Bytes();  // the parsed mesh replaces the file's bytes; free them early
-  return prepare_mesh(options, loaded);
+  return Status::ok();  // the parsed mesh replaces the file's bytes, freed here
 }
 
 Status prepare_mesh(const LoadOptions& options, LoadedMesh* loaded) {
-  if (options.per_vertex_attributes &&
-      (loaded->mesh.normals.binding == AttributeBinding::kPerCorner ||
-       loaded->mesh.texcoords.binding == AttributeBinding::kPerCorner)) {
+  if (options.per_vertex_attributes && has_per_corner_attributes(loaded->mesh)) {
     LODBAKE_RETURN_IF_ERROR(check_writable(loaded->mesh));
     const size_t before = loaded->mesh.positions.size();
     loaded->mesh = split_corner_attributes(loaded->mesh);

@@ -78,6 +78,14 @@ Status load_mesh(const std::string& path, const LoadOptions& options, LoadedMesh
 Status load_mesh_bytes(const std::string& path, Bytes bytes, const LoadOptions& options,
                        LoadedMesh* loaded);
 
+// The parsing part of load_mesh_bytes(): fills the mesh, the import report,
+// the file's size and hash and, for a container, what it stands for.
+Status parse_mesh_bytes(const std::string& path, Bytes bytes, LoadedMesh* loaded);
+
+// Whether LoadOptions::per_vertex_attributes would change `mesh` (it has
+// per-corner normals or texture coordinates).
+bool has_per_corner_attributes(const TriangleMesh& mesh);
+
 // The steps after parsing, on loaded->mesh already in place (a mesh that
 // comes from elsewhere than a file, e.g. a scene mesh's welded topology):
 // seam split, check, repair, policy, unreferenced vertices.

@@ -23,7 +23,7 @@ Bytes bytes_of(const std::string& path) {
   return read_bytes(path);
 }
 
-TEST(InputMeshes, EachSetOfOptionsIsImportedOnce) {
+TEST(InputMeshes, TheInputIsParsedOnceAndPreparedPerSetOfOptions) {
   const std::string kMesh = mesh_path();
   InputMeshes meshes;
   LoadOptions options;
@@ -31,16 +31,37 @@ TEST(InputMeshes, EachSetOfOptionsIsImportedOnce) {
   LoadedMesh first;
   ASSERT_TRUE(meshes.load(kMesh, bytes_of(kMesh), options, &first).is_ok());
   ASSERT_GT(first.mesh.triangle_count(), 0u);
-  // The second step's bytes are never parsed: the first import is shared.
+  // Later steps' bytes are never parsed: the first parse is shared.
   LoadedMesh second;
   ASSERT_TRUE(meshes.load(kMesh, Bytes{'x'}, options, &second).is_ok());
   EXPECT_EQ(second.mesh.positions, first.mesh.positions);
   EXPECT_EQ(second.mesh.triangles, first.mesh.triangles);
   EXPECT_EQ(second.sha256, first.sha256);
-  // Other import options are an import of their own.
+  // Other options prepare that parse again: --repair repairs it.
+  EXPECT_FALSE(first.repair.has_value());
+  options.repair = true;
+  LoadedMesh repaired;
+  ASSERT_TRUE(meshes.load(kMesh, Bytes{'x'}, options, &repaired).is_ok());
+  EXPECT_TRUE(repaired.repair.has_value());
+}
+
+TEST(InputMeshes, TheSeamSplitIsOnlyAPreparationOfItsOwnWhereItSplits) {
+  // spot has per-corner texture coordinates: split and unsplit differ.
+  const std::string spot = env_or_fail("LODBAKE_SHARED_DATA") + "/meshes/c3d_spot.obj";
+  InputMeshes meshes;
+  LoadOptions options;
+  LoadedMesh corners, split;
+  ASSERT_TRUE(meshes.load(spot, bytes_of(spot), options, &corners).is_ok());
   options.per_vertex_attributes = true;
-  LoadedMesh other;
-  EXPECT_FALSE(meshes.load(kMesh, Bytes{'x'}, options, &other).is_ok());
+  ASSERT_TRUE(meshes.load(spot, Bytes{}, options, &split).is_ok());
+  EXPECT_EQ(corners.seam_vertices, 0u);
+  EXPECT_GT(split.seam_vertices, 0u);
+  EXPECT_GT(split.mesh.positions.size(), corners.mesh.positions.size());
+  // Each is what load_mesh_bytes() makes with the same options.
+  LoadedMesh direct;
+  ASSERT_TRUE(load_mesh_bytes(spot, bytes_of(spot), options, &direct).is_ok());
+  EXPECT_EQ(direct.mesh.positions, split.mesh.positions);
+  EXPECT_EQ(direct.mesh.triangles, split.mesh.triangles);
 }
 
 TEST(InputMeshes, AFailedImportFailsEveryStepThatAsks) {
