@@ -19,12 +19,18 @@ CompactStreamWriter::CompactStreamWriter(int contexts)
       orders_(static_cast<size_t>(contexts), 0) {}
 
 void CompactStreamWriter::record(uint8_t tag, uint64_t value) {
-  symbols_.push_back(tag);
+  constexpr size_t kLongest = 11;  // the tag and ten LEB128 bytes
+  if (symbols_.empty() || symbols_.back().size() > kChunk - kLongest) {
+    symbols_.emplace_back();
+    symbols_.back().reserve(kChunk);
+  }
+  Bytes& chunk = symbols_.back();
+  chunk.push_back(tag);
   while (value >= 0x80) {
-    symbols_.push_back(static_cast<uint8_t>(value | 0x80));
+    chunk.push_back(static_cast<uint8_t>(value | 0x80));
     value >>= 7;
   }
-  symbols_.push_back(static_cast<uint8_t>(value));
+  chunk.push_back(static_cast<uint8_t>(value));
 }
 
 void CompactStreamWriter::golomb(int ctx, uint64_t value) {
@@ -126,26 +132,28 @@ void CompactStreamWriter::write_to(Bytes* out) {
     estimate += best_cost / kOne / 8;
     out->push_back(static_cast<uint8_t>(orders_[c]));
   }
-  out->reserve(out->size() + estimate + symbols_.size() / 8 + 16);
+  out->reserve(out->size() + estimate + 16);
   StreamBits stream(out);
-  const uint8_t* p = symbols_.data();
-  const uint8_t* end = p + symbols_.size();
-  while (p != end) {
-    const uint8_t tag = *p++;
-    uint64_t value = 0;
-    for (int shift = 0;; shift += 7) {
-      const uint8_t byte = *p++;
-      value |= uint64_t{byte & 0x7Fu} << shift;
-      if (byte < 0x80) break;
-    }
-    if (tag < kMaxContexts) {
-      stream.exp_golomb(value, orders_[tag]);
-    } else {
-      stream.put64(value, tag - kMaxContexts);
+  for (const Bytes& chunk : symbols_) {
+    const uint8_t* p = chunk.data();
+    const uint8_t* end = p + chunk.size();
+    while (p != end) {
+      const uint8_t tag = *p++;
+      uint64_t value = 0;
+      for (int shift = 0;; shift += 7) {
+        const uint8_t byte = *p++;
+        value |= uint64_t{byte & 0x7Fu} << shift;
+        if (byte < 0x80) break;
+      }
+      if (tag < kMaxContexts) {
+        stream.exp_golomb(value, orders_[tag]);
+      } else {
+        stream.put64(value, tag - kMaxContexts);
+      }
     }
   }
   stream.finish();
-  symbols_ = Bytes();
+  symbols_.clear();
 }
 
 bool CompactStreamReader::start(const uint8_t* data, size_t size, int contexts) {

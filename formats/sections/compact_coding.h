@@ -58,8 +58,11 @@ class CompactStreamWriter {
   std::vector<std::vector<uint64_t>> length_counts_;  // per context: values by bit length
   std::vector<int> orders_;
   // The symbols in stream order: a tag byte (the context of a code, or
-  // kMaxContexts + width for a field) and the value in LEB128.
-  Bytes symbols_;
+  // kMaxContexts + width for a field) and the value in LEB128, in chunks
+  // of kChunk bytes that never split a symbol (a growing vector would copy
+  // them all at each doubling).
+  static constexpr size_t kChunk = size_t{1} << 20;
+  std::vector<Bytes> symbols_;
 };
 
 /// Reads a compact stream written by CompactStreamWriter. Every read
