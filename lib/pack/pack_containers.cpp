@@ -454,7 +454,10 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
       }
       decoded_size = raw_size;
       if (options.compact) {
-        LODBAKE_ASSIGN_OR_RETURN(stored, encode_vspl_compact(raw, raw_size, *written_base));
+        VsplCompactOptions compact;
+        compact.decoded = &section;  // decoded against the written BASE, as the codec does
+        LODBAKE_ASSIGN_OR_RETURN(stored,
+                                 encode_vspl_compact(raw, raw_size, *written_base, compact));
         codec = SectionCodec::kCompact;
       } else if (owned.empty()) {
         stored = Bytes(raw, raw + raw_size);
