@@ -41,6 +41,7 @@
 #include <map>
 #include <new>
 #include <optional>
+#include <utility>
 
 #include "formats/container/container_writer.h"
 #include "formats/container/section_codecs.h"
@@ -129,11 +130,11 @@ bool wanted_tag(const RepackOptions& options, const std::string& tag) {
 // An output group none of whose sections is written.
 constexpr uint32_t kDroppedGroup = UINT32_MAX;
 
-Status read_inputs(const std::vector<PackInput>& inputs, std::vector<InputFile>* files,
-                   size_t* failed) {
-  for (size_t i = 0; i < inputs.size(); ++i) {
+// Moves each input's bytes into its opened container.
+Status read_inputs(std::vector<PackInput>* inputs, std::vector<InputFile>* files, size_t* failed) {
+  for (size_t i = 0; i < inputs->size(); ++i) {
     *failed = i;
-    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(inputs[i].bytes));
+    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(std::move((*inputs)[i].bytes)));
     InputFile file{std::move(opened), std::nullopt, {}};
     if (const Section* meta = file.file.find(kMetaTag)) {
       LODBAKE_ASSIGN_OR_RETURN(MetaSection decoded, decode_meta(meta->data, meta->size));
@@ -141,7 +142,7 @@ Status read_inputs(const std::vector<PackInput>& inputs, std::vector<InputFile>*
     }
     files->push_back(std::move(file));
   }
-  *failed = inputs.size();
+  *failed = inputs->size();
   return Status::ok();
 }
 
@@ -544,13 +545,15 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
   return Status::ok();
 }
 
-Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
-                                    const RepackOptions& options,
+Result<PackResult> repack_unchecked(std::vector<PackInput> inputs, const RepackOptions& options,
                                     const nlohmann::json& meta_options, size_t* failed) {
   *failed = inputs.size();
   if (inputs.empty()) return invalid_input("no input containers");
+  PackResult result;
+  for (const PackInput& input : inputs)
+    result.input_bytes += input.bytes.size();
   std::vector<InputFile> files;
-  LODBAKE_RETURN_IF_ERROR(read_inputs(inputs, &files, failed));
+  LODBAKE_RETURN_IF_ERROR(read_inputs(&inputs, &files, failed));
   std::vector<OutGroup> groups = assign_groups(&files);
   // Groups whose every section is dropped are left out, and the others
   // renumbered, so the output's groups run 0, 1, 2, ... again.
@@ -569,10 +572,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
   // The input hashes first: files of different inputs differ everywhere.
   MetaSection merged_meta;
   LODBAKE_RETURN_IF_ERROR(merge_meta(inputs, files, meta_options, &merged_meta, failed));
-  PackResult result;
-  for (const PackInput& input : inputs)
-    result.input_bytes += input.bytes.size();
-
   ContainerWriter writer;
   std::vector<PackedSection> dropped;
   for (size_t g = 0; g < groups.size(); ++g) {
@@ -587,18 +586,18 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
 
 }  // namespace
 
-Result<PackResult> repack_containers(const std::vector<PackInput>& inputs,
-                                     const RepackOptions& options,
+Result<PackResult> repack_containers(std::vector<PackInput> inputs, const RepackOptions& options,
                                      const nlohmann::json& meta_options, size_t* failed_input) {
-  size_t failed = inputs.size();
+  const size_t count = inputs.size();
+  size_t failed = count;
   Result<PackResult> result = [&]() -> Result<PackResult> {
     try {
-      return repack_unchecked(inputs, options, meta_options, &failed);
+      return repack_unchecked(std::move(inputs), options, meta_options, &failed);
     } catch (const std::bad_alloc&) {
       return runtime_error("out of memory while packing");
     }
   }();
-  if (failed_input != nullptr) *failed_input = result.is_ok() ? inputs.size() : failed;
+  if (failed_input != nullptr) *failed_input = result.is_ok() ? count : failed;
   return result;
 }
 

@@ -91,7 +91,8 @@ int repack(const Tool& tool, const std::vector<std::string>& paths, const PackOp
   // Only when given, so that the files of earlier versions stay the same.
   if (options.error_bits != 0) meta_options["error_bits"] = options.error_bits;
   size_t failed = inputs.size();
-  Result<PackResult> packed = repack_containers(inputs, repack_options, meta_options, &failed);
+  Result<PackResult> packed =
+      repack_containers(std::move(inputs), repack_options, meta_options, &failed);
   if (!packed.is_ok())
     return tool.fail(failed < paths.size() ? paths[failed] : options.output, packed.status());
   const PackResult& r = packed.value();
