@@ -333,8 +333,11 @@ MeshCheckReport check_mesh(const TriangleMesh& mesh, const PartRunner& run_parts
   Classified c = classify_triangles(mesh, &r);
   std::vector<uint8_t> finite;
   check_vertices(mesh, c, &r, &finite);
-  // The checks below read the mesh and write report fields of their own, so
-  // they run side by side; the heaviest (edges and fans) go first.
+  // The checks below read the mesh and write report fields of their own.
+  // The edges run beside the zero areas and components, which need little
+  // memory; the fans and duplicates follow one at a time, since each of the
+  // three heavy ones holds an entry per corner (side by side they raised a
+  // 3.5M-triangle import's peak by a third).
   uint64_t used_vertices = 0;
   const std::function<void(size_t)> check_part = [&](size_t part) {
     switch (part) {
@@ -342,25 +345,21 @@ MeshCheckReport check_mesh(const TriangleMesh& mesh, const PartRunner& run_parts
         check_edges(mesh, c, &r);
         break;
       case 1:
-        used_vertices = check_vertex_fans(mesh, c, &r);
-        break;
-      case 2:
-        check_duplicates(mesh, c, &r);
-        break;
-      case 3:
-        r.components = count_components(mesh, c);
+        check_zero_area(mesh, c, finite, &r);
         break;
       default:
-        check_zero_area(mesh, c, finite, &r);
+        r.components = count_components(mesh, c);
         break;
     }
   };
   if (run_parts) {
-    run_parts(5, check_part);
+    run_parts(3, check_part);
   } else {
-    for (size_t part = 0; part < 5; ++part)
+    for (size_t part = 0; part < 3; ++part)
       check_part(part);
   }
+  used_vertices = check_vertex_fans(mesh, c, &r);
+  check_duplicates(mesh, c, &r);
   r.degenerate_triangles = r.repeated_index_triangles + r.zero_area_triangles;
 
   if (r.components == 1 && r.closed() && r.manifold() && r.inconsistent_orientation_edges == 0) {

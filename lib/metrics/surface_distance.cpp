@@ -2,7 +2,7 @@
 // the manner of Metro (Cignoni, Rocchini, Scopigno, "Metro: measuring error
 // on simplified surfaces", 1998): points are sampled on one surface and
 // their distance to the other is the distance to its closest point, found
-// with a CGAL AABB tree (AABB_triangle_primitive over the triangles,
+// with a CGAL AABB tree (a primitive per triangle index of the mesh,
 // Simple_cartesian<double>).
 //
 // Choices where "sample the surface" is vague, all fixed so the result is
@@ -36,14 +36,18 @@
 //   order, so the thread count never changes a bit of the result.
 #include "lib/metrics/surface_distance.h"
 
+#include <CGAL/AABB_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_3.h>
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <iterator>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -56,16 +60,146 @@ namespace {
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
 using Triangle3 = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle3>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-constexpr size_t kBlockSamples = 4096;
-constexpr uint64_t kMaxAreaSamples = uint64_t{1} << 30;
 
 Point to_point(const Vec3f& p) {
   return Point(p[0], p[1], p[2]);
 }
+
+Triangle3 triangle_of(const TriangleMesh& mesh, uint32_t t) {
+  const Triangle& tri = mesh.triangles[t];
+  return Triangle3(to_point(mesh.positions[tri[0]]), to_point(mesh.positions[tri[1]]),
+                   to_point(mesh.positions[tri[2]]));
+}
+
+// A tree's primitive is a triangle index of the mesh; its CGAL triangle is
+// made from the float positions whenever the tree reads it. A stored copy
+// (AABB_triangle_primitive over a vector of CGAL triangles) cost 72 bytes
+// per triangle. Float to double is exact, so the triangles, and the tree,
+// its hints and every distance, are the same.
+struct TriangleMap {
+  using key_type = uint32_t;
+  using value_type = Triangle3;
+  using reference = Triangle3;
+  using category = boost::readable_property_map_tag;
+  const TriangleMesh* mesh = nullptr;
+  friend Triangle3 get(const TriangleMap& map, uint32_t t) { return triangle_of(*map.mesh, t); }
+};
+// The reference point (the KD-tree's hints): the first vertex, as
+// AABB_triangle_primitive's.
+struct FirstVertexMap {
+  using key_type = uint32_t;
+  using value_type = Point;
+  using reference = Point;
+  using category = boost::readable_property_map_tag;
+  const TriangleMesh* mesh = nullptr;
+  friend Point get(const FirstVertexMap& map, uint32_t t) {
+    return to_point(map.mesh->positions[map.mesh->triangles[t][0]]);
+  }
+};
+using Primitive =
+    CGAL::AABB_primitive<uint32_t, TriangleMap, FirstVertexMap, CGAL::Tag_true, CGAL::Tag_false>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+// The reference points of primitives [p, ...), made as read, for the
+// KD-tree of hints (forward, so that the KD-tree sizes its copy once).
+class ReferencePoints {
+ public:
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = Point;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const Point*;
+  using reference = Point;
+
+  ReferencePoints() = default;
+  ReferencePoints(const Primitive* p, FirstVertexMap map) : p_(p), map_(map) {}
+  Point operator*() const { return get(map_, p_->id()); }
+  ReferencePoints& operator++() {
+    ++p_;
+    return *this;
+  }
+  ReferencePoints operator++(int) {
+    ReferencePoints old = *this;
+    ++p_;
+    return old;
+  }
+  bool operator==(const ReferencePoints& o) const { return p_ == o.p_; }
+  bool operator!=(const ReferencePoints& o) const { return p_ != o.p_; }
+
+ private:
+  const Primitive* p_ = nullptr;
+  FirstVertexMap map_;
+};
+
+// The tree's primitives in its own (built) order, which is the order of
+// the leaves from left to right: true when they lie contiguously from the
+// leftmost leaf's first primitive, as CGAL 5's tree stores them. `range`
+// is how many primitives lie under `node`; `next` the one expected next.
+using TreeNode = CGAL::AABB_node<CGAL::AABB_traits<Kernel, Primitive>>;
+bool leaves_in_order(const TreeNode& node, size_t range, const Primitive** next) {
+  auto leaf = [next](const Primitive& p) {
+    if (*next && &p != *next) return false;
+    *next = &p + 1;
+    return true;
+  };
+  switch (range) {
+    case 2:
+      return leaf(node.left_data()) && leaf(node.right_data());
+    case 3:
+      return leaf(node.left_data()) && leaves_in_order(node.right_child(), 2, next);
+    default:
+      return leaves_in_order(node.left_child(), range / 2, next) &&
+             leaves_in_order(node.right_child(), range - range / 2, next);
+  }
+}
+
+using HintSearch = CGAL::Orthogonal_k_neighbor_search<CGAL::Search_traits_3<Kernel>>;
+
+// A mesh's AABB tree and the KD-tree of its reference points, whose nearest
+// point to a query is the hint a query starts from. CGAL's own KD-tree
+// (accelerate_distance_queries()) stores each point with its id and is
+// built from two copies of them, the second grown by doubling: about 200
+// bytes per triangle at its peak on the 3.5M-triangle dragon. This one is
+// CGAL's KD-tree of the same points in the same order, with the same
+// splitter and search, without the ids (a hint is a point) and sized once,
+// so every hint, and every distance, is the same.
+class Target {
+ public:
+  Target(const TriangleMesh& mesh, std::vector<uint32_t>* triangles) {
+    tree_.rebuild(triangles->begin(), triangles->end(), TriangleMap{&mesh}, FirstVertexMap{&mesh});
+    // The tree holds its own copy of the indices.
+    *triangles = std::vector<uint32_t>();
+    const Primitive* end = nullptr;
+    if (tree_.size() > 1 && leaves_in_order(*tree_.root_node(), tree_.size(), &end) && end) {
+      tree_.do_not_accelerate_distance_queries();
+      const FirstVertexMap map{&mesh};
+      hints_ = std::make_unique<HintSearch::Tree>(ReferencePoints(end - tree_.size(), map),
+                                                  ReferencePoints(end, map));
+      // Built here, not lazily by the first (concurrent) query.
+      hints_->build();
+    } else {
+      tree_.accelerate_distance_queries();
+    }
+  }
+
+  // The closest point of the surface to q, the search started from the
+  // hint.
+  Point closest_point(const Point& q) const {
+    if (!hints_) return tree_.closest_point(q);
+    const HintSearch search(*hints_, q, 1);
+    return tree_.closest_point(q, search.begin()->first);
+  }
+  // Likewise, started from `hint`.
+  Point closest_point(const Point& q, const Point& hint) const {
+    return tree_.closest_point(q, hint);
+  }
+
+ private:
+  Tree tree_;
+  std::unique_ptr<HintSearch::Tree> hints_;
+};
+
+constexpr size_t kBlockSamples = 4096;
+constexpr uint64_t kMaxAreaSamples = uint64_t{1} << 30;
 
 Status validate(const TriangleMesh& mesh, const char* name) {
   if (mesh.triangles.empty()) return invalid_input(std::string(name) + " has no triangles");
@@ -98,14 +232,12 @@ std::vector<uint32_t> referenced_vertices(const TriangleMesh& mesh) {
   return list;
 }
 
-// The triangles with non-zero area, as CGAL triangles for the tree.
-std::vector<Triangle3> tree_triangles(const TriangleMesh& mesh) {
-  std::vector<Triangle3> out;
-  out.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) {
-    Triangle3 tri(to_point(mesh.positions[t[0]]), to_point(mesh.positions[t[1]]),
-                  to_point(mesh.positions[t[2]]));
-    if (tri.squared_area() > 0) out.push_back(tri);
+// The triangles with non-zero area, by index, for the tree.
+std::vector<uint32_t> tree_triangles(const TriangleMesh& mesh) {
+  std::vector<uint32_t> out;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (triangle_of(mesh, static_cast<uint32_t>(t)).squared_area() > 0)
+      out.push_back(static_cast<uint32_t>(t));
   }
   return out;
 }
@@ -157,14 +289,14 @@ struct BlockResult {
 // The target's typical edge length, sqrt(2 * mean triangle area): a hint
 // that close to the next query bounds its search about as tightly as the
 // KD-tree's nearest vertex, without the KD-tree search.
-double typical_spacing(const std::vector<Triangle3>& triangles) {
+double typical_spacing(const TriangleMesh& mesh, const std::vector<uint32_t>& triangles) {
   double area = 0;
-  for (const Triangle3& t : triangles)
-    area += std::sqrt(t.squared_area());
+  for (uint32_t t : triangles)
+    area += std::sqrt(triangle_of(mesh, t).squared_area());
   return std::sqrt(2.0 * area / static_cast<double>(triangles.size()));
 }
 
-Result<OneSidedDistance> one_sided(const Samples& samples, const Tree& target, double spacing,
+Result<OneSidedDistance> one_sided(const Samples& samples, const Target& target, double spacing,
                                    unsigned threads) {
   const double reuse_radius2 = spacing * spacing;
   const size_t n = samples.points.size();
@@ -232,39 +364,27 @@ Result<SurfaceDistance> measure(const TriangleMesh& a, const TriangleMesh& b,
   }
   const unsigned threads = options.threads;
 
-  const std::vector<Triangle3> a_triangles = tree_triangles(a);
-  const std::vector<Triangle3> b_triangles = tree_triangles(b);
+  std::vector<uint32_t> a_triangles = tree_triangles(a);
+  std::vector<uint32_t> b_triangles = tree_triangles(b);
   if (a_triangles.empty()) return invalid_input("first mesh has no triangle with non-zero area");
   if (b_triangles.empty()) return invalid_input("second mesh has no triangle with non-zero area");
 
-  // Both trees and their KD-trees are built before any query: queries on a
-  // built tree are read-only, so the workers can share it.
-  Tree a_tree;
-  Tree b_tree;
-  auto build = [](Tree* tree, const std::vector<Triangle3>* triangles) {
-    tree->rebuild(triangles->begin(), triangles->end());
-    tree->accelerate_distance_queries();
-  };
-  const bool built = metrics::run_blocks(2, threads, [&](size_t which) {
-    if (which == 0) {
-      build(&a_tree, &a_triangles);
-    } else {
-      build(&b_tree, &b_triangles);
-    }
-  });
-  if (!built) return runtime_error("building the AABB trees failed (out of memory)");
-
+  // One direction after the other: each tree (with its KD-tree) and the
+  // samples queried against it are freed before the other's are made, so
+  // the input's tree never coexists with the input's samples. Queries on a
+  // built tree are read-only, so the workers share it.
   SurfaceDistance out;
-  {
-    const Samples a_samples = make_samples(a, options.area_samples);
-    LODBAKE_ASSIGN_OR_RETURN(out.a_to_b,
-                             one_sided(a_samples, b_tree, typical_spacing(b_triangles), threads));
-  }
-  {
-    const Samples b_samples = make_samples(b, options.area_samples);
-    LODBAKE_ASSIGN_OR_RETURN(out.b_to_a,
-                             one_sided(b_samples, a_tree, typical_spacing(a_triangles), threads));
-  }
+  auto direction = [threads](const TriangleMesh& from, const TriangleMesh& to,
+                             std::vector<uint32_t>* to_triangles, uint64_t budget,
+                             OneSidedDistance* result) -> Status {
+    const double spacing = typical_spacing(to, *to_triangles);
+    const Target target(to, to_triangles);
+    const Samples samples = make_samples(from, budget);
+    LODBAKE_ASSIGN_OR_RETURN(*result, one_sided(samples, target, spacing, threads));
+    return Status::ok();
+  };
+  LODBAKE_RETURN_IF_ERROR(direction(a, b, &b_triangles, options.area_samples, &out.a_to_b));
+  LODBAKE_RETURN_IF_ERROR(direction(b, a, &a_triangles, options.area_samples, &out.b_to_a));
   out.hausdorff = std::max(out.a_to_b.max, out.b_to_a.max);
   out.mean = 0.5 * (out.a_to_b.mean + out.b_to_a.mean);
   out.diagonal = diagonal_of(a);

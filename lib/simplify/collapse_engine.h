@@ -33,7 +33,9 @@ struct EngineSettings {
   // The input id of each vertex, when the mesh was renumbered
   // (vertex_order.h): ties between vertices are broken by it, so that the
   // collapse sequence does not depend on the numbering. Null: identity.
-  const std::vector<uint32_t>* input_ids = nullptr;
+  // The engine empties it while it runs (its vertex records hold the ids)
+  // and fills it again before it returns.
+  std::vector<uint32_t>* input_ids = nullptr;
   // The threads of the parallel steps (never null).
   const ParallelScope* threads = nullptr;
 };

@@ -35,19 +35,21 @@ Status collect_moved_faces(const std::vector<Triangle>& triangles,
                            uint32_t vertex_count, const VertexSplit& s, size_t index,
                            std::vector<uint32_t>* moved) {
   const uint32_t vt = vertex_count;
-  const std::string where = "vertex split " + std::to_string(index) + ": ";
+  // Built only for an error: this runs once per split of every replay.
+  auto where = [index] { return "vertex split " + std::to_string(index) + ": "; };
   const uint32_t vs = s.vs;
   const uint32_t vl = s.vl;
   const uint32_t vr = s.vr;
   if (vs >= vt || (vl != kNoVertex && vl >= vt) || (vr != kNoVertex && vr >= vt)) {
-    return invalid_input(where + "vertex index out of range (" + std::to_string(vt) + " vertices)");
+    return invalid_input(where() + "vertex index out of range (" + std::to_string(vt) +
+                         " vertices)");
   }
-  if (vl == kNoVertex && vr == kNoVertex) return invalid_input(where + "both wings are missing");
-  if (vl == vs || vr == vs || vl == vr) return invalid_input(where + "repeated vertex");
+  if (vl == kNoVertex && vr == kNoVertex) return invalid_input(where() + "both wings are missing");
+  if (vl == vs || vr == vs || vl == vr) return invalid_input(where() + "repeated vertex");
   for (uint32_t w : {vl, vr}) {
     if (w != kNoVertex && face_with_next(triangles, vertex_faces, vs, w) == kNoVertex &&
         face_with_prev(triangles, vertex_faces, vs, w) == kNoVertex) {
-      return invalid_input(where + "wing vertex " + std::to_string(w) +
+      return invalid_input(where() + "wing vertex " + std::to_string(w) +
                            " is not adjacent to the split vertex");
     }
   }
@@ -55,7 +57,7 @@ Status collect_moved_faces(const std::vector<Triangle>& triangles,
   const size_t limit = vertex_faces[vs].size();
   auto fan_does_not_end = [&]() {
     moved->resize(first_moved);
-    return invalid_input(where + "the fan around vertex " + std::to_string(vs) + " does not end");
+    return invalid_input(where() + "the fan around vertex " + std::to_string(vs) + " does not end");
   };
   bool reached_vl = false;
   if (vr != kNoVertex) {

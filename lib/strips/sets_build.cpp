@@ -14,6 +14,15 @@
 //   are the next arc's start - 1, and the last arc's is the last LoD.
 // - Node ids are given in order of creation within a strip; arcs in order
 //   of LoD. Vertex-to-node lookups scan the few strips each vertex is in.
+// - The working sequences hold node ids, not vertices: within a strip a
+//   node is one vertex, so the compaction (which only compares ids) is the
+//   same, and recording needs no vertex-to-node lookup per index. They sit
+//   in one pool, each in its input strip's slot (they only shrink).
+// - After a contraction only some nodes can have a new successor run: b's,
+//   those before an occurrence of a, and those the compaction removes or
+//   leaves before a removal; every other node's last arc is still its run.
+//   So a record compares those alone (on the dragon, about 4 of a changed
+//   strip's 50 indices), against the last run kept beside the node.
 // - Threads: a strip's sequences, nodes, arcs and beginnings depend on its
 //   own indices and the contractions alone, and the graph lists them strip
 //   by strip. So consecutive ranges of strips are built apart (each replays
@@ -34,6 +43,8 @@ namespace lodbake {
 namespace {
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
+// In a sequence, the node a contraction's kept vertex gets if it survives.
+constexpr uint32_t kNewNode = 0xFFFFFFFEu;
 
 // The graph of strips [range.begin, range.end): its strip s is the input's
 // range.begin + s.
@@ -45,13 +56,20 @@ class Builder {
 
   SetsGraph run() {
     const size_t strip_count = range_.end - range_.begin;
-    sequences_.resize(strip_count);
+    // Sequences only shrink: each keeps its strip's slot in one pool.
+    const uint32_t pool_begin = strips_.first[range_.begin];
+    pool_.assign(strips_.indices.begin() + pool_begin,
+                 strips_.indices.begin() + strips_.first[range_.end]);
+    sequence_first_.resize(strip_count);
+    sequence_size_.resize(strip_count);
     last_beginning_.assign(strip_count, kNone);
     vertex_nodes_.resize(pm_.full_vertex_count());
     for (uint32_t s = 0; s < strip_count; ++s) {
-      sequences_[s].assign(strips_.indices.begin() + strips_.first[range_.begin + s],
-                           strips_.indices.begin() + strips_.first[range_.begin + s + 1]);
-      record(s, 0);
+      sequence_first_[s] = strips_.first[range_.begin + s] - pool_begin;
+      sequence_size_[s] = strips_.first[range_.begin + s + 1] - strips_.first[range_.begin + s];
+      for (uint32_t& v : sequence(s))
+        v = node_of(s, v);
+      record(s, 0, nullptr);
     }
     const uint32_t base = static_cast<uint32_t>(pm_.base.vertex_count());
     const uint32_t splits = static_cast<uint32_t>(pm_.splits.size());
@@ -60,14 +78,34 @@ class Builder {
       contract(lod, base + k, pm_.splits[k].vs);
     }
     stats_->contractions = splits;
-    for (const std::vector<uint32_t>& q : sequences_)
-      stats_->emptied_strips += q.empty();
+    for (uint32_t size : sequence_size_)
+      stats_->emptied_strips += size == 0;
     return assemble(splits + 1);
   }
 
  private:
   struct Arc {
     uint32_t node, start, succ_begin, succ_count;
+  };
+  // A strip's current sequence in pool_.
+  struct Sequence {
+    uint32_t* data;
+    size_t count;
+    uint32_t* begin() const { return data; }
+    uint32_t* end() const { return data + count; }
+    size_t size() const { return count; }
+    bool empty() const { return count == 0; }
+    uint32_t& operator[](size_t i) const { return data[i]; }
+  };
+  Sequence sequence(uint32_t s) { return {pool_.data() + sequence_first_[s], sequence_size_[s]}; }
+  // What a record needs of a node, side by side (one cache line or two
+  // instead of the far-apart arc and successors): its last arc's run, by
+  // length (0: no arc yet), start in successors_ and first two successors
+  // (most runs have one or two), and scratch that is zero between records.
+  struct Node {
+    uint32_t last_count = 0, last_succ = 0;
+    uint32_t last_head[2] = {kNone, kNone};
+    uint32_t count = 0, offset = 0;
   };
 
   uint32_t node_of(uint32_t strip, uint32_t vertex) {
@@ -76,74 +114,115 @@ class Builder {
     const uint32_t node = static_cast<uint32_t>(node_strip_.size());
     node_strip_.push_back(strip);
     node_vertex_.push_back(vertex);
-    node_last_arc_.push_back(kNone);
-    count_.push_back(0);
-    offset_.push_back(0);
+    node_.push_back(Node());
+    selected_.push_back(0);
     vertex_nodes_[vertex].push_back({strip, node});
     return node;
+  }
+
+  // b's node in strip s, or kNone when b has none there yet.
+  uint32_t find_node(uint32_t strip, uint32_t vertex) const {
+    for (const auto& [s, node] : vertex_nodes_[vertex])
+      if (s == strip) return node;
+    return kNone;
   }
 
   void contract(uint32_t lod, uint32_t a, uint32_t b) {
     // The list is moved out: a never appears again, and b's list grows.
     std::vector<std::pair<uint32_t, uint32_t>> entries = std::move(vertex_nodes_[a]);
     vertex_nodes_[a] = {};
-    for (const auto& entry : entries) {
-      const uint32_t s = entry.first;
-      std::vector<uint32_t>& q = sequences_[s];
+    for (const auto& [s, from] : entries) {
+      const Sequence q = sequence(s);
+      // b's node is created only if b survives the compaction (as the first
+      // record of b in this strip would); until then kNewNode stands for it.
+      const uint32_t existing = find_node(s, b);
+      const uint32_t to = existing == kNone ? kNewNode : existing;
+      // The nodes whose successor runs may change: b's, those before an
+      // occurrence of a, and what the compaction notes.
+      changed_.clear();
       bool found = false;
-      for (uint32_t& v : q) {
-        if (v == a) {
-          v = b;
+      for (size_t i = 0; i < q.size(); ++i) {
+        if (q[i] == from) {
+          q[i] = to;
           found = true;
+          if (i > 0) changed_.push_back(q[i - 1]);
         }
       }
       if (!found) continue;  // a left this strip in an earlier compaction
       const size_t before = q.size();
-      compact_strip(&q);
-      stats_->removed_indices += before - q.size();
+      sequence_size_[s] = static_cast<uint32_t>(compact_strip(q.data, q.size(), &changed_));
+      const Sequence kept_q = sequence(s);
+      uint32_t kept = to;
+      if (to == kNewNode && std::find(kept_q.begin(), kept_q.end(), kNewNode) != kept_q.end()) {
+        kept = node_of(s, b);
+        std::replace(kept_q.begin(), kept_q.end(), kNewNode, kept);
+      }
+      changed_.push_back(kept);
+      stats_->removed_indices += before - kept_q.size();
       ++stats_->strip_updates;
-      record(s, lod);
+      record(s, lod, &changed_);
     }
   }
 
   // Records strip s's sequence at `lod`: a new beginning and new arcs where
-  // they differ from the last recorded ones.
-  void record(uint32_t s, uint32_t lod) {
-    const std::vector<uint32_t>& q = sequences_[s];
-    const uint32_t first = q.empty() ? kNone : node_of(s, q[0]);
+  // they differ from the last recorded ones. Every node of the strip holds
+  // its current run as its last arc after each record, so only the nodes in
+  // `changed` (all when null) can need a new arc.
+  void record(uint32_t s, uint32_t lod, const std::vector<uint32_t>* changed) {
+    const Sequence q = sequence(s);
+    const uint32_t first = q.empty() ? kNone : q[0];
     if (first != last_beginning_[s]) {
       beginnings_.push_back({s, lod, first});
       last_beginning_[s] = first;
     }
     if (q.empty()) return;
-    nodes_.resize(q.size());
+    if (changed == nullptr) {
+      count_runs(q, [](uint32_t) { return true; });
+    } else {
+      for (uint32_t node : *changed)
+        if (node < kNewNode) selected_[node] = 1;
+      count_runs(q, [&](uint32_t node) { return selected_[node] != 0; });
+      for (uint32_t node : *changed)
+        if (node < kNewNode) selected_[node] = 0;
+    }
+    for (uint32_t node : touched_) {
+      Node& nd = node_[node];
+      const uint32_t count = nd.count;
+      const uint32_t* run = runs_.data() + (nd.offset - count);
+      nd.count = 0;
+      if (nd.last_count == count && run[0] == nd.last_head[0] &&
+          (count == 1 || run[1] == nd.last_head[1]) &&
+          (count <= 2 || std::equal(run + 2, run + count, successors_.begin() + nd.last_succ + 2)))
+        continue;
+      nd.last_count = count;
+      nd.last_succ = static_cast<uint32_t>(successors_.size());
+      nd.last_head[0] = run[0];
+      nd.last_head[1] = count > 1 ? run[1] : kNone;
+      arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size()), count});
+      successors_.insert(successors_.end(), run, run + count);
+    }
+  }
+
+  // The successor runs of q's nodes that pass `wanted`: touched_ lists them
+  // (in order of first occurrence), node n's run is runs_[node_[n].offset -
+  // node_[n].count, node_[n].offset).
+  template <typename Wanted>
+  void count_runs(const Sequence& q, Wanted wanted) {
     touched_.clear();
-    for (size_t i = 0; i < q.size(); ++i) {
-      const uint32_t node = node_of(s, q[i]);
-      nodes_[i] = node;
-      if (count_[node]++ == 0) touched_.push_back(node);
+    size_t total = 0;
+    for (uint32_t node : q) {
+      if (!wanted(node)) continue;
+      ++total;
+      if (node_[node].count++ == 0) touched_.push_back(node);
     }
     uint32_t running = 0;
     for (uint32_t node : touched_) {
-      offset_[node] = running;
-      running += count_[node];
+      node_[node].offset = running;
+      running += node_[node].count;
     }
-    runs_.resize(q.size());
+    runs_.resize(total);
     for (size_t i = 0; i < q.size(); ++i)
-      runs_[offset_[nodes_[i]]++] = i + 1 < q.size() ? nodes_[i + 1] : kNone;
-    for (uint32_t node : touched_) {
-      const uint32_t count = count_[node];
-      const uint32_t begin = offset_[node] - count;
-      count_[node] = 0;
-      const uint32_t last = node_last_arc_[node];
-      if (last != kNone && arcs_[last].succ_count == count &&
-          std::equal(runs_.begin() + begin, runs_.begin() + begin + count,
-                     successors_.begin() + arcs_[last].succ_begin))
-        continue;
-      node_last_arc_[node] = static_cast<uint32_t>(arcs_.size());
-      arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size()), count});
-      successors_.insert(successors_.end(), runs_.begin() + begin, runs_.begin() + begin + count);
-    }
+      if (wanted(q[i])) runs_[node_[q[i]].offset++] = i + 1 < q.size() ? q[i + 1] : kNone;
   }
 
   SetsGraph assemble(uint32_t lod_count) {
@@ -218,12 +297,16 @@ class Builder {
   const IndexRange range_;
   const ProgressiveMesh& pm_;
   SetsBuildStats* stats_;
-  std::vector<std::vector<uint32_t>> sequences_;
+  std::vector<uint32_t> pool_;  // the strips' sequences (node ids)
+  std::vector<uint32_t> sequence_first_, sequence_size_;
   std::vector<uint32_t> last_beginning_;
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
-  std::vector<uint32_t> node_strip_, node_vertex_, node_last_arc_;
-  std::vector<uint32_t> count_, offset_;  // scratch per node, zero between records
-  std::vector<uint32_t> nodes_, runs_, touched_;
+  std::vector<uint32_t> node_strip_, node_vertex_;
+  std::vector<Node> node_;
+  // Per node, scratch zero between records: one byte, as it is read for
+  // every index of a changed strip.
+  std::vector<uint8_t> selected_;
+  std::vector<uint32_t> runs_, touched_, changed_;
   std::vector<Arc> arcs_;
   std::vector<uint32_t> successors_;
   std::vector<Beginning> beginnings_;

@@ -26,18 +26,18 @@ bool degenerate(uint32_t a, uint32_t b, uint32_t c) {
   return !is_real_triangle(a, b, c);
 }
 
-}  // namespace
-
-void compact_strip(std::vector<uint32_t>* sequence) {
-  std::vector<uint32_t>& s = *sequence;
+// Without `changed`, the calls that note ids compile away.
+template <bool kNote>
+size_t compact(uint32_t* s, size_t size, std::vector<uint32_t>* changed) {
   // Tail: keep up to the last non-degenerate window.
-  size_t n = s.size();
+  size_t n = size;
   while (n >= 3 && degenerate(s[n - 3], s[n - 2], s[n - 1]))
     --n;
   if (n < 3) {
-    s.clear();
-    return;
+    if (kNote) changed->insert(changed->end(), s, s + size);
+    return 0;
   }
+  if (kNote && n < size) changed->insert(changed->end(), s + (n - 1), s + size);
   // The sequence is s[0, w) followed by s[r, n); the pair considered is
   // (s[r], s[r + 1]).
   size_t w = 0, r = 0;
@@ -52,6 +52,11 @@ void compact_strip(std::vector<uint32_t>* sequence) {
                              (!(l2 && r2) || degenerate(p2, p1, q2)) &&
                              (!(l1 && r3) || degenerate(p1, q2, q3));
       if (removable) {
+        if (kNote) {
+          changed->push_back(x);
+          changed->push_back(y);
+          if (l1) changed->push_back(p1);
+        }
         r += 2;
         for (int k = 0; k < 3 && w > 0; ++k)
           s[--r] = s[--w];
@@ -60,7 +65,21 @@ void compact_strip(std::vector<uint32_t>* sequence) {
     }
     s[w++] = s[r++];
   }
-  s.resize(w);
+  return w;
+}
+
+}  // namespace
+
+void compact_strip(std::vector<uint32_t>* sequence) {
+  sequence->resize(compact<false>(sequence->data(), sequence->size(), nullptr));
+}
+
+void compact_strip(std::vector<uint32_t>* sequence, std::vector<uint32_t>* changed) {
+  sequence->resize(compact<true>(sequence->data(), sequence->size(), changed));
+}
+
+size_t compact_strip(uint32_t* sequence, size_t size, std::vector<uint32_t>* changed) {
+  return compact<true>(sequence, size, changed);
 }
 
 }  // namespace lodbake

@@ -32,34 +32,50 @@ namespace {
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 
 // neighbour[3 * f + e]: the triangle across edge e = (t[e], t[e+1]) of f.
+// Half-edges are bucketed by their lower vertex (a counting sort, which
+// keeps corner order), then each short bucket is sorted by the other end.
 std::vector<uint32_t> edge_neighbours(const TriangleMesh& mesh, const std::vector<uint8_t>& live) {
   struct Half {
-    uint32_t lo, hi, corner;  // corner = 3 * face + edge
-    bool forward;             // lo -> hi is the face's direction
+    uint32_t hi, corner;  // corner = 3 * face + edge
+    bool forward;         // lo -> hi is the face's direction
   };
-  std::vector<Half> halves;
-  halves.reserve(mesh.triangles.size() * 3);
-  for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+  const size_t faces = mesh.triangles.size();
+  std::vector<uint32_t> start(mesh.vertex_count() + 1, 0);
+  for (uint32_t f = 0; f < faces; ++f) {
+    if (!live[f]) continue;
+    const Triangle& t = mesh.triangles[f];
+    for (uint32_t e = 0; e < 3; ++e)
+      ++start[std::min(t[e], t[(e + 1) % 3]) + 1];
+  }
+  for (size_t v = 0; v + 1 < start.size(); ++v)
+    start[v + 1] += start[v];
+  std::vector<Half> halves(start.back());
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (uint32_t f = 0; f < faces; ++f) {
     if (!live[f]) continue;
     const Triangle& t = mesh.triangles[f];
     for (uint32_t e = 0; e < 3; ++e) {
       const uint32_t a = t[e], b = t[(e + 1) % 3];
-      halves.push_back({std::min(a, b), std::max(a, b), 3 * f + e, a < b});
+      halves[fill[std::min(a, b)]++] = {std::max(a, b), 3 * f + e, a < b};
     }
   }
-  std::sort(halves.begin(), halves.end(), [](const Half& x, const Half& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
-  });
-  std::vector<uint32_t> neighbour(mesh.triangles.size() * 3, kNone);
-  for (size_t i = 0; i < halves.size();) {
-    size_t j = i;
-    while (j < halves.size() && halves[j].lo == halves[i].lo && halves[j].hi == halves[i].hi)
-      ++j;
-    if (j - i == 2 && halves[i].forward != halves[i + 1].forward) {
-      neighbour[halves[i].corner] = halves[i + 1].corner / 3;
-      neighbour[halves[i + 1].corner] = halves[i].corner / 3;
+  std::vector<uint32_t> neighbour(faces * 3, kNone);
+  for (size_t v = 0; v + 1 < start.size(); ++v) {
+    Half* const begin = halves.data() + start[v];
+    Half* const end = halves.data() + start[v + 1];
+    std::sort(begin, end, [](const Half& x, const Half& y) {
+      return x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
+    });
+    for (Half* i = begin; i < end;) {
+      Half* j = i;
+      while (j < end && j->hi == i->hi)
+        ++j;
+      if (j - i == 2 && i[0].forward != i[1].forward) {
+        neighbour[i[0].corner] = i[1].corner / 3;
+        neighbour[i[1].corner] = i[0].corner / 3;
+      }
+      i = j;
     }
-    i = j;
   }
   return neighbour;
 }
@@ -91,19 +107,35 @@ class Stripifier {
       }
       for (int e = 0; e < 3; ++e)
         degree_[f] += neighbour_[3 * f + e] != kNone;
-      queue_.push({degree_[f], f});
     }
-    while (!queue_.empty()) {
-      const auto [degree, f] = queue_.top();
-      queue_.pop();
-      if (visited_[f] || degree != degree_[f]) continue;  // stale entry
+    for (uint32_t f = next_start(); f != kNone; f = next_start())
       strip_from(f);
-    }
     stats_->strips = out_->strip_count();
     stats_->indices = out_->indices.size();
   }
 
  private:
+  // The unvisited triangle with the fewest unvisited neighbours, ties to the
+  // lowest index (kNone when none is left). Degrees only fall, so for each
+  // degree a cursor walking up the indices finds the triangles that had it
+  // from the start (or got it before the cursor passed), and a heap holds
+  // those lowered to it behind the cursor; stale entries are skipped.
+  uint32_t next_start() {
+    const uint32_t faces = static_cast<uint32_t>(degree_.size());
+    for (uint32_t d = 0; d < 4; ++d) {
+      uint32_t& c = cursor_[d];
+      while (c < faces && (visited_[c] || degree_[c] != d))
+        ++c;
+      auto& heap = lowered_[d];
+      while (!heap.empty() && (visited_[heap.top()] || degree_[heap.top()] != d))
+        heap.pop();
+      const uint32_t lowered = heap.empty() ? kNone : heap.top();
+      const uint32_t first = c < faces ? c : kNone;
+      if (first != kNone || lowered != kNone) return std::min(first, lowered);
+    }
+    return kNone;
+  }
+
   uint32_t across(uint32_t f, uint32_t a, uint32_t b) const {
     const Triangle& t = mesh_.triangles[f];
     for (uint32_t e = 0; e < 3; ++e) {
@@ -120,7 +152,7 @@ class Stripifier {
       const uint32_t g = neighbour_[3 * f + e];
       if (g != kNone && !visited_[g]) {
         --degree_[g];
-        queue_.push({degree_[g], g});
+        lowered_[degree_[g]].push(g);
       }
     }
   }
@@ -169,14 +201,15 @@ class Stripifier {
     out_->first.push_back(static_cast<uint32_t>(out_->indices.size()));
   }
 
-  using Entry = std::pair<uint32_t, uint32_t>;  // (unvisited neighbours, face)
   const TriangleMesh& mesh_;
   TriangleStrips* out_;
   StripifyStats* stats_;
   std::vector<uint32_t> neighbour_;
   std::vector<uint8_t> visited_;
   std::vector<uint32_t> degree_;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
+  std::array<uint32_t, 4> cursor_{};  // per degree (unvisited neighbours)
+  std::array<std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<uint32_t>>, 4>
+      lowered_;
 };
 
 }  // namespace

@@ -110,11 +110,14 @@ for level in "${level_list[@]}"; do
     elif [[ -z $first ]]; then
       timed "$tris" "hierarchy" "-" "$tools/lodbake-hierarchy" "$file" -o "$out.hier.lbk" --quiet
     fi
+    timed "$tris" "fan" "$n" "$tools/lodbake-fan" "$file" -o "$out.fan.lbk" --threads "$n" --quiet
+    timed "$tris" "strips" "$n" \
+      "$tools/lodbake-strips" "$file" -o "$out.strips.lbk" --threads "$n" --quiet
     if [[ -z $first ]]; then
       first=$out
       continue
     fi
-    for kind in pm hier; do
+    for kind in pm hier fan strips; do
       [[ -e $out.$kind.lbk ]] || continue
       cmp -s "$first.$kind.lbk" "$out.$kind.lbk" || {
         echo "scaling.sh: $name: the $kind outputs of --threads ${thread_list[0]} and $n differ" >&2
@@ -146,6 +149,30 @@ for level in "${level_list[@]}"; do
       printf "| %s | %.2fM | meshoptimizer 0.18, 10%% | 1 | %.2f | %.2f | - | - |\n",
              m, t / 1e6, $5, $6 }'
 done
+# The whole bake of the full dragon (tests/bench/dragon_bake.toml: simplify
+# + PM, hierarchy + DAG + vertex trees, fan, strips + SETS, one
+# Draco-packed container) with --jobs N: the bake's steps share one import
+# and run side by side on its N threads. Its files must be the same bytes
+# for every N.
+first=""
+for n in "${thread_list[@]}"; do
+  name=$(basename "$dragon")
+  rm -rf "$work/bake.t$n"
+  timed "$(triangles "$dragon")" "lodbake-bake dragon_bake.toml (whole bake)" "$n" \
+    "$tools/lodbake-bake" "$(dirname "$0")/dragon_bake.toml" --set "mesh=$dragon" \
+    --out "$work/bake.t$n" --jobs "$n" --no-cache --quiet
+  if [[ -z $first ]]; then
+    first=$work/bake.t$n
+    continue
+  fi
+  diff -r -q "$first" "$work/bake.t$n" > /dev/null || {
+    echo "scaling.sh: the bakes with --jobs ${thread_list[0]} and $n differ" >&2
+    exit 1
+  }
+  rm -rf "$work/bake.t$n"
+done
+rm -rf "$first"
+
 if [[ -n $distances ]]; then
   echo
   echo "| mesh | run | Hausdorff / diagonal | mean / diagonal |"

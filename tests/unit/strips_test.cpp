@@ -84,6 +84,37 @@ TEST(StripCompaction, KeepsTheTrianglesOfRandomSequences) {
   }
 }
 
+// Each id's successors at its occurrences, in order (kNone after the last).
+std::vector<std::vector<uint32_t>> successor_runs(const std::vector<uint32_t>& s, uint32_t ids) {
+  std::vector<std::vector<uint32_t>> runs(ids);
+  for (size_t i = 0; i < s.size(); ++i)
+    runs[s[i]].push_back(i + 1 < s.size() ? s[i + 1] : 0xFFFFFFFFu);
+  return runs;
+}
+
+TEST(StripCompaction, NotesEveryIdWhoseSuccessorsChange) {
+  // The SETS build re-records only the noted ids: any other id still present
+  // must keep its successor run exactly.
+  std::mt19937 rng(11);
+  size_t noted_some = 0;
+  for (int round = 0; round < 20000; ++round) {
+    std::vector<uint32_t> s(3 + rng() % 14);
+    for (uint32_t& v : s)
+      v = rng() % 5;
+    std::vector<uint32_t> c = s, changed;
+    compact_strip(&c, &changed);
+    EXPECT_EQ(c, compacted(s)) << "round " << round;
+    noted_some += !changed.empty();
+    const auto before = successor_runs(s, 5), after = successor_runs(c, 5);
+    for (uint32_t id = 0; id < 5; ++id) {
+      if (after[id].empty() || std::find(changed.begin(), changed.end(), id) != changed.end())
+        continue;
+      EXPECT_EQ(after[id], before[id]) << "round " << round << ", id " << id;
+    }
+  }
+  EXPECT_GT(noted_some, 1000u);  // the property was exercised
+}
+
 TEST(Stripify, CoversSmallMeshesWithTheirOrientation) {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, TriangleMesh>>{
            {"tetrahedron", test_meshes::tetrahedron()},
