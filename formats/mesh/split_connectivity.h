@@ -27,6 +27,15 @@ class SplitConnectivity {
   /// \pre every triangle index < vertex_count.
   SplitConnectivity(uint32_t vertex_count, const std::vector<Triangle>& triangles);
 
+  /// Room for `vertices` vertices and `faces` faces in all, so that the
+  /// splits after it do not reallocate (a list per vertex moved each time
+  /// the table grows). Only for counts the caller trusts (an encoder's own
+  /// records), never a count read from a file. No effect on the mesh.
+  void reserve(size_t vertices, size_t faces) {
+    vertex_faces_.reserve(vertices);
+    faces_.reserve(faces);
+  }
+
   uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_faces_.size()); }
   /// The current triangles: the base ones (vs replaced by vt where faces
   /// moved), then those of each split, as PmRefiner (lib/simplify) orders
@@ -69,6 +78,7 @@ class SplitConnectivity {
    public:
     explicit FaceLists(size_t vertices) : lists_(vertices) {}
     size_t size() const { return lists_.size(); }
+    void reserve(size_t vertices) { lists_.reserve(vertices); }
     void add_vertex() { lists_.emplace_back(); }
     size_t count(uint32_t v) const { return lists_[v].count; }
     void prefetch(uint32_t v) const { __builtin_prefetch(&lists_[v]); }

@@ -1,5 +1,5 @@
 // Exp-Golomb streams of the compact section codecs (see the header). The
-// counting pass keeps, per context, how many values have each bit length;
+// writer keeps, per context, how many values have each bit length;
 // the cost of order k is estimated from that histogram (a value of bit
 // length L costs 2·L' - k - 1 bits, L' the bit length of x + 2^k: k + 1
 // for L <= k, L + 1 for L = k + 1, L or L + 1 above), taking the low bits
@@ -18,21 +18,89 @@ CompactStreamWriter::CompactStreamWriter(int contexts)
     : length_counts_(static_cast<size_t>(contexts), std::vector<uint64_t>(65, 0)),
       orders_(static_cast<size_t>(contexts), 0) {}
 
-void CompactStreamWriter::golomb(int ctx, uint64_t value) {
-  if (out_ == nullptr) {
-    ++length_counts_[static_cast<size_t>(ctx)][static_cast<size_t>(bit_length(value))];
-    return;
+void CompactStreamWriter::record(uint8_t tag, uint64_t value) {
+  constexpr size_t kLongest = 11;  // the tag and ten LEB128 bytes
+  if (symbols_.empty() || symbols_.back().size() > kChunk - kLongest) {
+    symbols_.emplace_back();
+    symbols_.back().reserve(kChunk);
   }
-  write_exp_golomb(&writer_, value, orders_[static_cast<size_t>(ctx)]);
+  Bytes& chunk = symbols_.back();
+  chunk.push_back(tag);
+  while (value >= 0x80) {
+    chunk.push_back(static_cast<uint8_t>(value | 0x80));
+    value >>= 7;
+  }
+  chunk.push_back(static_cast<uint8_t>(value));
+}
+
+void CompactStreamWriter::golomb(int ctx, uint64_t value) {
+  ++length_counts_[static_cast<size_t>(ctx)][static_cast<size_t>(bit_length(value))];
+  record(static_cast<uint8_t>(ctx), value);
 }
 
 void CompactStreamWriter::bits(uint64_t value, int width) {
-  if (out_ != nullptr) write_bits64(&writer_, value, width);
+  if (width != 0) record(static_cast<uint8_t>(kMaxContexts + width), value);
 }
 
-void CompactStreamWriter::start_writing(Bytes* out) {
+namespace {
+
+// The LSB-first bit stream of bit_packing.h's BitWriter, for one whole
+// stream: whole 32-bit words go out at once.
+class StreamBits {
+ public:
+  explicit StreamBits(Bytes* out) : out_(out) {}
+  // \pre width <= 32, value < 2^width.
+  void put(uint64_t value, int width) {
+    buffer_ |= value << buffered_;
+    buffered_ += width;
+    if (buffered_ >= 32) {
+      const uint8_t word[4] = {static_cast<uint8_t>(buffer_), static_cast<uint8_t>(buffer_ >> 8),
+                               static_cast<uint8_t>(buffer_ >> 16),
+                               static_cast<uint8_t>(buffer_ >> 24)};
+      out_->insert(out_->end(), word, word + 4);
+      buffer_ >>= 32;
+      buffered_ -= 32;
+    }
+  }
+  // \pre width <= 64, value < 2^width.
+  void put64(uint64_t value, int width) {
+    if (width > 32) {
+      put(value & 0xFFFFFFFFu, 32);
+      put(value >> 32, width - 32);
+    } else {
+      put(value, width);
+    }
+  }
+  // write_exp_golomb()'s code.
+  void exp_golomb(uint64_t x, int k) {
+    const uint64_t y = x + (uint64_t{1} << k);
+    const int length = bit_length(y);
+    int zeros = length - k - 1;
+    for (; zeros > 31; zeros -= 32)
+      put(0, 32);
+    put(uint64_t{1} << zeros, zeros + 1);
+    put64(y & ((uint64_t{1} << (length - 1)) - 1), length - 1);
+  }
+  // Pads the last byte with zero bits.
+  void finish() {
+    for (; buffered_ > 0; buffered_ -= 8) {
+      out_->push_back(static_cast<uint8_t>(buffer_));
+      buffer_ >>= 8;
+    }
+  }
+
+ private:
+  Bytes* out_;
+  uint64_t buffer_ = 0;
+  int buffered_ = 0;  // < 32 between calls
+};
+
+}  // namespace
+
+void CompactStreamWriter::write_to(Bytes* out) {
   constexpr uint64_t kOne = uint64_t{1} << 16;  // costs in 1/65536 bits: integers, so
                                                 // the choice is the same on every platform
+  uint64_t estimate = 0;
   for (size_t c = 0; c < orders_.size(); ++c) {
     uint64_t best_cost = UINT64_MAX;
     for (int k = 0; k <= kCompactMaxOrder; ++k) {
@@ -61,14 +129,31 @@ void CompactStreamWriter::start_writing(Bytes* out) {
         orders_[c] = k;
       }
     }
+    estimate += best_cost / kOne / 8;
     out->push_back(static_cast<uint8_t>(orders_[c]));
   }
-  out_ = out;
-  writer_ = BitWriter(out);
-}
-
-void CompactStreamWriter::finish() {
-  writer_.finish();
+  out->reserve(out->size() + estimate + 16);
+  StreamBits stream(out);
+  for (const Bytes& chunk : symbols_) {
+    const uint8_t* p = chunk.data();
+    const uint8_t* end = p + chunk.size();
+    while (p != end) {
+      const uint8_t tag = *p++;
+      uint64_t value = 0;
+      for (int shift = 0;; shift += 7) {
+        const uint8_t byte = *p++;
+        value |= uint64_t{byte & 0x7Fu} << shift;
+        if (byte < 0x80) break;
+      }
+      if (tag < kMaxContexts) {
+        stream.exp_golomb(value, orders_[tag]);
+      } else {
+        stream.put64(value, tag - kMaxContexts);
+      }
+    }
+  }
+  stream.finish();
+  symbols_.clear();
 }
 
 bool CompactStreamReader::start(const uint8_t* data, size_t size, int contexts) {

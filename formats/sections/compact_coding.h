@@ -2,9 +2,9 @@
 // RFIN (docs/format.md "Codecs"): one LSB-first bit stream (section 11's bit
 // packing) of fixed-width fields and Exp-Golomb codes, each code in a
 // *context* whose order k the encoder chooses and stores first, one byte
-// per context. Writers run their walk twice over the same data: the first
-// pass only counts (to choose the orders), the second writes, so no symbol
-// list is kept in memory.
+// per context. Writers run their walk once: the writer counts (to choose
+// the orders) and keeps the symbols, a byte or three each, then codes them
+// (a second walk cost more than the list: replays, fans, searches).
 #pragma once
 
 #include <cstddef>
@@ -34,30 +34,35 @@ inline std::string section_error_detail(const std::string& message) {
 }
 
 /// Writes one compact stream: construct with the number of contexts, run
-/// the walk (counting pass), call start_writing(), run the same walk again,
-/// then finish(). golomb() and bits() take the same values in both passes.
+/// the walk (golomb() and bits() in stream order), then write_to().
 class CompactStreamWriter {
  public:
+  /// \pre 1 <= contexts <= kMaxContexts.
   explicit CompactStreamWriter(int contexts);
+
+  static constexpr int kMaxContexts = 64;
 
   /// Exp-Golomb code of `value` in context `ctx`. \pre value < 2^62.
   void golomb(int ctx, uint64_t value);
   /// `value` in `width` bits (0..64). \pre value < 2^width.
   void bits(uint64_t value, int width);
 
-  /// Chooses each context's order from the counting pass and appends the
-  /// order bytes to `out`; later calls write the stream after them.
-  void start_writing(Bytes* out);
-  /// Pads the stream to a whole byte.
-  void finish();
-
-  bool writing() const { return out_ != nullptr; }
+  /// Chooses each context's order from the values seen, appends the order
+  /// bytes to `out`, then the stream of every value so far, padded to a
+  /// whole byte. Call once.
+  void write_to(Bytes* out);
 
  private:
+  void record(uint8_t tag, uint64_t value);
+
   std::vector<std::vector<uint64_t>> length_counts_;  // per context: values by bit length
   std::vector<int> orders_;
-  Bytes* out_ = nullptr;
-  BitWriter writer_{nullptr};
+  // The symbols in stream order: a tag byte (the context of a code, or
+  // kMaxContexts + width for a field) and the value in LEB128, in chunks
+  // of kChunk bytes that never split a symbol (a growing vector would copy
+  // them all at each doubling).
+  static constexpr size_t kChunk = size_t{1} << 20;
+  std::vector<Bytes> symbols_;
 };
 
 /// Reads a compact stream written by CompactStreamWriter. Every read

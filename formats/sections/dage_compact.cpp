@@ -60,9 +60,7 @@ Result<Bytes> encode_dage_compact(const uint8_t* raw, size_t raw_size) {
     std::memcpy(out.data() + 1, raw, kDageFixedBytes);
     CompactStreamWriter stream(kContextCount);
     encode_pass(dag, &stream);
-    stream.start_writing(&out);
-    encode_pass(dag, &stream);
-    stream.finish();
+    stream.write_to(&out);
     return out;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact DAGE");

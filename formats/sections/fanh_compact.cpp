@@ -129,8 +129,8 @@ class Replay {
   std::vector<std::vector<uint32_t>> incident_;
 };
 
-// One pass of the encoder. \return false when a child is not the topmost
-// node of its vertex (checked in the counting pass).
+// The encoder's walk. \return false when a child is not the topmost node
+// of its vertex.
 bool encode_pass(const FanHierarchy& h, const TriangleMesh& base, CompactStreamWriter* out) {
   const uint32_t v_count = h.vertex_count;
   const int vertex_bits = bits_for_count(v_count);
@@ -212,9 +212,7 @@ Result<Bytes> encode_fanh_compact(const uint8_t* raw, size_t raw_size, const Tri
           "FANH names a child that is not the topmost node of its vertex, which the compact "
           "codec cannot store");
     }
-    stream.start_writing(&out);
-    encode_pass(h, base, &stream);
-    stream.finish();
+    stream.write_to(&out);
     return out;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact FANH");

@@ -86,9 +86,7 @@ Result<Bytes> encode_rfin_compact(const uint8_t* raw, size_t raw_size) {
     std::memcpy(out.data() + 1, &splits, 4);
     CompactStreamWriter stream(kFields);
     encode_pass(splits, values, &stream);
-    stream.start_writing(&out);
-    encode_pass(splits, values, &stream);
-    stream.finish();
+    stream.write_to(&out);
     return out;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact RFIN");

@@ -148,9 +148,7 @@ Result<Bytes> encode_sets_compact(const uint8_t* raw, size_t raw_size) {
     std::memcpy(out.data() + 1, raw, kSetsFixedBytes);
     CompactStreamWriter stream(kContextCount);
     encode_pass(graph, &stream);
-    stream.start_writing(&out);
-    encode_pass(graph, &stream);
-    stream.finish();
+    stream.write_to(&out);
     return out;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact SETS");

@@ -148,9 +148,7 @@ Result<Bytes> encode_strp_compact(const uint8_t* raw, size_t raw_size, const Tri
     const Adjacency adjacency(base);
     CompactStreamWriter stream(kContextCount);
     encode_pass(strips, adjacency, &stream);
-    stream.start_writing(&out);
-    encode_pass(strips, adjacency, &stream);
-    stream.finish();
+    stream.write_to(&out);
     return out;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact STRP");

@@ -223,9 +223,7 @@ Result<Bytes> encode_vhie_compact(const uint8_t* raw, size_t raw_size) {
     out.insert(out.begin(), kVhieCompactVersion);
     CompactStreamWriter stream(kContextCount);
     encode_pass(f, shape, &stream);
-    stream.start_writing(&out);
-    encode_pass(f, shape, &stream);
-    stream.finish();
+    stream.write_to(&out);
     // Nonzero padding bits in the raw streams are the one thing the values
     // do not capture: compare instead of checking each stream's tail.
     const Bytes again = write_raw(f);

@@ -123,6 +123,7 @@
 #include <cinttypes>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -319,9 +320,23 @@ class QuantizedPositions {
   std::vector<uint32_t> q_;
 };
 
-Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh& base) {
-  LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
+// The payload decoded, or the caller's decoding of it (`given`).
+Result<const VsplSection*> decoded_vspl(const uint8_t* raw, size_t raw_size,
+                                        const TriangleMesh& base, const VsplSection* given,
+                                        std::optional<VsplSection>* own) {
+  if (given != nullptr) return given;
   LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
+  own->emplace(std::move(section));
+  return &**own;
+}
+
+Result<Bytes> encode_v1(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
+                        const VsplSection* given) {
+  LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
+  std::optional<VsplSection> own;
+  LODBAKE_ASSIGN_OR_RETURN(const VsplSection* decoded,
+                           decoded_vspl(raw, raw_size, base, given, &own));
+  const VsplSection& section = *decoded;
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed(raw, raw_size, &f));
   const bool with_vs = (f.flags & kVsplStoresVsPositions) != 0;
@@ -869,7 +884,20 @@ InputPrediction predict_input(const std::vector<uint32_t>& input, uint32_t vs,
   if (ids->empty()) {
     p.value = input[vs];
   } else {
-    std::sort(ids->begin(), ids->end());
+    // Fans hold about six ids, where an insertion sort beats std::sort's
+    // set-up; large (hostile) fans keep n log n. Either gives one order.
+    if (ids->size() <= 16) {
+      int64_t* d = ids->data();
+      for (size_t i = 1; i < ids->size(); ++i) {
+        const int64_t x = d[i];
+        size_t j = i;
+        for (; j > 0 && d[j - 1] > x; --j)
+          d[j] = d[j - 1];
+        d[j] = x;
+      }
+    } else {
+      std::sort(ids->begin(), ids->end());
+    }
     p.value = (*ids)[ids->size() / 2];
   }
   uint64_t widest = 0;
@@ -1199,9 +1227,12 @@ int error_shift(const uint8_t* raw, const VsplParts& parts) {
 
 // Versions 2, 3 and 4 (see the file comment).
 Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
-                        uint8_t version, VsplCompactStats* stats) {
+                        uint8_t version, VsplCompactStats* stats, const VsplSection* given) {
   LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
-  LODBAKE_ASSIGN_OR_RETURN(VsplSection section, decode_vspl(raw, raw_size, base.positions));
+  std::optional<VsplSection> own;
+  LODBAKE_ASSIGN_OR_RETURN(const VsplSection* decoded,
+                           decoded_vspl(raw, raw_size, base, given, &own));
+  const VsplSection& section = *decoded;
   Fixed f;
   LODBAKE_RETURN_IF_ERROR(read_fixed(raw, raw_size, &f));
   LODBAKE_RETURN_IF_ERROR(check_base_triangles(base));
@@ -1234,6 +1265,7 @@ Result<Bytes> encode_v2(const uint8_t* raw, size_t raw_size, const TriangleMesh&
   RangeEncoder rc(&out);
   Models m;
   SplitConnectivity mesh(f.base, base.triangles);
+  mesh.reserve(size_t{f.base} + splits.size(), base.triangles.size() + 2 * splits.size());
   std::vector<QuantizedPositions> q;
   if (f.quantized) q.emplace_back(f, base.positions);
   BitReader ints(raw + parts.positions_offset, parts.positions_bytes);
@@ -1596,18 +1628,19 @@ Result<Bytes> decode_v2(const uint8_t* data, size_t size, const TriangleMesh& ba
 Result<Bytes> encode_vspl_compact(const uint8_t* raw, size_t raw_size, const TriangleMesh& base,
                                   const VsplCompactOptions& options) {
   try {
-    if (options.version == 1) return encode_v1(raw, raw_size, base);
+    if (options.version == 1) return encode_v1(raw, raw_size, base, options.decoded);
     if (options.version >= 2 && options.version <= 4)
-      return encode_v2(raw, raw_size, base, options.version, options.stats);
+      return encode_v2(raw, raw_size, base, options.version, options.stats, options.decoded);
     if (options.version == 0) {
       // Version 4 only where it saves bits: errors with common zero low bits.
       LODBAKE_ASSIGN_OR_RETURN(VsplParts parts, locate_vspl_parts(raw, raw_size));
       const uint8_t newest = error_shift(raw, parts) > 0 ? 4 : 3;
-      LODBAKE_ASSIGN_OR_RETURN(Bytes v3, encode_v2(raw, raw_size, base, newest, options.stats));
+      LODBAKE_ASSIGN_OR_RETURN(
+          Bytes v3, encode_v2(raw, raw_size, base, newest, options.stats, options.decoded));
       uint32_t splits = 0;
       std::memcpy(&splits, raw, 4);  // encode_v2 checked the payload
       if (splits >= kVersion1Candidates) return v3;
-      LODBAKE_ASSIGN_OR_RETURN(Bytes v1, encode_v1(raw, raw_size, base));
+      LODBAKE_ASSIGN_OR_RETURN(Bytes v1, encode_v1(raw, raw_size, base, options.decoded));
       return v1.size() < v3.size() ? v1 : v3;
     }
     return invalid_input(

@@ -23,6 +23,8 @@
 
 namespace lodbake {
 
+struct VsplSection;
+
 /// The newest layout version; readers accept 1 to 4.
 inline constexpr uint8_t kVsplCompactVersion = 4;
 
@@ -48,6 +50,10 @@ struct VsplCompactOptions {
   uint8_t version = 0;
   /// Filled in with the range-coded encoding's costs when not null.
   VsplCompactStats* stats = nullptr;
+  /// When not null: the payload as decode_vspl(raw, raw_size,
+  /// base.positions) gives it, which the caller has already decoded (the
+  /// encoder would decode it again).
+  const VsplSection* decoded = nullptr;
 };
 
 /// Recodes a raw VSPL payload. `base` is the decoded BASE mesh the payload

@@ -204,7 +204,7 @@ Vec3f left_prediction(const VertexTrees& t, uint32_t vs, const std::vector<uint3
   return mid;
 }
 
-// One pass of the encoder over `t` (counting or writing).
+// The encoder's walk over `t`.
 void encode_pass(const VertexTrees& t, CompactStreamWriter* out) {
   const uint32_t b = t.base_vertex_count;
   KnownFans known(uint64_t{b} + t.split_count());
@@ -301,9 +301,7 @@ Result<Bytes> encode_vtre_compact(const uint8_t* raw, size_t raw_size) {
     std::memcpy(out.data() + 1, raw, kVtreFixedBytes);
     CompactStreamWriter stream(kContextCount);
     encode_pass(trees, &stream);
-    stream.start_writing(&out);
-    encode_pass(trees, &stream);
-    stream.finish();
+    stream.write_to(&out);
     return out;
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory while encoding compact VTRE");

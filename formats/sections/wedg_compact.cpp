@@ -476,11 +476,8 @@ Result<Bytes> encode_wedg_compact(const uint8_t* raw, size_t raw_size, const Tri
     Encoder encoder{x, base, lists, escapes, &stream};
     encoder.table();
     encoder.corners();
-    stream.start_writing(&out);
-    const size_t stream_start = out.size();
-    encoder.table();
-    encoder.corners();
-    stream.finish();
+    const size_t stream_start = out.size() + kContextCount;  // after the order bytes
+    stream.write_to(&out);
     if (x.moved.size() > kMovedPerBit * 8 * uint64_t{out.size() - stream_start})
       return unsupported("more moved corners than the compact stream can bound");
     return out;

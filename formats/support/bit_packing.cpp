@@ -42,21 +42,27 @@ bool BitReader::read(int bits, uint32_t* out) {
   if (bits < 0 || bits > 32) return false;
   const uint64_t total_bits = static_cast<uint64_t>(size_) * 8;
   if (static_cast<uint64_t>(bits) > total_bits - bit_pos_) return false;
-  uint64_t value = 0;
-  int got = 0;
-  uint64_t pos = bit_pos_;
-  while (got < bits) {
-    const uint64_t byte_index = pos >> 3;
-    const int bit_in_byte = static_cast<int>(pos & 7u);
-    const int take = (8 - bit_in_byte) < (bits - got) ? (8 - bit_in_byte) : (bits - got);
-    const uint64_t chunk =
-        (static_cast<uint64_t>(data_[byte_index]) >> bit_in_byte) & ((uint64_t{1} << take) - 1);
-    value |= chunk << got;
-    got += take;
-    pos += static_cast<uint64_t>(take);
+  if (bits == 0) {
+    *out = 0;
+    return true;
   }
-  bit_pos_ = pos;
-  *out = static_cast<uint32_t>(value);
+  // The value's bits span at most 5 bytes (7 + 32 bits); the check above
+  // keeps them inside the span, the word may end past the value but not
+  // past the span.
+  const size_t byte_index = static_cast<size_t>(bit_pos_ >> 3);
+  const int shift = static_cast<int>(bit_pos_ & 7u);
+  uint64_t word = 0;
+  if (size_ - byte_index >= 8) {
+    std::memcpy(&word, data_ + byte_index, 8);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    word = __builtin_bswap64(word);
+#endif
+  } else {
+    for (size_t i = 0; i < size_ - byte_index; ++i)
+      word |= static_cast<uint64_t>(data_[byte_index + i]) << (8 * i);
+  }
+  *out = static_cast<uint32_t>((word >> shift) & ((uint64_t{1} << bits) - 1));
+  bit_pos_ += static_cast<uint64_t>(bits);
   return true;
 }
 

@@ -3,12 +3,7 @@
 namespace lodbake {
 
 int bit_length(uint64_t x) {
-  int n = 0;
-  while (x != 0) {
-    ++n;
-    x >>= 1;
-  }
-  return n;
+  return x == 0 ? 0 : 64 - __builtin_clzll(x);
 }
 
 void write_bits64(BitWriter* out, uint64_t value, int width) {

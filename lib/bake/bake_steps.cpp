@@ -438,7 +438,7 @@ Status run_package(const StepPlan& step, const std::map<std::string, std::vector
   if (options.error_bits != 0) meta_options["error_bits"] = options.error_bits;
   size_t failed = inputs.size();
   LODBAKE_ASSIGN_OR_RETURN(PackResult packed,
-                           repack_containers(inputs, options, meta_options, &failed));
+                           repack_containers(std::move(inputs), options, meta_options, &failed));
   out->report["sections"] = packed.sections.size();
   out->files.emplace_back("", std::move(packed.file));
   return Status::ok();

@@ -41,6 +41,7 @@
 #include <map>
 #include <new>
 #include <optional>
+#include <utility>
 
 #include "formats/container/container_writer.h"
 #include "formats/container/section_codecs.h"
@@ -61,23 +62,32 @@ namespace {
 
 constexpr const char* kPackTool = "lodbake-pack";
 
-// VTRE's base nodes carry BASE's positions (mode vtrees compares them with
+// VTRE's base nodes carry BASE's positions (mode vtrees checks them against
 // the hierarchy's, whose roots are BASE's vertices): when BASE was
 // re-quantized or Draco-coded they follow it, as VSPL's records do. A VTRE
-// over another vertex count is left for --validate to report.
-Result<Bytes> vtre_on_base(Bytes raw, const TriangleMesh& base) {
-  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw.data(), raw.size()));
+// over another vertex count is left for --validate to report. Nothing when
+// no position moves (the payload stays as it is).
+Result<std::optional<Bytes>> vtre_on_base(const uint8_t* raw, size_t raw_size,
+                                          const TriangleMesh& base) {
+  LODBAKE_ASSIGN_OR_RETURN(VertexTrees trees, decode_vtre(raw, raw_size));
   if (trees.base_vertex_count != base.vertex_count() ||
       trees.positions.size() < trees.base_vertex_count)
-    return raw;
+    return std::optional<Bytes>();
   bool moved = false;
   for (uint32_t v = 0; v < trees.base_vertex_count; ++v) {
     if (trees.positions[v] == base.positions[v]) continue;
     trees.positions[v] = base.positions[v];
     moved = true;
   }
-  if (!moved) return raw;
-  return encode_vtre(trees);
+  if (!moved) return std::optional<Bytes>();
+  LODBAKE_ASSIGN_OR_RETURN(Bytes encoded, encode_vtre(trees));
+  return std::optional<Bytes>(std::move(encoded));
+}
+
+// The written section is the input's, codec and bytes.
+bool same_as_stored(const Section& input, SectionCodec codec, const Bytes& stored) {
+  return input.entry.codec == static_cast<uint16_t>(codec) &&
+         std::equal(stored.begin(), stored.end(), input.data, input.data + input.size);
 }
 
 std::string codec_text(uint16_t codec) {
@@ -91,8 +101,6 @@ struct Chosen {
   size_t input = 0;
   const Section* stored = nullptr;
   const Section* decoded = nullptr;
-
-  Bytes raw() const { return Bytes(decoded->data, decoded->data + decoded->size); }
 };
 
 // The sections of one output group: one base mesh and what refines it.
@@ -122,11 +130,11 @@ bool wanted_tag(const RepackOptions& options, const std::string& tag) {
 // An output group none of whose sections is written.
 constexpr uint32_t kDroppedGroup = UINT32_MAX;
 
-Status read_inputs(const std::vector<PackInput>& inputs, std::vector<InputFile>* files,
-                   size_t* failed) {
-  for (size_t i = 0; i < inputs.size(); ++i) {
+// Moves each input's bytes into its opened container.
+Status read_inputs(std::vector<PackInput>* inputs, std::vector<InputFile>* files, size_t* failed) {
+  for (size_t i = 0; i < inputs->size(); ++i) {
     *failed = i;
-    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(inputs[i].bytes));
+    LODBAKE_ASSIGN_OR_RETURN(OpenedContainer opened, open_container(std::move((*inputs)[i].bytes)));
     InputFile file{std::move(opened), std::nullopt, {}};
     if (const Section* meta = file.file.find(kMetaTag)) {
       LODBAKE_ASSIGN_OR_RETURN(MetaSection decoded, decode_meta(meta->data, meta->size));
@@ -134,7 +142,7 @@ Status read_inputs(const std::vector<PackInput>& inputs, std::vector<InputFile>*
     }
     files->push_back(std::move(file));
   }
-  *failed = inputs.size();
+  *failed = inputs->size();
   return Status::ok();
 }
 
@@ -354,27 +362,31 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
       report.action = "rewritten";
     } else if (tag == kBaseTag) {
       const Chosen& c = it->second;
-      const Bytes c_raw = c.raw();
-      LODBAKE_ASSIGN_OR_RETURN(BaseSummary summary, read_base_summary(c_raw.data(), c_raw.size()));
-      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(c_raw.data(), c_raw.size()));
+      const Section& in = *c.decoded;  // the input's raw payload
+      LODBAKE_ASSIGN_OR_RETURN(BaseSummary summary, read_base_summary(in.data, in.size));
+      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh mesh, decode_base(in.data, in.size));
+      // The raw payload a reader decodes from the written section, when it
+      // is not the input's own; otherwise the written BASE is `mesh`.
+      std::optional<Bytes> written_raw;
       const bool draco_target = options.draco;
       if (base_as_requested(*c.stored, summary, options, draco_target)) {
         stored = Bytes(c.stored->data, c.stored->data + c.stored->size);
         codec = static_cast<SectionCodec>(c.stored->entry.codec);
-        decoded_size = c_raw.size();
+        decoded_size = in.size;
         report.action = "copied";
       } else {
-        Bytes raw = c_raw;
         if (options.quantize_bits != 0 && !draco_target &&
             !(summary.position_encoding == PositionEncoding::kQuantized &&
               summary.quantization_bits == options.quantize_bits)) {
           BaseEncodeOptions quantize;
           quantize.quantize = true;
           quantize.bits = options.quantize_bits;
-          LODBAKE_ASSIGN_OR_RETURN(raw, encode_base(mesh, quantize));
+          LODBAKE_ASSIGN_OR_RETURN(stored, encode_base(mesh, quantize));
+          written_raw = stored;
+        } else {
+          stored = Bytes(in.data, in.data + in.size);
         }
-        stored = raw;
-        decoded_size = raw.size();
+        decoded_size = stored.size();
         if (draco_target) {
           Result<Bytes> draco = encode_base_draco(mesh, options.draco_options);
           if (draco.is_ok()) {
@@ -384,99 +396,112 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
             probe.entry.codec = static_cast<uint16_t>(codec);
             probe.data = stored.data();
             probe.size = stored.size();
-            LODBAKE_ASSIGN_OR_RETURN(raw, decode_base_stored(probe));
-            decoded_size = raw.size();
+            LODBAKE_ASSIGN_OR_RETURN(written_raw, decode_base_stored(probe));
+            decoded_size = written_raw->size();
           } else if (draco.status().kind() != ErrorKind::kUnsupported) {
             return draco.status();
           }
         }
         report.action = "recoded";
       }
-      Section probe = *c.stored;
-      probe.entry.codec = static_cast<uint16_t>(codec);
-      probe.data = stored.data();
-      probe.size = stored.size();
-      LODBAKE_ASSIGN_OR_RETURN(Bytes written_raw, decode_base_stored(probe));
-      LODBAKE_ASSIGN_OR_RETURN(TriangleMesh decoded,
-                               decode_base(written_raw.data(), written_raw.size()));
-      written_base = std::move(decoded);
+      if (written_raw) {
+        LODBAKE_ASSIGN_OR_RETURN(TriangleMesh decoded,
+                                 decode_base(written_raw->data(), written_raw->size()));
+        written_base = std::move(decoded);
+      } else {
+        written_base = std::move(mesh);
+      }
       if (index == 0) {
         result->vertices = written_base->vertex_count();
         result->triangles = written_base->triangle_count();
       }
     } else if (tag == kVsplTag) {
       const Chosen& c = it->second;
-      const Bytes c_raw = c.raw();
-      LODBAKE_ASSIGN_OR_RETURN(VsplSummary summary, read_vspl_summary(c_raw.data(), c_raw.size()));
+      const Section& in = *c.decoded;  // the input's raw payload
+      LODBAKE_ASSIGN_OR_RETURN(VsplSummary summary, read_vspl_summary(in.data, in.size));
       int bits = options.quantize_bits;
       if (bits == 0 && options.draco && summary.position_encoding == PositionEncoding::kFloat32)
         bits = options.draco_options.quantization_bits;
-      Bytes raw = c_raw;
+      // The raw payload to write: the input's, unless recoded into `owned`.
+      Bytes owned;
+      const uint8_t* raw = in.data;
+      size_t raw_size = in.size;
       if (bits != 0 && !(summary.position_encoding == PositionEncoding::kQuantized &&
                          summary.quantization_bits == bits)) {
         // Re-encode against the input's own BASE: the records' implied vs
         // positions are those of the BASE they were decoded with.
-        const Bytes base_raw = chosen.at(kBaseTag).raw();
+        const Section& base_in = *chosen.at(kBaseTag).decoded;
         LODBAKE_ASSIGN_OR_RETURN(
             ProgressiveMesh pm,
-            decode_progressive_mesh(base_raw.data(), base_raw.size(), c_raw.data(), c_raw.size()));
+            decode_progressive_mesh(base_in.data, base_in.size, in.data, in.size));
         VsplEncodeOptions quantize;
         quantize.quantize = true;
         quantize.bits = bits;
-        LODBAKE_ASSIGN_OR_RETURN(raw, encode_vspl(pm, quantize));
+        LODBAKE_ASSIGN_OR_RETURN(owned, encode_vspl(pm, quantize));
+        raw = owned.data();
+        raw_size = owned.size();
       }
       if (options.error_bits != 0) {
-        LODBAKE_ASSIGN_OR_RETURN(raw,
-                                 round_vspl_errors(raw.data(), raw.size(), options.error_bits));
+        LODBAKE_ASSIGN_OR_RETURN(owned, round_vspl_errors(raw, raw_size, options.error_bits));
+        raw = owned.data();
+        raw_size = owned.size();
       }
       LODBAKE_ASSIGN_OR_RETURN(VsplSection section,
-                               decode_vspl(raw.data(), raw.size(), written_base->positions));
+                               decode_vspl(raw, raw_size, written_base->positions));
       if (index == 0) {
         result->splits = section.splits.size();
         result->vertices = section.summary.full_vertex_count();
         result->triangles = full_triangle_count(written_base->triangle_count(), section.splits);
       }
-      decoded_size = raw.size();
+      decoded_size = raw_size;
       if (options.compact) {
+        VsplCompactOptions compact;
+        compact.decoded = &section;  // decoded against the written BASE, as the codec does
         LODBAKE_ASSIGN_OR_RETURN(stored,
-                                 encode_vspl_compact(raw.data(), raw.size(), *written_base));
+                                 encode_vspl_compact(raw, raw_size, *written_base, compact));
         codec = SectionCodec::kCompact;
+      } else if (owned.empty()) {
+        stored = Bytes(raw, raw + raw_size);
       } else {
-        stored = std::move(raw);
+        stored = std::move(owned);
       }
-      report.action = c.stored->entry.codec == static_cast<uint16_t>(codec) &&
-                              stored == Bytes(c.stored->data, c.stored->data + c.stored->size)
-                          ? "copied"
-                          : "recoded";
+      report.action = same_as_stored(*c.stored, codec, stored) ? "copied" : "recoded";
     } else if (it->second.decoded->known &&
                (has_standalone_compact_codec(tag) || has_base_compact_codec(tag))) {
       const Chosen& c = it->second;
-      Bytes c_raw = c.raw();
+      Bytes owned;  // VTRE moved onto the written BASE
+      const uint8_t* raw = c.decoded->data;
+      size_t raw_size = c.decoded->size;
       if (tag == kVtreTag && written_base) {
-        LODBAKE_ASSIGN_OR_RETURN(c_raw, vtre_on_base(std::move(c_raw), *written_base));
+        LODBAKE_ASSIGN_OR_RETURN(std::optional<Bytes> moved,
+                                 vtre_on_base(raw, raw_size, *written_base));
+        if (moved) {
+          owned = std::move(*moved);
+          raw = owned.data();
+          raw_size = owned.size();
+        }
       }
-      decoded_size = c_raw.size();
-      stored = c_raw;
+      decoded_size = raw_size;
       // FANH's and STRP's codecs use BASE's triangles, which recoding BASE
       // never changes; without BASE in the output they stay raw.
       const bool with_base = has_base_compact_codec(tag);
       const bool can_compact = !with_base || written_base.has_value();
+      bool compacted = false;
       if (options.compact && can_compact) {
         // Tiny payloads can grow by the codec's header: they stay raw.
-        Result<Bytes> compact =
-            with_base ? encode_section_compact(tag, c_raw.data(), c_raw.size(), *written_base)
-                      : encode_section_compact(tag, c_raw.data(), c_raw.size());
-        if (compact.is_ok() && compact.value().size() < c_raw.size()) {
+        Result<Bytes> compact = with_base
+                                    ? encode_section_compact(tag, raw, raw_size, *written_base)
+                                    : encode_section_compact(tag, raw, raw_size);
+        if (compact.is_ok() && compact.value().size() < raw_size) {
           stored = std::move(compact).value();
           codec = SectionCodec::kCompact;
+          compacted = true;
         } else if (!compact.is_ok() && compact.status().kind() != ErrorKind::kUnsupported) {
           return compact.status();
         }
       }
-      report.action = c.stored->entry.codec == static_cast<uint16_t>(codec) &&
-                              stored == Bytes(c.stored->data, c.stored->data + c.stored->size)
-                          ? "copied"
-                          : "recoded";
+      if (!compacted) stored = owned.empty() ? Bytes(raw, raw + raw_size) : std::move(owned);
+      report.action = same_as_stored(*c.stored, codec, stored) ? "copied" : "recoded";
     } else {
       const Section& s = *it->second.stored;
       stored = Bytes(s.data, s.data + s.size);
@@ -520,13 +545,15 @@ Status write_group(const std::vector<PackInput>& inputs, const OutGroup& group, 
   return Status::ok();
 }
 
-Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
-                                    const RepackOptions& options,
+Result<PackResult> repack_unchecked(std::vector<PackInput> inputs, const RepackOptions& options,
                                     const nlohmann::json& meta_options, size_t* failed) {
   *failed = inputs.size();
   if (inputs.empty()) return invalid_input("no input containers");
+  PackResult result;
+  for (const PackInput& input : inputs)
+    result.input_bytes += input.bytes.size();
   std::vector<InputFile> files;
-  LODBAKE_RETURN_IF_ERROR(read_inputs(inputs, &files, failed));
+  LODBAKE_RETURN_IF_ERROR(read_inputs(&inputs, &files, failed));
   std::vector<OutGroup> groups = assign_groups(&files);
   // Groups whose every section is dropped are left out, and the others
   // renumbered, so the output's groups run 0, 1, 2, ... again.
@@ -545,10 +572,6 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
   // The input hashes first: files of different inputs differ everywhere.
   MetaSection merged_meta;
   LODBAKE_RETURN_IF_ERROR(merge_meta(inputs, files, meta_options, &merged_meta, failed));
-  PackResult result;
-  for (const PackInput& input : inputs)
-    result.input_bytes += input.bytes.size();
-
   ContainerWriter writer;
   std::vector<PackedSection> dropped;
   for (size_t g = 0; g < groups.size(); ++g) {
@@ -563,18 +586,18 @@ Result<PackResult> repack_unchecked(const std::vector<PackInput>& inputs,
 
 }  // namespace
 
-Result<PackResult> repack_containers(const std::vector<PackInput>& inputs,
-                                     const RepackOptions& options,
+Result<PackResult> repack_containers(std::vector<PackInput> inputs, const RepackOptions& options,
                                      const nlohmann::json& meta_options, size_t* failed_input) {
-  size_t failed = inputs.size();
+  const size_t count = inputs.size();
+  size_t failed = count;
   Result<PackResult> result = [&]() -> Result<PackResult> {
     try {
-      return repack_unchecked(inputs, options, meta_options, &failed);
+      return repack_unchecked(std::move(inputs), options, meta_options, &failed);
     } catch (const std::bad_alloc&) {
       return runtime_error("out of memory while packing");
     }
   }();
-  if (failed_input != nullptr) *failed_input = result.is_ok() ? inputs.size() : failed;
+  if (failed_input != nullptr) *failed_input = result.is_ok() ? count : failed;
   return result;
 }
 

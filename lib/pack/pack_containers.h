@@ -88,8 +88,9 @@ struct PackResult {
 /// `meta_options` is what the output META records as the options (the
 /// tool's own spelling). When the failure concerns one input, its index is
 /// stored in `*failed_input` (else inputs.size()), so a tool can name it.
-Result<PackResult> repack_containers(const std::vector<PackInput>& inputs,
-                                     const RepackOptions& options,
+/// `inputs` is taken by value: a caller done with its inputs moves them in,
+/// and the containers are read in place instead of copied.
+Result<PackResult> repack_containers(std::vector<PackInput> inputs, const RepackOptions& options,
                                      const nlohmann::json& meta_options, size_t* failed_input);
 
 }  // namespace lodbake

@@ -184,6 +184,12 @@ TEST_P(CompactVspl, DecodesToTheRawPayloadByteForByte) {
       Result<Bytes> compact = encode_vspl_compact(raw.data(), raw.size(), pm.base, compact_options);
       ASSERT_TRUE(compact.is_ok()) << compact.status().message();
       EXPECT_EQ(compact.value()[0], version);
+      // Given the caller's own decoding of the payload, the same bytes.
+      const VsplSection decoded = decode_vspl(raw.data(), raw.size(), pm.base.positions).value();
+      VsplCompactOptions given = compact_options;
+      given.decoded = &decoded;
+      EXPECT_EQ(encode_vspl_compact(raw.data(), raw.size(), pm.base, given).value(),
+                compact.value());
       Result<Bytes> back =
           decode_vspl_compact(compact.value().data(), compact.value().size(), pm.base);
       ASSERT_TRUE(back.is_ok()) << back.status().message();
