@@ -2,11 +2,15 @@
 # lodbake-pack writes the same bytes for --threads 1, 2, 7 and 0 (every
 # core): merging the bunny's progressive mesh, hierarchy, fan and strips
 # containers with Draco, whose sections after BASE are coded side by side,
-# and packing the mesh itself, whose check runs in parts.
+# and packing the mesh itself, whose check runs in parts. CODEC is draco, or
+# nodraco for a build without the Draco codec (the merge is then compact
+# only).
 #
-#   pack_threads.sh TOOLS DATA WORK
+#   pack_threads.sh TOOLS DATA WORK CODEC
 set -eu
-tools=$1 data=$2 work=$3
+tools=$1 data=$2 work=$3 codec=$4
+draco=""
+[ "$codec" = nodraco ] || draco=--draco
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "pack_threads: $*" >&2; exit 1; }
 mesh=$data/meshes/stanford_bun_zipper.ply
@@ -17,7 +21,7 @@ for tool in hierarchy fan strips; do
 done
 for n in 1 2 7 0; do
   "$tools/lodbake-pack" "$work/pm.lbk" "$work/hierarchy.lbk" "$work/fan.lbk" "$work/strips.lbk" \
-    --draco --threads $n --quiet -o "$work/merged$n.lbk" > /dev/null 2> "$work/err.txt" ||
+    $draco --threads $n --quiet -o "$work/merged$n.lbk" > /dev/null 2> "$work/err.txt" ||
     fail "--threads $n: merging failed: $(cat "$work/err.txt")"
   "$tools/lodbake-pack" "$mesh" --threads $n --quiet -o "$work/mesh$n.lbk" > /dev/null \
     2> "$work/err.txt" || fail "--threads $n: packing the mesh failed: $(cat "$work/err.txt")"
