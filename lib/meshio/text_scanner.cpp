@@ -44,6 +44,14 @@ NumberStatus parse_integer(std::string_view text, T* out) {
 
 }  // namespace
 
+// Blanks, line ends and the backslash that may start a continuation.
+const TextScanner::ByteTable TextScanner::kEndsToken = [] {
+  ByteTable table{};
+  for (uint8_t c : {' ', '\t', '\v', '\f', '\n', '\r', '\\'})
+    table[c] = true;
+  return table;
+}();
+
 NumberStatus parse_double(std::string_view text, double* out) {
   if (!strip_plus(&text) || text.empty()) return NumberStatus::kMalformed;
   double value = 0;
@@ -165,25 +173,29 @@ void TextScanner::skip_whitespace_and_comments(char comment) {
   }
 }
 
-std::string_view TextScanner::token() {
+// Scans a token's bytes: stops at a blank, a line end, `stop` or a line
+// continuation. Bytes of a number stop nothing, so one table lookup per byte
+// decides, and only a backslash needs a second look.
+std::string_view TextScanner::scan_token(uint8_t stop) {
   skip_blanks();
   const uint8_t* start = cur_;
-  while (cur_ != end_ && !is_blank(*cur_) && *cur_ != '\n' && *cur_ != '\r' && !at_continuation())
-    ++cur_;
+  for (;;) {
+    while (cur_ != end_ && !kEndsToken[*cur_] && *cur_ != stop)
+      ++cur_;
+    if (cur_ == end_ || *cur_ != '\\' || stop == '\\' || at_continuation()) break;
+    ++cur_;  // a backslash inside the token
+  }
   last_token_ =
       std::string_view(reinterpret_cast<const char*>(start), static_cast<size_t>(cur_ - start));
   return last_token_;
 }
 
+std::string_view TextScanner::token() {
+  return scan_token('\n');
+}
+
 std::string_view TextScanner::token_until(char stop) {
-  skip_blanks();
-  const uint8_t* start = cur_;
-  while (cur_ != end_ && !is_blank(*cur_) && *cur_ != '\n' && *cur_ != '\r' &&
-         *cur_ != static_cast<uint8_t>(stop) && !at_continuation())
-    ++cur_;
-  last_token_ =
-      std::string_view(reinterpret_cast<const char*>(start), static_cast<size_t>(cur_ - start));
-  return last_token_;
+  return scan_token(static_cast<uint8_t>(stop));
 }
 
 NumberStatus TextScanner::read_float(float* out) {

@@ -18,6 +18,7 @@
 // - Integers report overflow as kOutOfRange instead of wrapping.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -61,6 +62,9 @@ class TextScanner {
   size_t remaining() const { return static_cast<size_t>(end_ - cur_); }
   /// 1-based line number of the cursor.
   uint64_t line() const { return line_; }
+  /// Numbers the line at the cursor `line` (a scanner over a later part of
+  /// a file, as the streaming readers make).
+  void set_line(uint64_t line) { line_ = line; }
   /// The byte at the cursor, or 0 at the end.
   char peek() const { return cur_ == end_ ? '\0' : static_cast<char>(*cur_); }
   /// True at a line end or at the end of the text.
@@ -103,6 +107,10 @@ class TextScanner {
   std::string number_error(NumberStatus status, const char* what) const;
 
  private:
+  using ByteTable = std::array<bool, 256>;
+  static const ByteTable kEndsToken;
+  // token() and token_until(): `stop` is '\n' for none.
+  std::string_view scan_token(uint8_t stop);
   bool is_blank(uint8_t c) const { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
   // True when a line continuation ("\\" + line end) starts at the cursor.
   bool at_continuation() const;

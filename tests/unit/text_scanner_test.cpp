@@ -158,6 +158,77 @@ TEST(TextScanner, ErrorMessagesNameLineAndToken) {
   EXPECT_EQ(quote_token(std::string(40, 'x')), "'" + std::string(32, 'x') + "...'");
 }
 
+// The bad-input spellings read through the scanner's tokens (the table
+// driven scan) give the same values, statuses and messages as parsing the
+// whole token: a token ends only at a blank, a line end, the stop byte or a
+// continuation, so trailing garbage stays in the token and makes it
+// malformed.
+TEST(TextScanner, BadSpellingsThroughTokensKeepTheirStatusAndMessage) {
+  TextScanner s = scan("NaN -inf +Infinity 0x10 +1.5 1.5x 1e39 1e-50 \\q 7#c\n");
+  float f = 0;
+  ASSERT_EQ(s.read_float(&f), NumberStatus::kOk);
+  EXPECT_TRUE(std::isnan(f));
+  ASSERT_EQ(s.read_float(&f), NumberStatus::kOk);
+  EXPECT_EQ(f, -std::numeric_limits<float>::infinity());
+  ASSERT_EQ(s.read_float(&f), NumberStatus::kOk);
+  EXPECT_EQ(f, std::numeric_limits<float>::infinity());
+  EXPECT_EQ(s.read_float(&f), NumberStatus::kMalformed);
+  EXPECT_EQ(s.last_token(), "0x10");
+  EXPECT_EQ(s.number_error(NumberStatus::kMalformed, "a coordinate"),
+            "line 1: expected a coordinate, found '0x10'");
+  ASSERT_EQ(s.read_float(&f), NumberStatus::kOk);
+  EXPECT_EQ(f, 1.5f);
+  EXPECT_EQ(s.read_float(&f), NumberStatus::kMalformed);
+  EXPECT_EQ(s.last_token(), "1.5x");
+  EXPECT_EQ(s.read_float(&f), NumberStatus::kOutOfRange);
+  EXPECT_EQ(s.number_error(NumberStatus::kOutOfRange, "a coordinate"),
+            "line 1: a coordinate '1e39' is out of range");
+  ASSERT_EQ(s.read_float(&f), NumberStatus::kOk);
+  EXPECT_EQ(f, 0.0f);
+  // A backslash not before a line end is part of the token.
+  EXPECT_EQ(s.token(), "\\q");
+  EXPECT_EQ(s.token_until('#'), "7");
+  EXPECT_EQ(s.token(), "#c");
+  EXPECT_TRUE(s.token().empty());
+}
+
+TEST(TextScanner, IntegerTokensKeepTheirStatus) {
+  TextScanner s = scan("+3 -0 0x1f 12a 99999999999999999999 -9223372036854775808\t4\r\n");
+  int64_t i = 0;
+  ASSERT_EQ(s.read_int64(&i), NumberStatus::kOk);
+  EXPECT_EQ(i, 3);
+  ASSERT_EQ(s.read_int64(&i), NumberStatus::kOk);
+  EXPECT_EQ(i, 0);
+  EXPECT_EQ(s.read_int64(&i), NumberStatus::kMalformed);
+  EXPECT_EQ(s.last_token(), "0x1f");
+  EXPECT_EQ(s.read_int64(&i), NumberStatus::kMalformed);
+  EXPECT_EQ(s.read_int64(&i), NumberStatus::kOutOfRange);
+  EXPECT_EQ(s.number_error(NumberStatus::kOutOfRange, "an index"),
+            "line 1: an index '99999999999999999999' is out of range");
+  ASSERT_EQ(s.read_int64(&i), NumberStatus::kOk);
+  EXPECT_EQ(i, std::numeric_limits<int64_t>::min());
+  ASSERT_EQ(s.read_int64(&i), NumberStatus::kOk);
+  EXPECT_EQ(i, 4);
+  EXPECT_EQ(s.read_int64(&i), NumberStatus::kMissing);
+  s.skip_whitespace();
+  EXPECT_EQ(s.line(), 2u);
+  EXPECT_TRUE(s.at_end());
+}
+
+// A continuation inside the token scan ends the token, and the scan goes on
+// after it on the next line.
+TEST(TextScanner, ContinuationEndsATokenInTheTableScan) {
+  TextScanner s = scan("f 1\\\n2 3\\\r\n4\n");
+  s.set_line_continuation(true);
+  EXPECT_EQ(s.token(), "f");
+  EXPECT_EQ(s.token(), "1");
+  EXPECT_EQ(s.token(), "2");
+  EXPECT_EQ(s.token(), "3");
+  EXPECT_EQ(s.token(), "4");
+  EXPECT_EQ(s.line(), 3u);
+  EXPECT_TRUE(s.token().empty());
+}
+
 TEST(PrepareText, DecodesUtf16WithByteOrderMark) {
   const uint8_t be[] = {0xfe, 0xff, 0, 'v', 0, ' ', 0, '1', 0x00, 0xe9, 0, '\n'};
   const uint8_t* data = be;
