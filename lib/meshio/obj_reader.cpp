@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "lib/meshio/mesh_readers.h"
+#include "lib/meshio/obj_keywords.h"
 #include "lib/meshio/polygon_triangulation.h"
 #include "lib/meshio/text_mesh_reading.h"
 #include "lib/meshio/text_scanner.h"
@@ -47,21 +48,6 @@ namespace lodbake {
 namespace {
 
 constexpr uint32_t kNoIndex = kObjNoIndex;
-
-// Statements of the OBJ spec that lodbake reads past; anything else is
-// counted as "unknown" (its keyword may be binary junk, unfit for a note).
-bool is_known_ignored_keyword(std::string_view k) {
-  static const char* const kKeywords[] = {
-      "o",     "g",     "s",      "mg",       "usemtl",   "mtllib",     "l",
-      "p",     "vp",    "cstype", "deg",      "bmat",     "step",       "curv",
-      "curv2", "surf",  "parm",   "trim",     "hole",     "scrv",       "sp",
-      "end",   "con",   "lod",    "usemap",   "maplib",   "shadow_obj", "trace_obj",
-      "ctech", "stech", "bevel",  "c_interp", "d_interp", "call",       "csh"};
-  for (const char* known : kKeywords) {
-    if (k == known) return true;
-  }
-  return false;
-}
 
 const char* describe_keyword(std::string_view k) {
   if (k == "o") return "object names";
@@ -427,7 +413,7 @@ Result<TriangleMesh> ObjReader::read() {
       read_mtllib();
     } else if (groups_ != nullptr && keyword == "usemtl") {
       read_usemtl();
-    } else if (is_known_ignored_keyword(keyword)) {
+    } else if (is_obj_ignored_keyword(keyword)) {
       auto it = ignored_.find(keyword);
       if (it == ignored_.end()) it = ignored_.emplace(std::string(keyword), 0).first;
       ++it->second;

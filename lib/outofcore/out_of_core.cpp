@@ -18,6 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "formats/support/file_io.h"
+#include "lib/meshio/file_name.h"
+#include "lib/meshio/obj_stream_reader.h"
 #include "lib/meshio/ply_stream_reader.h"
 #include "lib/outofcore/block_mesh.h"
 #include "lib/outofcore/block_partition.h"
@@ -104,31 +106,58 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
   if (!in) return io_error("cannot open for reading");
   char magic[4] = {0, 0, 0, 0};
   in.read(magic, 4);
-  if (in.gcount() < 4 || std::string(magic, 3) != "ply" || (magic[3] != '\n' && magic[3] != '\r'))
-    return unsupported("--memory-limit reads PLY files (binary or ASCII) only");
-  LODBAKE_ASSIGN_OR_RETURN(std::unique_ptr<PlyStreamReader> reader,
-                           PlyStreamReader::open(&in, size));
+  const bool is_ply =
+      in.gcount() == 4 && std::string(magic, 3) == "ply" && (magic[3] == '\n' || magic[3] == '\r');
+  // OBJ has no magic: its extension decides, as in core (mesh_import.cpp).
+  if (!is_ply && lower_extension(input) != "obj")
+    return unsupported("--memory-limit reads PLY (binary or ASCII) and OBJ files only");
+  std::unique_ptr<PlyStreamReader> ply;
+  std::unique_ptr<ObjStreamReader> obj;
+  if (is_ply) {
+    LODBAKE_ASSIGN_OR_RETURN(ply, PlyStreamReader::open(&in, size));
+  } else {
+    LODBAKE_ASSIGN_OR_RETURN(obj, ObjStreamReader::open(&in, size));
+  }
   OutOfCorePlan plan;
   plan.memory_limit = options.memory_limit;
   plan.simplify = options.simplify;
-  plan.input_vertices = reader->vertex_count();
   const uint64_t limit = options.memory_limit;
-  // The positions are the one array over the whole input; the count is
-  // the header's (plan_ply() checked that the body can hold it).
-  if (plan.input_vertices * sizeof(Vec3f) > limit / 2)
-    return runtime_error("its " + std::to_string(plan.input_vertices) + " vertices need " +
-                         std::to_string(plan.input_vertices * sizeof(Vec3f)) +
-                         " bytes, more than half of --memory-limit");
-  const uint64_t faces = std::max<uint64_t>(reader->face_count(), 1);
   // What the arrays that grow with a block may take: the limit less the
   // program itself.
   const uint64_t usable = limit - std::min(limit / 2, kProgramBytes);
+  auto too_many_vertices = [&](uint64_t count) {
+    return runtime_error("its " + std::to_string(count) + " vertices need " +
+                         std::to_string(count * sizeof(Vec3f)) +
+                         " bytes, more than half of --memory-limit");
+  };
 
-  // Pass 1: positions and their box.
-  std::vector<Vec3f> positions(plan.input_vertices);
-  LODBAKE_RETURN_IF_ERROR(reader->for_each_vertex([&](uint64_t i, const float* xyz) {
-    positions[i] = {xyz[0], xyz[1], xyz[2]};
-  }));
+  // Pass 1: positions and their box. The positions are the one array over
+  // the whole input.
+  std::vector<Vec3f> positions;
+  if (ply) {
+    // The header's count (plan_ply() checked that the body can hold it).
+    plan.input_vertices = ply->vertex_count();
+    if (plan.input_vertices * sizeof(Vec3f) > limit / 2)
+      return too_many_vertices(plan.input_vertices);
+    positions.resize(plan.input_vertices);
+    LODBAKE_RETURN_IF_ERROR(ply->for_each_vertex([&](uint64_t i, const float* xyz) {
+      positions[i] = {xyz[0], xyz[1], xyz[2]};
+    }));
+  } else {
+    // No count ahead: stop as soon as the vertices read pass the limit.
+    LODBAKE_RETURN_IF_ERROR(obj->for_each_vertex([&](uint64_t, const float* xyz) -> Status {
+      if ((positions.size() + 1) * sizeof(Vec3f) > limit / 2)
+        return too_many_vertices(positions.size() + 1);
+      positions.push_back({xyz[0], xyz[1], xyz[2]});
+      return Status::ok();
+    }));
+    plan.input_vertices = positions.size();
+  }
+  const uint64_t faces = std::max<uint64_t>(ply ? ply->face_count() : obj->face_count(), 1);
+  auto for_each_triangle =
+      [&](const std::function<Status(uint64_t, const uint32_t*)>& triangle) -> Status {
+    return ply ? ply->for_each_triangle(triangle) : obj->for_each_triangle(positions, triangle);
+  };
   if (progress) progress(0.1);
   Vec3f lo{0, 0, 0}, hi{0, 0, 0};
   if (!positions.empty()) lo = hi = positions[0];
@@ -143,7 +172,7 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
   BlockGrid grid = make_block_grid(lo, hi, kFineGridResolution);
   std::vector<uint64_t> counts(grid.cell_count(), 0);
   std::vector<bool> referenced(plan.input_vertices, false);
-  LODBAKE_RETURN_IF_ERROR(reader->for_each_triangle([&](uint64_t f, const uint32_t* t) -> Status {
+  LODBAKE_RETURN_IF_ERROR(for_each_triangle([&](uint64_t f, const uint32_t* t) -> Status {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
       ++plan.dropped_degenerate;
       return Status::ok();
@@ -229,7 +258,7 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
     if (progress && f % 1000000 == 0) progress(0.4 + 0.4 * static_cast<double>(f) / faces);
     return Status::ok();
   };
-  LODBAKE_RETURN_IF_ERROR(reader->for_each_triangle(distribute));
+  LODBAKE_RETURN_IF_ERROR(for_each_triangle(distribute));
   for (uint32_t b = 0; b < grid.block_count; ++b) {
     LODBAKE_RETURN_IF_ERROR(append_file(block_scratch_path(work, b), buffers[b]));
     buffers[b] = std::vector<Triangle>();

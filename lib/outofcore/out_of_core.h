@@ -1,6 +1,6 @@
 // Simplification of a mesh larger than memory, in three stages that can run
 // as separate processes on separate machines sharing a work folder:
-//   split:  stream the PLY input, cut it into spatial blocks
+//   split:  stream the PLY or OBJ input, cut it into spatial blocks
 //           (block_partition.h), write each block's triangles and vertices
 //           (with their input ids) to block_N.in, and the plan (plan.json);
 //   block:  simplify one block in core with its border locked, so that the
@@ -76,13 +76,12 @@ std::string plan_path(const std::string& work);
 std::string block_input_path(const std::string& work, uint32_t block);
 std::string block_output_path(const std::string& work, uint32_t block);
 
-/// The split stage: reads `input` (binary or ASCII PLY, triangle faces;
-/// kUnsupported for anything else) in three streaming passes and writes
-/// every block_N.in, then plan.json, into the existing folder `work`.
-/// Fails with kInvalidInput on a malformed file (non-finite coordinates,
-/// indices out of range, counts the file cannot hold) and kRuntime when the
-/// limit cannot hold the input's positions or the final target. On failure
-/// the files it wrote are removed.
+/// The split stage: reads `input` (binary or ASCII PLY with triangle faces,
+/// or OBJ, its polygons split as in core; kUnsupported for anything else) in three streaming passes
+/// and writes every block_N.in, then plan.json, into the existing folder `work`. Fails with
+/// kInvalidInput on a malformed file (non-finite coordinates, indices out of range, counts the file
+/// cannot hold) and kRuntime when the limit cannot hold the input's positions or the final target.
+/// On failure the files it wrote are removed.
 Result<OutOfCorePlan> split_input(const std::string& input, const std::string& work,
                                   const OutOfCoreOptions& options, const StageProgress& progress);
 

@@ -1,9 +1,10 @@
 // lib/outofcore: memory sizes, the block partition, fan splitting, the
 // border band, block files, stitching, the streaming PLY reader, and the
-// three stages end to end on a generated mesh.
+// three stages end to end on a generated mesh, from PLY and from OBJ.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -285,12 +286,14 @@ class OutOfCoreStages : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(root_); }
 
-  Result<TriangleMesh> run(const std::string& work, unsigned threads, OutOfCorePlan* plan_out) {
+  Result<TriangleMesh> run(const std::string& work, unsigned threads, OutOfCorePlan* plan_out,
+                           const std::string& input = "") {
     fs::create_directories(work);
     OutOfCoreOptions options;
     options.memory_limit = 800000;  // about a third of the mesh per block
     options.simplify.target_ratio = 0.2;
-    LODBAKE_ASSIGN_OR_RETURN(OutOfCorePlan plan, split_input(input_, work, options, nullptr));
+    LODBAKE_ASSIGN_OR_RETURN(OutOfCorePlan plan,
+                             split_input(input.empty() ? input_ : input, work, options, nullptr));
     LODBAKE_ASSIGN_OR_RETURN(OutOfCorePlan reread, read_plan(work));
     EXPECT_EQ(reread.block_triangles, plan.block_triangles);
     for (uint32_t b = 0; b < plan.block_count(); ++b)
@@ -325,6 +328,63 @@ TEST_F(OutOfCoreStages, SeveralBlocksReachTheTargetTheSameForAnyThreads) {
   // The one-shot's cleanup leaves nothing of the stages behind.
   remove_work_files((root_ / "w1").string());
   EXPECT_FALSE(fs::exists(root_ / "w1"));
+}
+
+// The grid of grid_ply(n, true) as OBJ text: the same floats (9 significant
+// digits give a float back exactly), half the faces by relative indices,
+// with comments, groups and CRLF line ends between.
+std::string grid_obj(int n) {
+  std::ostringstream out;
+  out << "# grid\r\no grid\r\n";
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      char line[96];
+      std::snprintf(line, sizeof(line), "v %.9g %.9g %.9g\r\n", static_cast<float>(x),
+                    static_cast<float>(y),
+                    static_cast<float>(std::sin(x * 0.3) * std::cos(y * 0.2) * 3));
+      out << line;
+    }
+  const int count = n * n;
+  for (int y = 0; y + 1 < n; ++y)
+    for (int x = 0; x + 1 < n; ++x) {
+      const int a = y * n + x, b = a + 1, c = a + n, d = c + 1;
+      out << "f " << a + 1 << " " << b + 1 << " " << d + 1 << "\r\n";
+      out << "f " << a - count << " " << d - count << " " << c - count << " # relative\r\n";
+    }
+  return out.str();
+}
+
+TEST_F(OutOfCoreStages, ObjInputGivesThePlyResult) {
+  const std::string obj = (root_ / "grid.obj").string();
+  std::ofstream(obj, std::ios::binary) << grid_obj(60);
+  OutOfCorePlan from_ply, from_obj;
+  Result<TriangleMesh> a = run((root_ / "wp").string(), 1, &from_ply);
+  Result<TriangleMesh> b = run((root_ / "wo").string(), 1, &from_obj, obj);
+  ASSERT_TRUE(a.is_ok()) << a.status().message();
+  ASSERT_TRUE(b.is_ok()) << b.status().message();
+  EXPECT_GT(from_obj.block_count(), 2u);
+  EXPECT_EQ(from_obj.block_triangles, from_ply.block_triangles);
+  EXPECT_EQ(from_obj.diagonal, from_ply.diagonal);
+  EXPECT_EQ(a.value(), b.value());
+}
+
+TEST_F(OutOfCoreStages, ObjErrorsNameTheLine) {
+  const std::string work = (root_ / "w").string();
+  fs::create_directories(work);
+  OutOfCoreOptions options;
+  options.memory_limit = 800000;
+  options.simplify.target_ratio = 0.2;
+  const std::string obj = (root_ / "bad.obj").string();
+  std::ofstream(obj, std::ios::binary) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n";
+  Result<OutOfCorePlan> plan = split_input(obj, work, options, nullptr);
+  ASSERT_FALSE(plan.is_ok());
+  EXPECT_EQ(plan.status().message(), "line 5: vertex index 4 out of range (3 so far)");
+  EXPECT_TRUE(fs::is_empty(work));
+  const std::string off = (root_ / "mesh.off").string();
+  std::ofstream(off, std::ios::binary) << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  plan = split_input(off, work, options, nullptr);
+  ASSERT_FALSE(plan.is_ok());
+  EXPECT_EQ(plan.status().kind(), ErrorKind::kUnsupported);
 }
 
 TEST_F(OutOfCoreStages, MergeNamesAMissingBlock) {

@@ -582,7 +582,7 @@ int main(int argc, char** argv) {
       "no-metrics",
       "skip measuring the Hausdorff and mean distance, and the UV and normal deviation, to the "
       "input")("memory-limit", po::value<std::string>(&ooc.memory_limit)->value_name("SIZE"),
-               "simplify a PLY mesh larger than memory in spatial blocks held to about SIZE "
+               "simplify a PLY or OBJ mesh larger than memory in spatial blocks held to about SIZE "
                "(512M, 2G; docs/simplify.md \"Larger than memory\"); no --pm, --lods or metrics")(
       "stage", po::value<std::string>(&ooc.stage)->value_name("split|block|merge"),
       "run one stage of a --memory-limit run: split MESH into blocks in --work, simplify block "
