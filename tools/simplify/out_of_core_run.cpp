@@ -10,6 +10,7 @@
 #include "lib/meshio/mesh_writers.h"
 #include "lib/outofcore/memory_size.h"
 #include "lib/outofcore/out_of_core.h"
+#include "lib/outofcore/work_folder_guard.h"
 
 namespace lodbake::cli {
 namespace {
@@ -102,26 +103,18 @@ void print_result(const Tool& tool, const OutOfCoreRequest& request, const OutOf
             << " triangles\n";
 }
 
-// Removes the one-shot run's work files however the run ends.
-struct WorkFolder {
-  std::string path;
-  ~WorkFolder() {
-    if (!path.empty()) remove_work_files(path);
-  }
-};
-
 int run_one_shot(const Tool& tool, OutOfCoreRequest request, uint64_t limit) {
-  WorkFolder cleanup;
   if (request.work.empty()) {
     // Beside the output, not in /tmp: a tmpfs would hold the blocks in memory.
     fs::path folder = fs::absolute(request.output).parent_path();
     request.work = (folder / (".lodbake-work-" + std::to_string(::getpid()))).string();
   }
-  cleanup.path = request.work;
+  // Removes the work files however the run ends, a signal included.
+  WorkFolderGuard cleanup(request.work);
   const auto start = std::chrono::steady_clock::now();
   Result<OutOfCorePlan> plan = run_split(tool, request, limit);
   if (!plan.is_ok()) {
-    if (plan.status().kind() == ErrorKind::kUsage) cleanup.path.clear();
+    if (plan.status().kind() == ErrorKind::kUsage) cleanup.release();
     return plan.status().kind() == ErrorKind::kUsage ? tool.usage_error(plan.status().message())
                                                      : tool.fail(request.input, plan.status());
   }
