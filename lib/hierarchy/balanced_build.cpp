@@ -132,8 +132,8 @@ class Builder {
       node_of_[v] = v;
       nodes_[v].survivor = v;
     }
-    used_.assign(n, 0);
-    near_.assign(n, 0);
+    stamp_.assign(n, RoundStamp());
+    ring_mark_.assign(n, 0);
     removed_.assign(n, 0);
     for (uint32_t v = 0; v < n; ++v) {
       if (!vertex_faces_[v].empty()) live_.push_back(v);
@@ -181,10 +181,10 @@ class Builder {
   void restore() {
     const Checkpoint& c = checkpoint_;
     // Stamps of the rewound rounds would match the rounds run again.
-    for (uint32_t& r : used_)
-      if (r >= c.round) r = 0;
-    for (uint32_t& r : near_)
-      if (r >= c.round) r = 0;
+    for (RoundStamp& r : stamp_) {
+      if (r.used >= c.round) r.used = 0;
+      if (r.near >= c.round) r.near = 0;
+    }
     // Only a live vertex's faces, quadric and node change after the
     // checkpoint; vertices removed since are live there.
     for (size_t i = 0; i < c.live.size(); ++i) {
@@ -351,15 +351,26 @@ class Builder {
     }
     uint64_t made = 0;
     auto take = [&](const Candidate& c) {
-      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) return;
+      const RoundStamp& su = stamp_[c.u];
+      if (su.used == round || su.near == round || stamp_[c.t].used == round) return;
       uint32_t vl = kNone;
       uint32_t vr = kNone;
       if (!legal(c.u, c.t, &vl, &vr)) return;
-      for (uint32_t w : ring_u_)  // u's ring, as legal() left it
-        near_[w] = round;
-      used_[c.u] = used_[c.t] = round;
+      // u's ring, before the collapse moves its faces.
+      for (uint32_t f : vertex_faces_[c.u]) {
+        const Triangle& tri = tris_[f];
+        for (uint32_t w : tri)
+          if (w != c.u) stamp_[w].near = round;
+      }
+      stamp_[c.u].used = stamp_[c.t].used = round;
       collapse(c.u, c.t, vl, round, c.cost);
       ++made;
+    };
+    // The walk's time goes to cache misses on the stamps of vertices far
+    // apart: a candidate's are fetched well before the walk reaches it.
+    auto prefetch = [&](const Candidate& c) {
+      __builtin_prefetch(&stamp_[c.u]);
+      __builtin_prefetch(&stamp_[c.t]);
     };
     // Without a NaN cost the key is a strict total order ((u, t) is listed
     // once), so the sorted order is the one there is: the sorted chunks are
@@ -370,8 +381,11 @@ class Builder {
                                      [](const Candidate& c) { return std::isnan(c.cost); });
     if (!strict || candidates.size() <= kSortChunk) {
       sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
-      for (const Candidate& c : candidates)
-        take(c);
+      constexpr size_t kAhead = 16;
+      for (size_t i = 0; i < candidates.size(); ++i) {
+        if (i + kAhead < candidates.size()) prefetch(candidates[i + kAhead]);
+        take(candidates[i]);
+      }
       return made;
     }
     threads_->for_each_chunk(candidates.size(), kSortChunk, [&](size_t, IndexRange range) {
@@ -400,6 +414,8 @@ class Builder {
         continue;
       }
       h.c = candidates[h.next++];
+      // Walked after about one candidate of every other chunk.
+      prefetch(h.c);
       std::push_heap(heads.begin(), heads.end(), later);
     }
     return made;
@@ -429,11 +445,21 @@ class Builder {
     for (uint32_t w : {*vl, *vr}) {
       if (w != kNone && vertex_faces_[w].size() - 1 < (boundary_[w] ? 1u : 3u)) return false;
     }
-    neighbours(u, &ring_u_);
-    neighbours(t, &ring_t_);
-    for (uint32_t w : ring_u_) {
-      if (w == t || w == *vl || w == *vr) continue;
-      if (std::binary_search(ring_t_.begin(), ring_t_.end(), w)) return false;
+    // Link condition: u and t share no neighbour but the wings. t's ring
+    // is marked with a fresh stamp (sorting both rings cost more).
+    if (++ring_stamp_ == 0) {
+      std::fill(ring_mark_.begin(), ring_mark_.end(), 0);
+      ring_stamp_ = 1;
+    }
+    for (uint32_t f : vertex_faces_[t]) {
+      for (uint32_t w : tris_[f])
+        ring_mark_[w] = ring_stamp_;
+    }
+    for (uint32_t f : vertex_faces_[u]) {
+      for (uint32_t w : tris_[f]) {
+        if (w == u || w == t || w == *vl || w == *vr) continue;
+        if (ring_mark_[w] == ring_stamp_) return false;
+      }
     }
     // Faces of u not containing t move to t's position.
     const Vec3d p = to_d(mesh_.positions[t]);
@@ -587,8 +613,16 @@ class Builder {
   std::vector<TempNode> nodes_;
   std::vector<uint32_t> node_of_;
   std::vector<uint8_t> removed_;
-  std::vector<uint32_t> used_;
-  std::vector<uint32_t> near_;
+  // Per vertex, the last round in which it took part in a collapse (used)
+  // and in which a neighbour was removed (near): side by side, as the walk
+  // reads both of u.
+  struct RoundStamp {
+    uint32_t used = 0;
+    uint32_t near = 0;
+  };
+  std::vector<RoundStamp> stamp_;
+  std::vector<uint32_t> ring_mark_;  // == ring_stamp_: in t's ring (legal())
+  uint32_t ring_stamp_ = 0;
   std::vector<uint32_t> live_;  // vertices with faces, ascending, and some removed
   struct Checkpoint {
     std::vector<uint32_t> live;
@@ -602,8 +636,6 @@ class Builder {
     uint32_t cap = 0;
     std::vector<uint64_t> level_vertices;
   } checkpoint_;
-  std::vector<uint32_t> ring_u_;
-  std::vector<uint32_t> ring_t_;
   std::vector<uint64_t> level_vertices_;
 };
 
