@@ -275,15 +275,32 @@ class Builder {
     return static_cast<float>(e);
   }
 
-  // The candidates of live vertices [begin, end) in vertex order; sets
-  // *capped when the height cap held one back.
-  void list_candidates(size_t begin, size_t end, std::vector<Candidate>* out, bool* capped) const {
+  // The candidate u -> t (u's ring has `valence` vertices); false when the
+  // height cap holds it back.
+  bool make_candidate(uint32_t u, uint32_t hu, uint32_t t, uint32_t valence, Candidate* c) const {
+    const uint32_t ht = nodes_[node_of_[t]].height;
+    const uint32_t h = std::max(hu, ht) + 1;
+    if (h > cap_) return false;
+    // Low-valence vertices first: each removal blocks its neighbours for
+    // the level, so they leave the largest independent set.
+    const uint32_t shorter = std::min(hu, ht);
+    const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
+                         : ordering_ == 1 ? valence
+                                          : shorter;
+    *c = {h, sec, cost(u, t), u, t};
+    return true;
+  }
+
+  // The candidates of live vertices [begin, end) in vertex order, or with
+  // `best_only` each vertex's least one; sets *capped when the height cap
+  // held one back and *nan when a cost is NaN.
+  void list_candidates(size_t begin, size_t end, bool best_only, std::vector<Candidate>* out,
+                       bool* capped, bool* nan) const {
     // A manifold vertex has at most one neighbour more than faces: the list
-    // is reserved once instead of doubling (round 1's is the largest block
-    // the build holds).
+    // is reserved once instead of doubling.
     size_t bound = 0;
     for (size_t i = begin; i < end; ++i)
-      bound += vertex_faces_[live_[i]].size() + 1;
+      bound += best_only ? 1 : vertex_faces_[live_[i]].size() + 1;
     out->reserve(out->size() + bound);
     std::vector<uint32_t> ring;
     for (size_t i = begin; i < end; ++i) {
@@ -295,23 +312,47 @@ class Builder {
         continue;
       }
       neighbours(u, &ring);
+      const auto valence = static_cast<uint32_t>(ring.size());
+      Candidate best{};
+      bool found = false;
       for (uint32_t t : ring) {
-        const uint32_t h = std::max(hu, nodes_[node_of_[t]].height) + 1;
-        if (h > cap_) {
+        Candidate c;
+        if (!make_candidate(u, hu, t, valence, &c)) {
           *capped = true;
           continue;
         }
-        // Low-valence vertices first: each removal blocks its neighbours
-        // for the level, so they leave the largest independent set.
-        const uint32_t ht = nodes_[node_of_[t]].height;
-        const auto valence = static_cast<uint32_t>(ring.size());
-        const uint32_t shorter = std::min(hu, ht);
-        const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
-                             : ordering_ == 1 ? valence
-                                              : shorter;
-        out->push_back({h, sec, cost(u, t), u, t});
+        if (std::isnan(c.cost)) *nan = true;
+        if (!best_only) {
+          out->push_back(c);
+        } else if (!found || c < best) {
+          best = c;
+          found = true;
+        }
+      }
+      if (found) out->push_back(best);
+    }
+  }
+
+  // u's least candidate after `after` (u = after.u), in the state of the
+  // walk. Valid for the walk because u is neither used nor near: its
+  // faces, ring, quadric and height are as listed, and so is the key of
+  // every t not used yet (a used t's key may differ, but its candidate is
+  // refused wherever it falls).
+  bool next_candidate(const Candidate& after, Candidate* next) {
+    const uint32_t u = after.u;
+    const uint32_t hu = nodes_[node_of_[u]].height;
+    neighbours(u, &ring_);
+    const auto valence = static_cast<uint32_t>(ring_.size());
+    bool found = false;
+    for (uint32_t t : ring_) {
+      Candidate c;
+      if (!make_candidate(u, hu, t, valence, &c) || !(after < c)) continue;
+      if (!found || c < *next) {
+        *next = c;
+        found = true;
       }
     }
+    return found;
   }
 
   void drop_removed() {
@@ -320,25 +361,28 @@ class Builder {
                 live_.end());
   }
 
-  uint64_t run_round(uint32_t round) {
-    // The live vertices, in vertex order: the same list as all vertices
-    // with the removed ones skipped, without visiting them every round.
-    drop_removed();
+  // The listing of one round (in parts when there are threads): each live
+  // vertex's candidates in vertex order, or its least one.
+  std::vector<Candidate> list_round(bool best_only, bool* nan) {
     const size_t n = live_.size();
     const size_t parts = threads_->parts(n, kMinListPart);
     std::vector<Candidate> candidates;
     if (parts == 1) {
       bool held_back = false;
-      list_candidates(0, n, &candidates, &held_back);
+      list_candidates(0, n, best_only, &candidates, &held_back, nan);
       capped_ = capped_ || held_back;
+      return candidates;
     }
-    std::vector<std::vector<Candidate>> listed(parts == 1 ? 0 : parts);
+    std::vector<std::vector<Candidate>> listed(parts);
     std::vector<uint8_t> capped(parts, 0);
+    std::vector<uint8_t> nans(parts, 0);
     threads_->for_each_part(listed.size(), [&](size_t p) {
       const IndexRange range = part_range(n, parts, p);
       bool part_capped = false;
-      list_candidates(range.begin, range.end, &listed[p], &part_capped);
+      bool part_nan = false;
+      list_candidates(range.begin, range.end, best_only, &listed[p], &part_capped, &part_nan);
       capped[p] = part_capped ? 1 : 0;
+      nans[p] = part_nan ? 1 : 0;
     });
     size_t total = 0;
     for (const std::vector<Candidate>& part : listed)
@@ -348,76 +392,125 @@ class Builder {
       candidates.insert(candidates.end(), listed[p].begin(), listed[p].end());
       std::vector<Candidate>().swap(listed[p]);
       if (capped[p]) capped_ = true;
+      if (nans[p]) *nan = true;
     }
+    return candidates;
+  }
+
+  enum class Taken { kYes, kUBlocked, kRefused };
+
+  Taken take(const Candidate& c, uint32_t round) {
+    const RoundStamp& su = stamp_[c.u];
+    if (su.used == round || su.near == round) return Taken::kUBlocked;
+    if (stamp_[c.t].used == round) return Taken::kRefused;
+    uint32_t vl = kNone;
+    uint32_t vr = kNone;
+    if (!legal(c.u, c.t, &vl, &vr)) return Taken::kRefused;
+    // u's ring, before the collapse moves its faces.
+    for (uint32_t f : vertex_faces_[c.u]) {
+      const Triangle& tri = tris_[f];
+      for (uint32_t w : tri)
+        if (w != c.u) stamp_[w].near = round;
+    }
+    stamp_[c.u].used = stamp_[c.t].used = round;
+    collapse(c.u, c.t, vl, round, c.cost);
+    return Taken::kYes;
+  }
+
+  // The walk's time goes to cache misses on the stamps of vertices far
+  // apart: a candidate's are fetched well before the walk reaches it.
+  void prefetch(const Candidate& c) const {
+    __builtin_prefetch(&stamp_[c.u]);
+    __builtin_prefetch(&stamp_[c.t]);
+  }
+
+  uint64_t run_round(uint32_t round) {
+    // The live vertices, in vertex order: the same list as all vertices
+    // with the removed ones skipped, without visiting them every round.
+    drop_removed();
     uint64_t made = 0;
-    auto take = [&](const Candidate& c) {
-      const RoundStamp& su = stamp_[c.u];
-      if (su.used == round || su.near == round || stamp_[c.t].used == round) return;
-      uint32_t vl = kNone;
-      uint32_t vr = kNone;
-      if (!legal(c.u, c.t, &vl, &vr)) return;
-      // u's ring, before the collapse moves its faces.
-      for (uint32_t f : vertex_faces_[c.u]) {
-        const Triangle& tri = tris_[f];
-        for (uint32_t w : tri)
-          if (w != c.u) stamp_[w].near = round;
-      }
-      stamp_[c.u].used = stamp_[c.t].used = round;
-      collapse(c.u, c.t, vl, round, c.cost);
-      ++made;
-    };
-    // The walk's time goes to cache misses on the stamps of vertices far
-    // apart: a candidate's are fetched well before the walk reaches it.
-    auto prefetch = [&](const Candidate& c) {
-      __builtin_prefetch(&stamp_[c.u]);
-      __builtin_prefetch(&stamp_[c.t]);
-    };
+    bool nan = false;
     // Without a NaN cost the key is a strict total order ((u, t) is listed
-    // once), so the sorted order is the one there is: the sorted chunks are
-    // merged on the fly as the walk reads them, without the merge's copy of
-    // the list. A NaN cost keeps sort_in_chunks' merge, whose order the
-    // comparisons fix.
-    const bool strict = std::none_of(candidates.begin(), candidates.end(),
-                                     [](const Candidate& c) { return std::isnan(c.cost); });
-    if (!strict || candidates.size() <= kSortChunk) {
+    // once), so the walk's order is the one there is, and a vertex's next
+    // candidate can wait until its last one is refused: the round lists
+    // each vertex's least candidate only (a sixth of the list) and a heap
+    // holds the next ones. A NaN cost keeps the whole list and
+    // sort_in_chunks' merge, whose order the comparisons fix.
+    std::vector<Candidate> candidates = list_round(true, &nan);
+    if (nan) {
+      candidates = std::vector<Candidate>();
+      candidates = list_round(false, &nan);
       sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
+      for (const Candidate& c : candidates)
+        if (take(c, round) == Taken::kYes) ++made;
+      return made;
+    }
+    auto greater = [](const Candidate& a, const Candidate& b) { return b < a; };
+    std::vector<Candidate> later;  // min-heap of refused vertices' next candidates
+    auto visit = [&](const Candidate& c) {
+      const Taken taken = take(c, round);
+      if (taken == Taken::kYes) ++made;
+      if (taken != Taken::kRefused) return;
+      Candidate next;
+      if (!next_candidate(c, &next)) return;
+      prefetch(next);
+      later.push_back(next);
+      std::push_heap(later.begin(), later.end(), greater);
+    };
+    // Visits the waiting candidates that come before *c (all without c).
+    auto walk_to = [&](const Candidate* c) {
+      while (!later.empty() && (c == nullptr || later.front() < *c)) {
+        std::pop_heap(later.begin(), later.end(), greater);
+        const Candidate next = later.back();
+        later.pop_back();
+        visit(next);
+      }
+    };
+    if (candidates.size() <= kSortChunk) {
+      std::sort(candidates.begin(), candidates.end());
       constexpr size_t kAhead = 16;
       for (size_t i = 0; i < candidates.size(); ++i) {
         if (i + kAhead < candidates.size()) prefetch(candidates[i + kAhead]);
-        take(candidates[i]);
+        walk_to(&candidates[i]);
+        visit(candidates[i]);
       }
+      walk_to(nullptr);
       return made;
     }
     threads_->for_each_chunk(candidates.size(), kSortChunk, [&](size_t, IndexRange range) {
       std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(range.begin),
                 candidates.begin() + static_cast<std::ptrdiff_t>(range.end));
     });
-    // A min-heap of each chunk's next candidate.
+    // A min-heap of each chunk's next candidate: the chunks merged on the
+    // fly as the walk reads them, without a merged copy of the list.
     struct Head {
       Candidate c;
       size_t next;
       size_t end;
     };
-    auto later = [](const Head& a, const Head& b) { return b.c < a.c; };
+    auto later_head = [](const Head& a, const Head& b) { return b.c < a.c; };
     std::vector<Head> heads;
     for (size_t begin = 0; begin < candidates.size(); begin += kSortChunk) {
       const size_t end = std::min(candidates.size(), begin + kSortChunk);
       heads.push_back({candidates[begin], begin + 1, end});
     }
-    std::make_heap(heads.begin(), heads.end(), later);
+    std::make_heap(heads.begin(), heads.end(), later_head);
     while (!heads.empty()) {
-      std::pop_heap(heads.begin(), heads.end(), later);
+      std::pop_heap(heads.begin(), heads.end(), later_head);
       Head& h = heads.back();
-      take(h.c);
+      const Candidate c = h.c;
       if (h.next == h.end) {
         heads.pop_back();
-        continue;
+      } else {
+        h.c = candidates[h.next++];
+        // Walked after about one candidate of every other chunk.
+        prefetch(h.c);
+        std::push_heap(heads.begin(), heads.end(), later_head);
       }
-      h.c = candidates[h.next++];
-      // Walked after about one candidate of every other chunk.
-      prefetch(h.c);
-      std::push_heap(heads.begin(), heads.end(), later);
+      walk_to(&c);
+      visit(c);
     }
+    walk_to(nullptr);
     return made;
   }
 
@@ -636,6 +729,7 @@ class Builder {
     uint32_t cap = 0;
     std::vector<uint64_t> level_vertices;
   } checkpoint_;
+  std::vector<uint32_t> ring_;  // next_candidate()'s
   std::vector<uint64_t> level_vertices_;
 };
 
