@@ -113,17 +113,22 @@ class Builder {
       : mesh_(mesh), options_(options), ordering_(ordering), threads_(&threads) {}
 
   Status setup() {
-    simplify_internal::MeshTopology topology;
-    LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(mesh_, &topology));
     const size_t n = mesh_.positions.size();
+    {
+      // Freed before the quadrics and nodes are made (it was held through
+      // setup: the 3.49M-triangle mesh's peak, 133 MB of it).
+      simplify_internal::MeshTopology topology;
+      LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(mesh_, &topology));
+      std::vector<simplify_internal::FanCorner>().swap(topology.corners);
+      vertex_faces_.resize(n);
+      for (size_t v = 0; v < n; ++v) {
+        vertex_faces_[v].assign(topology.faces.begin() + topology.face_start[v],
+                                topology.faces.begin() + topology.face_start[v + 1]);
+      }
+      boundary_ = std::move(topology.boundary);
+    }
     tris_ = mesh_.triangles;
     face_alive_.assign(tris_.size(), 1);
-    vertex_faces_.resize(n);
-    for (size_t v = 0; v < n; ++v) {
-      vertex_faces_[v].assign(topology.faces.begin() + topology.face_start[v],
-                              topology.faces.begin() + topology.face_start[v + 1]);
-    }
-    boundary_ = topology.boundary;
     cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
     setup_quadrics();
     nodes_.resize(n);
@@ -147,7 +152,69 @@ class Builder {
   }
 
   void set_ordering(int ordering) { ordering_ = ordering; }
-  Result<BalancedHierarchy> result() const { return pack(); }
+
+  // The shape pack() would give (hierarchy_shape()), from the nodes: every
+  // node is kept, a tree's levels are its root's height + 1.
+  Result<HierarchyShape> shape() const {
+    HierarchyShape s;
+    s.nodes = nodes_.size();
+    for (const TempNode& nd : nodes_) {
+      if (nd.parent != kNone) continue;
+      ++s.roots;
+      s.depth = std::max(s.depth, nd.height + 1);
+    }
+    // pack() refuses a tree deeper than 64 levels.
+    if (s.depth > 64) return runtime_error("a tree of the hierarchy is deeper than 64 levels");
+    s.splits = (s.nodes - s.roots) / 2;
+    s.leaves = s.roots + s.splits;
+    s.tree_bits = bits_for_count(s.roots);
+    s.id_bits = s.tree_bits + static_cast<int>(s.depth);
+    s.id_bytes = s.id_bits <= 32 ? 4 : 8;
+    return s;
+  }
+
+  // What an ordering made after the checkpoint: all pack() reads of it.
+  struct Ending {
+    std::vector<TempNode> tail;
+    std::vector<uint64_t> level_vertices;
+  };
+  Ending ending() const {
+    Ending e;
+    e.tail.assign(nodes_.begin() + static_cast<std::ptrdiff_t>(checkpoint_.node_count),
+                  nodes_.end());
+    e.level_vertices = level_vertices_;
+    return e;
+  }
+  // The nodes and levels as `e`'s ordering left them (the rest of the state
+  // is not rewound: only pack() follows).
+  void adopt(const Ending& e) {
+    for (uint32_t node : checkpoint_.node_of)
+      nodes_[node].parent = kNone;
+    nodes_.resize(checkpoint_.node_count);
+    nodes_.insert(nodes_.end(), e.tail.begin(), e.tail.end());
+    for (size_t i = checkpoint_.node_count; i < nodes_.size(); ++i) {
+      nodes_[nodes_[i].left].parent = static_cast<uint32_t>(i);
+      nodes_[nodes_[i].right].parent = static_cast<uint32_t>(i);
+    }
+    level_vertices_ = e.level_vertices;
+  }
+
+  // The hierarchy, packed once the build's state but the nodes is freed
+  // (packing beside it was the build's peak).
+  Result<BalancedHierarchy> result() {
+    tris_ = std::vector<Triangle>();
+    face_alive_ = std::vector<uint8_t>();
+    vertex_faces_ = std::vector<std::vector<uint32_t>>();
+    boundary_ = std::vector<uint8_t>();
+    quadric_ = std::vector<Quadric>();
+    node_of_ = std::vector<uint32_t>();
+    removed_ = std::vector<uint8_t>();
+    stamp_ = std::vector<RoundStamp>();
+    ring_mark_ = std::vector<uint32_t>();
+    live_ = std::vector<uint32_t>();
+    checkpoint_ = Checkpoint();
+    return pack();
+  }
 
   // What the rounds after this point change, so that restore() can rewind
   // the build to it: the orderings finish one after the other on one state
@@ -755,23 +822,30 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
     // so far is kept (fewest id bits, then shallower, then fewer roots, then
     // the first). The listing and sorting of each round stay parallel.
     if (orderings > 1) shared.checkpoint();
-    std::optional<BalancedHierarchy> best;
+    // Each ordering's shape is read from its nodes; only the best's nodes
+    // after the shared point are kept, and the hierarchy is packed once.
+    std::optional<Builder::Ending> best;
+    int best_ordering = -1;
     HierarchyShape best_shape;
     for (int ordering = 0; ordering < orderings; ++ordering) {
       if (ordering > 0) shared.restore();
       shared.set_ordering(ordering);
       shared.build_until(0);
-      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy one, shared.result());
-      const HierarchyShape shape = hierarchy_shape(one.hierarchy);
-      if (!best || shape.id_bits < best_shape.id_bits ||
+      LODBAKE_ASSIGN_OR_RETURN(const HierarchyShape shape, shared.shape());
+      if (best_ordering < 0 || shape.id_bits < best_shape.id_bits ||
           (shape.id_bits == best_shape.id_bits &&
            (shape.depth < best_shape.depth ||
             (shape.depth == best_shape.depth && shape.roots < best_shape.roots)))) {
-        best = std::move(one);
+        best_ordering = ordering;
         best_shape = shape;
+        // The last ordering's ending is the state itself.
+        best.reset();
+        if (ordering + 1 < orderings) best = shared.ending();
       }
     }
-    return std::move(*best);
+    if (best) shared.adopt(*best);
+    best.reset();
+    return shared.result();
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory building the balanced hierarchy");
   }
