@@ -131,6 +131,10 @@ class Builder {
     face_alive_.assign(tris_.size(), 1);
     cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
     setup_quadrics();
+    // A node per vertex and at most one per collapse, reserved whole: the
+    // pages are touched only as nodes are made, and growing by doubling in
+    // round 1 held the old and the new array at once (the build's peak).
+    nodes_.reserve(2 * n);
     nodes_.resize(n);
     node_of_.resize(n);
     for (uint32_t v = 0; v < n; ++v) {
