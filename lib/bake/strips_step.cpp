@@ -66,6 +66,9 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
   StripifyStats& strip_stats = out.strip_stats;
   auto start = std::chrono::steady_clock::now();
   LODBAKE_ASSIGN_OR_RETURN(TriangleStrips strips, stripify(*stripped, &strip_stats));
+  // Each step's input is freed as soon as it is used: the SETS graph is the
+  // tool's peak, and the full mesh (rebuilt from the PM) is no part of it.
+  full = TriangleMesh();
   out.report["strips"] = strip_stats_json(strip_stats);
   out.report["strips"]["seconds"] = seconds_since(start);
 
@@ -86,9 +89,9 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
   start = std::chrono::steady_clock::now();
   LODBAKE_ASSIGN_OR_RETURN(SetsGraph g, build_sets(strips, pm, &sets_stats, request.threads));
   const double build_seconds = seconds_since(start);
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
+  strips = TriangleStrips();
   LODBAKE_ASSIGN_OR_RETURN(Bytes sets, encode_sets(g));
+  const uint32_t lod_count = g.lod_count;
   out.report["sets"] = {{"lods", g.lod_count},
                         {"nodes", g.node_count()},
                         {"arcs", g.arc_count()},
@@ -99,6 +102,9 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
                         {"emptied_strips", sets_stats.emptied_strips},
                         {"seconds", build_seconds},
                         {"bytes", sets.size()}};
+  g = SetsGraph();  // encoded: free it before BASE and VSPL are
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
   nlohmann::json paper = nlohmann::json::array();
   for (const PaperFigure& f : kPaperFigures)
     paper.push_back({{"model", f.model}, {"triangles", f.triangles}, {"megabytes", f.megabytes}});
@@ -113,7 +119,7 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
                 {"full_vertices", pm.full_vertex_count()},
                 {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)},
                 {"strips", strip_stats.strips},
-                {"lods", g.lod_count}};
+                {"lods", lod_count}};
   return out;
 }
 
