@@ -606,6 +606,9 @@ Result<std::shared_ptr<const SimplifyResult>> InputMeshes::simplified(
     if (!slot) slot = std::make_unique<Simplification>();
     entry = slot.get();
   }
+  // The simplifier's parallel loops are isolated (lib/core/parallel.cpp):
+  // a thread waiting in them never takes up another step, which could ask
+  // for this same result inside this call_once.
   std::call_once(entry->once, [&] {
     Result<std::shared_ptr<const SimplifyResult>> made = run();
     if (made.is_ok()) {
