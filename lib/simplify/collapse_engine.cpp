@@ -95,11 +95,23 @@ constexpr size_t kParallelQuadrics = 8192;
 // 1.75 times as long without it.
 constexpr size_t kPrefetchWalkVertices = size_t{1} << 16;
 
-// One edge listed for a pass, in its cheaper direction: vt into vs.
+// One edge listed for a pass, in its cheaper direction, in 8 bytes rather
+// than 12 (a cost and both vertex ids: 6 bytes per input triangle of the
+// engine's peak): the half-edge it was listed as, whose vertices the walk
+// reads from the triangle (the triangles do not change during a pass), and
+// the cost's float bits with the direction in the sign bit (costs are never
+// negative, so the bit is free).
 struct Candidate {
-  float cost;
-  uint32_t vt;
-  uint32_t vs;
+  static constexpr uint32_t kReversed = 0x80000000u;  // vt is the half-edge's end
+  uint32_t bits;                                      // the cost's float bits, kReversed or'ed in
+  uint32_t half_edge;  // 3 * face + k: from the face's corner k to corner k + 1
+
+  float cost() const {
+    const uint32_t b = bits & ~kReversed;
+    float f;
+    std::memcpy(&f, &b, sizeof f);
+    return f;
+  }
 };
 
 // The candidates of a pass, sorted by cost on demand. The order is that of
@@ -115,9 +127,9 @@ struct Candidate {
 // (upper digit, lower digit, listing order) in one go.
 //
 // The candidates stay where they were listed; the sort permutes their
-// indices (4 bytes each) instead of the 12-byte candidates. A sort of the
-// candidates themselves needed a second array as large as the list, which
-// was 18 bytes per input triangle of the engine's peak; the indices take 6,
+// indices (4 bytes each) instead of the 8-byte candidates. A sort of the
+// candidates themselves needed a second array as large as the list (when
+// they took 12 bytes, 18 bytes per input triangle of the peak); the indices take 6,
 // and the walk's reads through them are prefetched with the rest.
 //
 // The listing comes in parts (consecutive ranges of the live triangles),
@@ -250,9 +262,7 @@ class CandidateList {
   }
 
   static uint32_t key(const Candidate& c) {
-    uint32_t bits;
-    std::memcpy(&bits, &c.cost, sizeof bits);
-    return bits >> kIgnoredBits;
+    return (c.bits & ~Candidate::kReversed) >> kIgnoredBits;
   }
   static uint32_t upper(const Candidate& c) { return (key(c) >> kDigitBits) & (kBuckets - 1); }
   static uint32_t lower(const Candidate& c) { return key(c) & (kBuckets - 1); }
@@ -466,6 +476,18 @@ class Engine {
 
  private:
   bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
+
+  // A candidate's vertices, from its half-edge's triangle.
+  struct Ends {
+    uint32_t vt, vs;
+  };
+  Ends ends(const Candidate& c) const {
+    const Triangle& t = state_.triangles[c.half_edge / 3];
+    const uint32_t k = c.half_edge % 3;
+    const uint32_t a = t[k];
+    const uint32_t b = t[k == 2 ? 0 : k + 1];
+    return (c.bits & Candidate::kReversed) != 0 ? Ends{b, a} : Ends{a, b};
+  }
   // Vertex order for ties: the input's.
   bool precedes(uint32_t a, uint32_t b) const { return vinfo_[a].input_id < vinfo_[b].input_id; }
 
@@ -640,6 +662,7 @@ class Engine {
   void list_candidates(size_t part, size_t begin, size_t end) {
     struct Edge {
       uint32_t a, b;
+      uint32_t half_edge;
       bool boundary;
     };
     constexpr size_t kBatch = 64;
@@ -654,8 +677,9 @@ class Engine {
             prefetch_quadric(v);
           }
         }
-        const Triangle& t = state_.triangles[live_triangles_[i]];
-        for (int k = 0; k < 3; ++k) {
+        const uint32_t f = live_triangles_[i];
+        const Triangle& t = state_.triangles[f];
+        for (uint32_t k = 0; k < 3; ++k) {
           const uint32_t a = t[k];
           const uint32_t b = t[k == 2 ? 0 : k + 1];
           const bool both_boundary = (vinfo_[a].flags & vinfo_[b].flags & kBoundary) != 0;
@@ -665,12 +689,12 @@ class Engine {
           // only be the survivor (meshoptimizer's collapse table: a border
           // vertex moves only along the border).
           const bool stands = boundary_edge | precedes(a, b);
-          edges[count] = {a, b, boundary_edge};
+          edges[count] = {a, b, 3 * f + k, boundary_edge};
           count += stands & (boundary_edge | !both_boundary);
         }
       }
       for (size_t j = 0; j < count; ++j)
-        add_candidate(part, edges[j].a, edges[j].b, edges[j].boundary);
+        add_candidate(part, edges[j].a, edges[j].b, edges[j].half_edge, edges[j].boundary);
     }
   }
 
@@ -807,7 +831,7 @@ class Engine {
     // once the pass has its minimum share (below).
     size_t goal_index = goal / 2;
     auto limit = [&] {
-      return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost
+      return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost()
                                              : kInfinity;
     };
     const uint64_t before = triangle_count_;
@@ -815,11 +839,13 @@ class Engine {
     height_scale_ = 0;
     for (size_t i = 0; i < candidates_.size(); ++i) {
       if (prefetch_walk_) prefetch_candidate(i);
-      const Candidate& c = candidates_[i];
-      if (triangle_count_ <= target || c.cost > max_cost_float_) break;
+      const Candidate& candidate = candidates_[i];
+      const float listed_cost = candidate.cost();
+      if (triangle_count_ <= target || listed_cost > max_cost_float_) break;
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
       const double pass_limit = limit();
-      if (c.cost > pass_limit && past_limit) break;
+      if (listed_cost > pass_limit && past_limit) break;
+      const Ends c = ends(candidate);
       if (locked_[c.vt] | locked_[c.vs]) continue;
       // The guard's scale follows the limit; once refusals have moved the
       // limit past the list's end it keeps the last finite one, and a pass
@@ -850,19 +876,24 @@ class Engine {
   }
 
   // The walk visits the mesh in cost order, i.e. at random: ask for the data
-  // of the candidates a few steps ahead in four stages (each needs what the
+  // of the candidates a few steps ahead in five stages (each needs what the
   // one before fetched; the first, the candidate itself, lies in listing
-  // order). Candidates already locked will be skipped: locks are only set
+  // order; the second, its triangle, holds its vertices). Candidates
+  // already locked will be skipped: locks are only set
   // during a pass, so they are left out.
   void prefetch_candidate(size_t i) {
     constexpr size_t kCandidate = 40;
+    constexpr size_t kTriangle = 32;
     constexpr size_t kFar = 24;
     constexpr size_t kMid = 12;
     constexpr size_t kNear = 6;
     const size_t size = candidates_.size();
     if (i + kCandidate < size) candidates_.prefetch(i + kCandidate);
+    if (i + kTriangle < size) {
+      __builtin_prefetch(&state_.triangles[candidates_[i + kTriangle].half_edge / 3]);
+    }
     if (i + kFar < size) {
-      const Candidate& c = candidates_[i + kFar];
+      const Ends c = ends(candidates_[i + kFar]);
       if (!(locked_[c.vt] | locked_[c.vs])) {
         __builtin_prefetch(&vinfo_[c.vt]);
         __builtin_prefetch(&vinfo_[c.vs]);
@@ -872,7 +903,7 @@ class Engine {
       }
     }
     if (i + kMid < size) {
-      const Candidate& c = candidates_[i + kMid];
+      const Ends c = ends(candidates_[i + kMid]);
       if (!(locked_[c.vt] | locked_[c.vs])) {
         for (uint32_t v : {c.vt, c.vs}) {
           const char* list = reinterpret_cast<const char*>(&corners_[vinfo_[v].start]);
@@ -882,7 +913,7 @@ class Engine {
       }
     }
     if (i + kNear < size) {
-      const Candidate& c = candidates_[i + kNear];
+      const Ends c = ends(candidates_[i + kNear]);
       if (!(locked_[c.vt] | locked_[c.vs])) {
         const VertexInfo& info = vinfo_[c.vt];
         for (uint32_t k = info.start, end = info.start + info.size; k < end; ++k)
@@ -1031,9 +1062,10 @@ class Engine {
     return with_crack_floor(tv, ps, q.q.evaluate(ps) * q.inverse_weight);
   }
 
-  void add_candidate(size_t part, uint32_t a, uint32_t b, bool boundary_edge) {
+  // The half-edge a->b, listed as `half_edge` (Candidate).
+  void add_candidate(size_t part, uint32_t a, uint32_t b, uint32_t half_edge, bool boundary_edge) {
     if (options_.placement == Placement::kHalf) {
-      add_half_candidate(part, a, b, boundary_edge);
+      add_half_candidate(part, a, b, half_edge, boundary_edge);
       return;
     }
     // removing a, keeping b
@@ -1055,14 +1087,18 @@ class Engine {
       const double lb = dot(db, db);
       remove_a = lb < la || (lb == la && precedes(b, a));
     }
-    candidates_.push_back(part, remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
+    uint32_t bits;
+    std::memcpy(&bits, remove_a ? &fab : &fba, sizeof bits);
+    candidates_.push_back(part,
+                          Candidate{bits | (remove_a ? 0u : Candidate::kReversed), half_edge});
   }
 
   // add_candidate() in half placement, with the same result, but choosing
   // the direction by selects rather than branches: the two costs compare at
   // random, and a branch on them would be mispredicted half the time. Costs
   // are never negative, so their float bits order like unsigned integers.
-  void add_half_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {
+  void add_half_candidate(int part, uint32_t a, uint32_t b, uint32_t half_edge,
+                          bool boundary_edge) {
     const VertexInfo& ia = vinfo_[a];
     const VertexInfo& ib = vinfo_[b];
     const double ab = half_cost(a, ia, ib);
@@ -1085,11 +1121,7 @@ class Engine {
                                static_cast<uint32_t>(ib.input_id < ia.input_id));
     const uint32_t mask = 0u - remove_a;
     const uint32_t bits = (bits_ab & mask) | (bits_ba & ~mask);
-    Candidate c;
-    std::memcpy(&c.cost, &bits, sizeof bits);
-    c.vt = (a & mask) | (b & ~mask);
-    c.vs = (b & mask) | (a & ~mask);
-    candidates_.push_back(part, c);
+    candidates_.push_back(part, Candidate{bits | (~mask & Candidate::kReversed), half_edge});
   }
 
   // ---- legality ----
