@@ -58,6 +58,11 @@
 #include <limits>
 #include <memory>
 
+#ifdef __linux__
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
 #include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/quadric.h"
 #include "lib/simplify/vec_math.h"
@@ -65,6 +70,23 @@
 namespace lodbake {
 namespace simplify_internal {
 namespace {
+
+// Gives the pages of v's storage past its size back to the system, keeping
+// the capacity (a page touched again reads as zeros, and every element is
+// written before it is read): the per-pass lists shrink in place, and their
+// first pass's pages would otherwise stay resident to the end.
+template <typename T>
+void release_tail(std::vector<T>* v) {
+#ifdef __linux__
+  const auto page = static_cast<uintptr_t>(sysconf(_SC_PAGESIZE));
+  const uintptr_t begin =
+      (reinterpret_cast<uintptr_t>(v->data() + v->size()) + page - 1) & ~(page - 1);
+  const uintptr_t end = reinterpret_cast<uintptr_t>(v->data() + v->capacity()) & ~(page - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+#else
+  (void)v;
+#endif
+}
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
@@ -421,12 +443,8 @@ class Engine {
     for (uint32_t v = 0; v < n; ++v)
       alias_[v] = v;
     locked_.assign(n, 0);
-    live_triangles_.resize(state_.triangles.size());
-    for (uint32_t f = 0; f < live_triangles_.size(); ++f)
-      live_triangles_[f] = f;
-    for (uint32_t v = 0; v < n; ++v) {
-      if (vinfo_[v].count > 0) live_vertices_.push_back(v);
-    }
+    // live_triangles_ and live_vertices_ stay empty until the first
+    // finish_pass() (lists_made_): every triangle is live until then.
 
     setup_locks(topology);
     // The first pass's corner lists are the topology's.
@@ -457,7 +475,12 @@ class Engine {
       if (pass_ > 0) finish_pass(/*rebuild=*/true);
       list_candidates();
       candidates_.sort_upper(threads_);
-      if (run_pass() == 0) break;
+      const uint64_t collapses = run_pass();
+      // The next pass lists fewer edges: the buffers are made afresh, so
+      // that the pages of this pass's list are not resident with the next
+      // pass's corner lists and the log (the peak was the third pass's start).
+      candidates_.release();
+      if (collapses == 0) break;
     }
     finish_pass(/*rebuild=*/false);
     state_.stats.output_triangles = triangle_count_;
@@ -476,6 +499,13 @@ class Engine {
 
  private:
   bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
+
+  size_t live_triangle_count() const {
+    return lists_made_ ? live_triangles_.size() : state_.triangles.size();
+  }
+  uint32_t live_triangle(size_t i) const {
+    return lists_made_ ? live_triangles_[i] : static_cast<uint32_t>(i);
+  }
 
   // A candidate's vertices, from its half-edge's triangle.
   struct Ends {
@@ -638,7 +668,7 @@ class Engine {
   // edge). In parts, consecutive ranges of the live triangles, listed at
   // once (everything they read is constant during the listing).
   void list_candidates() {
-    const size_t live = live_triangles_.size();
+    const size_t live = live_triangle_count();
     const size_t parts = threads_.parts(live, kParallelListing / 2);
     std::vector<size_t> max_count(parts);
     for (size_t p = 0; p < parts; ++p) {
@@ -672,12 +702,12 @@ class Engine {
       size_t count = 0;
       for (size_t i = batch; i < batch_end; ++i) {
         if (i + kListAhead < end) {
-          for (uint32_t v : state_.triangles[live_triangles_[i + kListAhead]]) {
+          for (uint32_t v : state_.triangles[live_triangle(i + kListAhead)]) {
             __builtin_prefetch(&vinfo_[v]);
             prefetch_quadric(v);
           }
         }
-        const uint32_t f = live_triangles_[i];
+        const uint32_t f = live_triangle(i);
         const Triangle& t = state_.triangles[f];
         for (uint32_t k = 0; k < 3; ++k) {
           const uint32_t a = t[k];
@@ -728,15 +758,15 @@ class Engine {
   // so every list is in triangle order for any number of parts.
   void finish_pass(bool rebuild) {
     const bool faces = rebuild && !seam_attrs_.empty();
-    const size_t live = live_triangles_.size();
-    const size_t live_v = live_vertices_.size();
+    const size_t live = live_triangle_count();
+    const size_t live_v = lists_made_ ? live_vertices_.size() : vinfo_.size();
     const size_t parts = threads_.parts(live, kParallelListing / 2);
     std::vector<size_t> kept_triangles(parts);
     threads_.for_each_part(parts, [&](size_t p) {
       if (rebuild) {
         const IndexRange vertices = part_range(live_v, parts, p);
         for (size_t i = vertices.begin; i < vertices.end; ++i) {
-          const uint32_t v = live_vertices_[i];
+          const auto v = static_cast<uint32_t>(lists_made_ ? live_vertices_[i] : i);
           if (!locked_[v]) continue;
           if (alias_[v] != v) quadric_[alias_[v]].add(quadric_[v].q);
           locked_[v] = 0;
@@ -747,31 +777,67 @@ class Engine {
     });
     size_t kept_total = kept_triangles[0];
     for (size_t p = 1; p < parts; ++p) {
+      if (!lists_made_) {
+        kept_total += kept_triangles[p];
+        continue;
+      }
       const auto from =
           live_triangles_.begin() + static_cast<std::ptrdiff_t>(part_range(live, parts, p).begin);
       std::copy(from, from + static_cast<std::ptrdiff_t>(kept_triangles[p]),
                 live_triangles_.begin() + static_cast<std::ptrdiff_t>(kept_total));
       kept_total += kept_triangles[p];
     }
+    if (!lists_made_) {
+      // The first list, sized to the survivors of the first pass.
+      live_triangles_.reserve(kept_total);
+      for (uint32_t f = 0; f < state_.triangles.size(); ++f) {
+        if (state_.triangle_alive[f]) live_triangles_.push_back(f);
+      }
+    }
     live_triangles_.resize(kept_total);
-    if (!rebuild) return;
+    release_tail(&live_triangles_);
+    if (!rebuild) {
+      lists_made_ = true;
+      return;
+    }
 
     // Only the vertices that had faces at the pass start: the others are
     // never read again (at 1 % the last passes would sweep 100 times as
     // many records as they use).
     uint32_t sum = 0;
     size_t kept = 0;
-    for (const uint32_t v : live_vertices_) {
+    auto place = [this, &sum](uint32_t v) {
       VertexInfo& info = vinfo_[v];
-      if (info.count == 0) continue;
-      live_vertices_[kept++] = v;
+      if (info.count == 0) return false;
       info.start = sum;
       info.size = 0;  // counts the corners filled in below, up to `count`
       sum += info.count;
+      return true;
+    };
+    if (lists_made_) {
+      for (const uint32_t v : live_vertices_) {
+        if (place(v)) live_vertices_[kept++] = v;
+      }
+      live_vertices_.resize(kept);
+      release_tail(&live_vertices_);
+    } else {
+      // The first list, sized to the vertices with faces (a vertex never
+      // gains its first face).
+      for (const VertexInfo& info : vinfo_)
+        kept += info.count > 0 ? 1 : 0;
+      live_vertices_.reserve(kept);
+      for (uint32_t v = 0; v < vinfo_.size(); ++v) {
+        if (place(v)) live_vertices_.push_back(v);
+      }
+      lists_made_ = true;
     }
-    live_vertices_.resize(kept);
+    // The lists shrink pass by pass: their unused pages go back.
     corners_.resize(sum);
-    if (faces) faces_.resize(sum);
+    release_tail(&corners_);
+    if (faces) {
+      faces_.resize(sum);
+      release_tail(&faces_);
+    }
     // live_vertices_ is in id order, so a range of it is a range of ids.
     threads_.for_each_part(parts, [&](size_t p) {
       const IndexRange owned = part_range(kept, parts, p);
@@ -793,13 +859,14 @@ class Engine {
   }
 
   // Rewrites live_triangles_[begin, end) through alias_, drops the faces
+  // (before the lists are made: triangles begin to end, only counted)
   // that died in the pass and keeps the others at the front of the range;
   // returns how many it kept.
   size_t rewrite_triangles(size_t begin, size_t end) {
     std::vector<Triangle>& tris = state_.triangles;
     size_t live = begin;
     for (size_t i = begin; i < end; ++i) {
-      const uint32_t f = live_triangles_[i];
+      const uint32_t f = live_triangle(i);
       Triangle& t = tris[f];
       const Triangle old = t;
       for (uint32_t& v : t)
@@ -808,7 +875,8 @@ class Engine {
         state_.triangle_alive[f] = 0;
         continue;
       }
-      live_triangles_[live++] = f;
+      if (lists_made_) live_triangles_[live] = f;
+      ++live;
       if (seam_attrs_.empty() || options_.permissive || t == old) continue;
       // Corners moved from vt take vs's (unique) value, so no new seam appears.
       for (int k = 0; k < 3; ++k) {
@@ -1332,6 +1400,10 @@ class Engine {
   uint32_t shared_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<uint32_t> live_vertices_;   // those with faces, in order, filtered by finish_pass()
+  // False until the first finish_pass(): every triangle and vertex is live,
+  // and the two lists above, the identity then, are not made (6 bytes per
+  // triangle of the first pass's peak).
+  bool lists_made_ = false;
   const ParallelScope& threads_;
   CandidateList candidates_;
   uint32_t pass_ = 0;
