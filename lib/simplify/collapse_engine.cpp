@@ -58,6 +58,9 @@
 #include <limits>
 #include <memory>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #ifdef __linux__
 #include <sys/mman.h>
 #include <unistd.h>
@@ -142,23 +145,22 @@ struct Candidate {
 // listing order, which is deterministic. The 10 lowest mantissa bits are
 // left out: costs within a relative 2^-13 of each other keep their listing
 // order. Of the remaining bits, the upper 11 are sorted for the whole list
-// at the pass start (counted while listing, then one scattering sweep); the
-// lower 11 of each upper bucket only when the walk reaches it. A pass walks
-// about a third of its candidates, so most of the second scattering sweep
-// of a full sort was never read. The result is the same as sorting by
-// (upper digit, lower digit, listing order) in one go.
+// at the pass start; the lower 11 of each upper bucket only when the walk
+// reaches it. A pass walks about a third of its candidates, so most of the
+// second step of a full sort was never needed.
 //
-// The candidates stay where they were listed; the sort permutes their
-// indices (4 bytes each) instead of the 8-byte candidates. A sort of the
-// candidates themselves needed a second array as large as the list (when
-// they took 12 bytes, 18 bytes per input triangle of the peak); the indices take 6,
-// and the walk's reads through them are prefetched with the rest.
+// The listing order is the order of the candidates' half-edges (3 * face +
+// corner: the live triangles are listed in increasing order, in parts that
+// are consecutive ranges of them), and no two candidates share a half-edge.
+// So sorting by (key, half-edge) with any sort gives the stable sort's
+// order, and the sort works in place: an American flag sort of the upper
+// digit over the whole list, std::sort of each bucket by (key, half-edge).
+// The stable sort it replaces permuted a 4-byte index per candidate (6
+// bytes per input triangle of the peak) and the walk read the candidates
+// through them at random; now it reads them in order.
 //
-// The listing comes in parts (consecutive ranges of the live triangles),
-// each with its own region of items_ and its own upper-digit counts, so that
-// the threads list and scatter at once. The regions lie in part order, so
-// an index's order is the listing order of one thread whatever the number
-// of parts, and a stable sort of the indices keeps it among ties.
+// The listing comes in parts, each with its own region of items_, so that
+// the threads list at once; sort_upper() joins the regions.
 class CandidateList {
  public:
   // Empties the list for at most `max_count[p]` candidates in part p.
@@ -166,8 +168,6 @@ class CandidateList {
     const size_t parts = max_count.size();
     part_start_.resize(parts);
     part_size_.assign(parts, 0);
-    part_counts_.assign(parts * kBuckets, 0u);
-    part_fill_.resize(parts * kBuckets);
     size_t total = 0;
     for (size_t p = 0; p < parts; ++p) {
       part_start_[p] = total;
@@ -188,55 +188,45 @@ class CandidateList {
   size_t size() const { return size_; }
   void release() {
     items_ = Buffer<Candidate>();
-    order_ = Buffer<uint32_t>();
-    bucket_scratch_ = std::vector<uint32_t>();
     size_ = 0;
   }
 
-  // Groups the candidates' indices by the upper digit and leaves each group
-  // in listing order.
-  void sort_upper(const ParallelScope& threads) {
-    const size_t parts = part_size_.size();
+  // Joins the parts' regions and groups the candidates by the upper digit,
+  // in place.
+  void sort_upper() {
+    Candidate* items = items_.data.get();
     size_t listed = 0;
-    for (size_t n : part_size_)
-      listed += n;
-    reserve(&order_, listed);
-    // The parts are the listing's; a short list is counted and scattered
-    // on the calling thread.
-    const size_t run_parts = listed >= kParallelScatter ? parts : 1;
-    auto each_part = [&](const std::function<void(size_t)>& job) {
-      threads.for_each_part(run_parts, [&](size_t r) {
-        const IndexRange range = part_range(parts, run_parts, r);
-        for (size_t p = range.begin; p < range.end; ++p)
-          job(p);
-      });
-    };
-    each_part([this](size_t p) {
-      uint32_t* counts = &part_counts_[p * kBuckets];
-      const Candidate* src = items_.data.get() + part_start_[p];
-      for (size_t i = 0, n = part_size_[p]; i < n; ++i)
-        ++counts[upper(src[i])];
-    });
+    for (size_t p = 0; p < part_size_.size(); ++p) {
+      if (part_start_[p] != listed) {
+        std::copy(items + part_start_[p], items + part_start_[p] + part_size_[p], items + listed);
+      }
+      listed += part_size_[p];
+    }
+    size_ = listed;
+    uint32_t count[kBuckets] = {};
+    for (size_t i = 0; i < listed; ++i)
+      ++count[upper(items[i])];
     uint32_t sum = 0;
     for (uint32_t b = 0; b < kBuckets; ++b) {
       bucket_end_[b] = sum;
-      for (size_t p = 0; p < parts; ++p) {
-        part_fill_[p * kBuckets + b] = sum;
-        sum += part_counts_[p * kBuckets + b];
-      }
+      sum += count[b];
     }
     bucket_end_[kBuckets] = sum;
-    size_ = sum;
-    each_part([this](size_t p) {
-      uint32_t* fill = &part_fill_[p * kBuckets];
-      const Candidate* src = items_.data.get();
-      uint32_t* dst = order_.data.get();
-      const auto first = static_cast<uint32_t>(part_start_[p]);
-      const auto last = static_cast<uint32_t>(part_start_[p] + part_size_[p]);
-      for (uint32_t i = first; i < last; ++i)
-        dst[fill[upper(src[i])]++] = i;
-    });
     // bucket_end_[b] now is the start of bucket b, bucket_end_[b + 1] its end.
+    uint32_t next[kBuckets];
+    std::copy(bucket_end_, bucket_end_ + kBuckets, next);
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      const uint32_t end = bucket_end_[b + 1];
+      while (next[b] < end) {
+        Candidate c = items[next[b]];
+        uint32_t d = upper(c);
+        while (d != b) {
+          std::swap(c, items[next[d]++]);
+          d = upper(c);
+        }
+        items[next[b]++] = c;
+      }
+    }
     next_bucket_ = 0;
     sorted_end_ = 0;
   }
@@ -245,25 +235,18 @@ class CandidateList {
   const Candidate& operator[](size_t i) {
     while (i >= sorted_end_)
       sort_next_bucket();
-    return items_.data[order_.data[i]];
+    return items_.data[i];
   }
 
-  // Asks for the i-th candidate in cost order when it is sorted already
-  // (the walk's look-ahead: the candidates lie in listing order).
+  // Asks for the i-th candidate in cost order (the walk's look-ahead).
   void prefetch(size_t i) const {
-    if (i < sorted_end_) __builtin_prefetch(&items_.data[order_.data[i]]);
+    if (i < size_) __builtin_prefetch(&items_.data[i]);
   }
 
  private:
   static constexpr int kIgnoredBits = 10;
   static constexpr int kDigitBits = 11;
   static constexpr uint32_t kBuckets = 1u << kDigitBits;
-  // Below this size a bucket is sorted by insertion (stable) rather than
-  // by counting, whose histogram would dominate.
-  static constexpr uint32_t kSmallBucket = 64;
-  // Below this many candidates one thread scatters faster than two can be
-  // started.
-  static constexpr size_t kParallelScatter = 16384;
 
   // A buffer that is only grown, never value-initialised: every element is
   // written before it is read.
@@ -272,9 +255,8 @@ class CandidateList {
     std::unique_ptr<T[]> data;
     size_t capacity = 0;
   };
-  // A buffer more than twice too large is replaced: the pages the first
-  // passes wrote would otherwise stay resident to the end, when the log is
-  // largest (the candidates fall with the live triangles, pass by pass).
+  // A buffer more than twice too large is replaced, so that its unused
+  // pages do not stay resident.
   template <typename T>
   static void reserve(Buffer<T>* buffer, size_t count) {
     if (buffer->capacity >= count && buffer->capacity / 2 <= count) return;
@@ -287,54 +269,23 @@ class CandidateList {
     return (c.bits & ~Candidate::kReversed) >> kIgnoredBits;
   }
   static uint32_t upper(const Candidate& c) { return (key(c) >> kDigitBits) & (kBuckets - 1); }
-  static uint32_t lower(const Candidate& c) { return key(c) & (kBuckets - 1); }
+  // The full order: key, then listing order (the half-edge).
+  static uint64_t rank(const Candidate& c) { return uint64_t{key(c)} << 32 | c.half_edge; }
 
-  // Sorts the next upper bucket's indices by the lower digit, in place
-  // (through bucket_scratch_ when counting).
+  // Sorts the next upper bucket in place.
   void sort_next_bucket() {
     const uint32_t begin = bucket_end_[next_bucket_];
     const uint32_t end = bucket_end_[next_bucket_ + 1];
     ++next_bucket_;
-    const Candidate* items = items_.data.get();
-    uint32_t* order = order_.data.get();
-    if (end - begin <= kSmallBucket) {
-      for (uint32_t i = begin + 1; i < end; ++i) {
-        const uint32_t index = order[i];
-        const uint32_t k = lower(items[index]);
-        uint32_t j = i;
-        while (j > begin && lower(items[order[j - 1]]) > k) {
-          order[j] = order[j - 1];
-          --j;
-        }
-        order[j] = index;
-      }
-    } else {
-      // The lower digits are gathered once: the candidates lie in listing
-      // order, so each read of one is a cache miss.
-      bucket_scratch_.resize(2 * size_t{end - begin});
-      uint32_t* digits = bucket_scratch_.data();
-      uint32_t* sorted = digits + (end - begin);
-      uint32_t count[kBuckets + 1] = {};
-      for (uint32_t i = begin; i < end; ++i) {
-        digits[i - begin] = lower(items[order[i]]);
-        ++count[digits[i - begin] + 1];
-      }
-      for (uint32_t b = 0; b < kBuckets; ++b)
-        count[b + 1] += count[b];
-      for (uint32_t i = begin; i < end; ++i)
-        sorted[count[digits[i - begin]]++] = order[i];
-      std::copy(sorted, sorted + (end - begin), order + begin);
-    }
+    Candidate* items = items_.data.get();
+    std::sort(items + begin, items + end,
+              [](const Candidate& a, const Candidate& b) { return rank(a) < rank(b); });
     sorted_end_ = end;
   }
 
   std::vector<size_t> part_start_;  // each part's region of items_ while listing
   std::vector<size_t> part_size_;
-  std::vector<uint32_t> part_counts_;     // kBuckets per part
-  std::vector<uint32_t> part_fill_;       // kBuckets per part
-  Buffer<Candidate> items_;               // the parts' listings, in their regions
-  Buffer<uint32_t> order_;                // indices into items_, sorted bucket by bucket
-  std::vector<uint32_t> bucket_scratch_;  // sort_next_bucket()'s digits and sorted indices
+  Buffer<Candidate> items_;  // the parts' listings, then the sorted list
   size_t size_ = 0;
   uint32_t bucket_end_[kBuckets + 1] = {};
   uint32_t next_bucket_ = 0;
@@ -455,6 +406,15 @@ class Engine {
     // back once the walk's arrays are gone, so that the two copies never
     // coexist with them (6 bytes per triangle of the peak).
     state_.positions = std::vector<Vec3f>();
+    topology.face_start = std::vector<uint32_t>();
+    topology.boundary = std::vector<uint8_t>();
+    // The import's and the set-up's freed heap (the input mesh, the
+    // renumbering, the adjacency's offsets, the positions) stays resident
+    // otherwise: glibc returns only the heap's top, and the walk's arrays
+    // are too large to reuse it (25 MiB of the peak of a 3.5M-triangle mesh).
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
     // The walk stops at the first listed cost above max_cost; in optimal
     // placement a cost is an error times a weight, so only try_collapse()
     // can tell, and every candidate is tried.
@@ -474,7 +434,7 @@ class Engine {
     while (triangle_count_ > target) {
       if (pass_ > 0) finish_pass(/*rebuild=*/true);
       list_candidates();
-      candidates_.sort_upper(threads_);
+      candidates_.sort_upper();
       const uint64_t collapses = run_pass();
       // The next pass lists fewer edges: the buffers are made afresh, so
       // that the pages of this pass's list are not resident with the next
