@@ -458,7 +458,9 @@ class Engine {
   }
 
  private:
-  bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
+  bool is_set(uint32_t v, uint32_t flag) const {
+    return (vinfo_[v].flags & flag) != 0;
+  }
 
   size_t live_triangle_count() const {
     return lists_made_ ? live_triangles_.size() : state_.triangles.size();
@@ -479,7 +481,9 @@ class Engine {
     return (c.bits & Candidate::kReversed) != 0 ? Ends{b, a} : Ends{a, b};
   }
   // Vertex order for ties: the input's.
-  bool precedes(uint32_t a, uint32_t b) const { return vinfo_[a].input_id < vinfo_[b].input_id; }
+  bool precedes(uint32_t a, uint32_t b) const {
+    return vinfo_[a].input_id < vinfo_[b].input_id;
+  }
 
   // The arrays only the walk reads, freed before the state's positions are
   // written back: the peak is then the walk's, not the walk's plus them.
@@ -905,10 +909,9 @@ class Engine {
 
   // The walk visits the mesh in cost order, i.e. at random: ask for the data
   // of the candidates a few steps ahead in five stages (each needs what the
-  // one before fetched; the first, the candidate itself, lies in listing
-  // order; the second, its triangle, holds its vertices). Candidates
-  // already locked will be skipped: locks are only set
-  // during a pass, so they are left out.
+  // one before fetched; the first, the candidate itself, lies in order, the
+  // second, its triangle, holds its vertices). Candidates already locked
+  // will be skipped: locks are only set during a pass, so they are left out.
   void prefetch_candidate(size_t i) {
     constexpr size_t kCandidate = 40;
     constexpr size_t kTriangle = 32;
