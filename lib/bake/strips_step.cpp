@@ -30,12 +30,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
-                                  unsigned threads) {
+SimplifyOptions strips_pm_options(unsigned threads) {
   SimplifyOptions options;
   options.threads = threads;
   options.record_pm = true;
   options.placement = Placement::kHalf;
+  return options;
+}
+
+Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
+                                  unsigned threads) {
+  SimplifyOptions options = strips_pm_options(threads);
   options.progress = std::move(progress);
   Result<SimplifyResult> simplified = simplify(mesh, options);
   if (!simplified.is_ok()) return simplified.status();
@@ -149,7 +154,8 @@ Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
   if (request.strips_only) {
     in.mesh = mesh;
   } else {
-    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(mesh, nullptr, request.threads));
+    LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh pm, record_pm(mesh, nullptr, request.threads));
+    in.pm = std::make_shared<const ProgressiveMesh>(std::move(pm));
   }
   LODBAKE_ASSIGN_OR_RETURN(StripsBuilt b, build_strips(request, in));
   MeshSections out;
