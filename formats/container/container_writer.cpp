@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <new>
+#include <type_traits>
 
 #include "formats/container/container_errors.h"
 #include "formats/container/section_registry.h"
@@ -65,14 +66,28 @@ Status ContainerWriter::add_stored_section(std::string_view tag, Bytes stored, S
 }
 
 Result<Bytes> ContainerWriter::finish() const {
-  if (sections_.size() > UINT32_MAX) {
+  return assemble(sections_);
+}
+
+Result<Bytes> ContainerWriter::finish_and_clear() {
+  Result<Bytes> out = assemble(sections_);
+  if (out.is_ok()) sections_.clear();
+  return out;
+}
+
+// `Sections` is const for finish(); otherwise each payload is freed once
+// copied (nothing allocates after the container's buffer, so a failure
+// leaves the payloads as they were).
+template <class Sections>
+Result<Bytes> ContainerWriter::assemble(Sections& sections) {
+  if (sections.size() > UINT32_MAX) {
     return runtime_error("too many sections for one container table");
   }
   try {
     std::vector<SectionEntry> entries;
-    entries.reserve(sections_.size());
+    entries.reserve(sections.size());
     uint64_t end = kHeaderSize;
-    for (const Pending& pending : sections_) {
+    for (const Pending& pending : sections) {
       SectionEntry entry;
       entry.tag = pending.tag;
       entry.codec = static_cast<uint16_t>(pending.codec);
@@ -87,7 +102,7 @@ Result<Bytes> ContainerWriter::finish() const {
     }
     ContainerHeader header;
     // The lowest version the sections need: 1.0 files stay byte-identical.
-    const bool grouped = !sections_.empty() && sections_.back().group != 0;
+    const bool grouped = !sections.empty() && sections.back().group != 0;
     header.minor = grouped ? kFirstMinorWithGroups : 0;
     header.table_offset = align_up8(end);
     header.section_count = static_cast<uint32_t>(entries.size());
@@ -95,11 +110,12 @@ Result<Bytes> ContainerWriter::finish() const {
 
     Bytes out(static_cast<size_t>(header.file_size), 0);
     for (size_t i = 0; i < entries.size(); ++i) {
-      const Bytes& payload = sections_[i].payload;
+      const Bytes& payload = sections[i].payload;
       if (!payload.empty()) {
         std::copy(payload.begin(), payload.end(),
                   out.begin() + static_cast<std::ptrdiff_t>(entries[i].offset));
       }
+      if constexpr (!std::is_const_v<Sections>) Bytes().swap(sections[i].payload);
       encode_entry(entries[i],
                    out.data() + static_cast<size_t>(header.table_offset) + i * kTableEntrySize);
     }

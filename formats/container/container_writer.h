@@ -61,6 +61,11 @@ class ContainerWriter {
   /// sections exceed the 2^32 - 1 entries a table can hold.
   Result<Bytes> finish() const;
 
+  /// finish(), freeing each payload once it is copied in, so the container
+  /// and its sections are not held twice (a large container's peak); the
+  /// writer is left empty on success and unchanged on failure.
+  Result<Bytes> finish_and_clear();
+
  private:
   struct Pending {
     std::string tag;
@@ -70,6 +75,9 @@ class ContainerWriter {
     uint64_t decoded_size;
     uint32_t group;
   };
+  template <class Sections>
+  static Result<Bytes> assemble(Sections& sections);
+
   std::vector<Pending> sections_;
 };
 

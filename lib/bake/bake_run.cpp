@@ -84,12 +84,11 @@ std::string output_path(const std::string& out_dir, const std::string& path) {
 namespace {
 
 // One step: from the cache, or baked and its files written. `earlier` holds
-// the files of the steps `step` merges (package).
+// the files of the steps `step` merges (package), which it takes.
 StepReport bake_step(const InputPlan& plan, const BakeOptions& options, const StepPlan& step,
                      const Result<Bytes>& bytes, const std::optional<BakeCache>& cache,
-                     const std::string& key,
-                     const std::map<std::string, std::vector<Bytes>>& earlier, InputMeshes* meshes,
-                     std::vector<Bytes>* files) {
+                     const std::string& key, std::map<std::string, std::vector<Bytes>>* earlier,
+                     InputMeshes* meshes, std::vector<Bytes>* files) {
   StepReport s;
   s.step = step.step;
   const auto start = std::chrono::steady_clock::now();
@@ -102,7 +101,7 @@ StepReport bake_step(const InputPlan& plan, const BakeOptions& options, const St
   Result<StepResult> made = hit ? Result<StepResult>(std::move(*hit))
                             : status.is_ok()
                                 ? run_bake_step(step, plan.input, bytes.value(),
-                                                options.only_step ? read_back : earlier, meshes)
+                                                options.only_step ? &read_back : earlier, meshes)
                                 : Result<StepResult>(status);
   if (made.is_ok()) status = write_outputs(options.out_dir, made.value().files);
   if (made.is_ok() && status.is_ok()) {
@@ -162,14 +161,16 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
     (step.step == "package" ? merges : builds).push_back(i);
   }
 
-  InputMeshes meshes;
+  std::vector<StepPlan> building;
+  for (size_t i : builds)
+    building.push_back(plan.steps[i]);
+  std::optional<InputMeshes> meshes(std::in_place, building);
   std::vector<StepReport> reports(plan.steps.size());
   std::vector<std::vector<Bytes>> files(plan.steps.size());
-  const std::map<std::string, std::vector<Bytes>> none;
-  auto run = [&](size_t i, const std::map<std::string, std::vector<Bytes>>& earlier) {
+  auto run = [&](size_t i, std::map<std::string, std::vector<Bytes>>* earlier) {
     step_started(plan.steps[i].step);
     reports[i] = bake_step(plan, options, plan.steps[i], bytes, cache, keys[plan.steps[i].step],
-                           earlier, &meshes, &files[i]);
+                           earlier, meshes ? &*meshes : nullptr, &files[i]);
   };
   // Isolated: a thread that waits for this input's last step must not take
   // up another input meanwhile, which would hold both inputs' meshes.
@@ -178,10 +179,14 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
         tbb::blocked_range<size_t>(0, builds.size(), 1),
         [&](const tbb::blocked_range<size_t>& range) {
           for (size_t k = range.begin(); k != range.end(); ++k)
-            run(builds[k], none);
+            run(builds[k], nullptr);
         },
         tbb::simple_partitioner());
   });
+  // Package merges the steps' files: the input's bytes and meshes are of
+  // no more use, and a large scan's are as large as some of those files.
+  meshes.reset();
+  if (bytes.is_ok()) Bytes().swap(bytes.value());
   bool failed = false;
   for (size_t i : builds)
     failed = failed || reports[i].status == "failed";
@@ -194,7 +199,7 @@ InputReport bake_input(const InputPlan& plan, const BakeOptions& options,
       reports[i].status = "skipped";
       continue;
     }
-    run(i, earlier);
+    run(i, &earlier);
     failed = failed || reports[i].status == "failed";
   }
   for (size_t i = 0; i < plan.steps.size(); ++i) {

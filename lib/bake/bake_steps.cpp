@@ -1,6 +1,7 @@
 #include "lib/bake/bake_steps.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "formats/container/container_writer.h"
 #include "formats/container/section_registry.h"
@@ -30,11 +31,46 @@ LoadOptions load_options(const nlohmann::json& options) {
   return load;
 }
 
+// Load options as a key: equal keys, the same prepared mesh.
+std::string load_key(const LoadOptions& options) {
+  return std::to_string(options.repair) + std::to_string(options.strict) +
+         std::to_string(options.per_vertex_attributes) + std::to_string(options.drop_unreferenced);
+}
+
+std::string exact(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%a", value);
+  return text;
+}
+
+// Every option that can change simplify()'s result, exactly (threads and
+// progress cannot); empty when the options are not to be shared. A field
+// added to SimplifyOptions must be added here: the size check below fails
+// until it is looked at.
+std::string simplify_key(const SimplifyOptions& o) {
+#if defined(__GLIBCXX__) && defined(__x86_64__)
+  static_assert(sizeof(SimplifyOptions) == 184, "a new SimplifyOptions field: add it to the key");
+#endif
+  if (!o.locked_vertices.empty()) return "";
+  auto optional = [](const std::optional<double>& value) {
+    return value ? exact(*value) : std::string("-");
+  };
+  return std::to_string(static_cast<int>(o.placement)) + " " +
+         (o.target_triangles ? std::to_string(*o.target_triangles) : std::string("-")) + " " +
+         optional(o.target_ratio) + " " + optional(o.max_error) + " " + exact(o.boundary_weight) +
+         " " + std::to_string(o.lock_border) + " " + exact(o.max_normal_change_degrees) + " " +
+         std::to_string(o.permissive) + " " + optional(o.seam_release) + " " +
+         std::to_string(o.height_guard) + " " + exact(o.height_guard_factor) + " " +
+         std::to_string(o.record_pm);
+}
+
 // Loads a mesh input as the tools' load_input() does; its notes and
 // warnings go to the step's warnings.
 Status load(InputMeshes* meshes, const std::string& input, const Bytes& bytes,
-            const LoadOptions& options, LoadedMesh* loaded, StepResult* out) {
-  LODBAKE_RETURN_IF_ERROR(meshes->load(input, bytes, options, loaded));
+            const LoadOptions& options, std::shared_ptr<const LoadedMesh>* shared,
+            StepResult* out) {
+  LODBAKE_ASSIGN_OR_RETURN(*shared, meshes->load(input, bytes, options));
+  const LoadedMesh* loaded = shared->get();
   for (const std::string& warning : loaded->import.warnings)
     out->warnings.push_back(warning);
   const MeshCheckReport& check =
@@ -97,11 +133,11 @@ Status run_pack(const nlohmann::json& o, const std::string& input, const Bytes& 
     return Status::ok();
   }
   const LoadOptions load_with = load_options(o);
-  LoadedMesh loaded;
+  std::shared_ptr<const LoadedMesh> loaded;
   LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
-  LODBAKE_ASSIGN_OR_RETURN(PackedMesh packed, pack_mesh(loaded.mesh, meta_input(input, loaded),
+  LODBAKE_ASSIGN_OR_RETURN(PackedMesh packed, pack_mesh(loaded->mesh, meta_input(input, *loaded),
                                                         load_with.repair, quantize));
-  out->report["triangles"] = loaded.mesh.triangle_count();
+  out->report["triangles"] = loaded->mesh.triangle_count();
   out->files.emplace_back("", std::move(packed.file));
   return Status::ok();
 }
@@ -134,6 +170,38 @@ SimplifyStepOptions simplify_options(const nlohmann::json& o) {
   return s;
 }
 
+// What a step asks InputMeshes to simplify, on a mesh input.
+struct SimplifyAsk {
+  LoadOptions load;
+  SimplifyOptions options;
+};
+
+SimplifyAsk simplify_ask(const nlohmann::json& o) {
+  SimplifyAsk ask;
+  ask.load = load_options(o);
+  ask.load.per_vertex_attributes = true;
+  ask.options = simplify_options(o).options;
+  ask.options.record_pm = true;
+  return ask;
+}
+
+// Without strips_only, the strips follow a progressive mesh of their own
+// (lodbake-strips' record_pm()).
+std::optional<SimplifyAsk> strips_ask(const nlohmann::json& o) {
+  if (o["strips_only"].get<bool>()) return std::nullopt;
+  SimplifyAsk ask;
+  ask.load = load_options(o);
+  ask.load.per_vertex_attributes = true;
+  ask.options = strips_pm_options(0);
+  return ask;
+}
+
+std::optional<SimplifyAsk> step_ask(const StepPlan& step) {
+  if (step.step == "simplify") return simplify_ask(step.options);
+  if (step.step == "strips") return strips_ask(step.options);
+  return std::nullopt;
+}
+
 Status run_simplify(const nlohmann::json& o, const std::string& input, const Bytes& bytes,
                     InputMeshes* meshes, StepResult* out) {
   SimplifyStepOptions request = simplify_options(o);
@@ -157,16 +225,15 @@ Status run_simplify(const nlohmann::json& o, const std::string& input, const Byt
         },
         out);
   }
-  LoadOptions load_with = load_options(o);
-  load_with.per_vertex_attributes = true;
-  LoadedMesh loaded;
-  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
-  request.options.record_pm = true;
-  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+  const SimplifyAsk ask = simplify_ask(o);
+  std::shared_ptr<const LoadedMesh> loaded;
+  LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, ask.load, &loaded, out));
+  LODBAKE_ASSIGN_OR_RETURN(std::shared_ptr<const SimplifyResult> result,
+                           meshes->simplified(loaded->mesh, ask.load, ask.options));
   LODBAKE_ASSIGN_OR_RETURN(
-      Bytes file, pm_container_bytes(request, meta_input(input, loaded), *result.pm, nullptr));
-  out->report["triangles"] = result.mesh.triangle_count();
-  out->report["splits"] = result.pm->splits.size();
+      Bytes file, pm_container_bytes(request, meta_input(input, *loaded), *result->pm, nullptr));
+  out->report["triangles"] = result->mesh.triangle_count();
+  out->report["splits"] = result->pm->splits.size();
   out->files.emplace_back("", std::move(file));
   return Status::ok();
 }
@@ -204,12 +271,12 @@ Status run_lods_by_error(const StepPlan& step, const std::string& input, const B
     out->report["triangles"] = triangles;
     return Status::ok();
   }
-  LoadedMesh loaded;
+  std::shared_ptr<const LoadedMesh> loaded;
   LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_options(o), &loaded, out));
   for (size_t level = 0; level < errors.size(); ++level) {
     SimplifyStepOptions request = simplify_options(o);
     request.options.max_error = errors[level];
-    LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+    LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded->mesh, request.options));
     const std::string& path = step.outputs[level];
     if (drops_attributes(path, result.mesh))
       out->warnings.push_back("level " + std::to_string(level) +
@@ -250,14 +317,15 @@ Status run_lods(const StepPlan& step, const std::string& input, const Bytes& byt
   }
   LoadOptions load_with = load_options(o);
   load_with.per_vertex_attributes = true;
-  LoadedMesh loaded;
+  std::shared_ptr<const LoadedMesh> loaded;
   LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
   request.options.target_ratio = *std::min_element(ratios.begin(), ratios.end());
   request.options.record_pm = true;
-  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded.mesh, request.options));
+  LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(loaded->mesh, request.options));
   std::vector<uint64_t> targets;
   for (double r : ratios)
-    targets.push_back(static_cast<uint64_t>(r * static_cast<double>(loaded.mesh.triangle_count())));
+    targets.push_back(
+        static_cast<uint64_t>(r * static_cast<double>(loaded->mesh.triangle_count())));
   LODBAKE_ASSIGN_OR_RETURN(std::vector<TriangleMesh> lods, extract_lods(*result.pm, targets));
   nlohmann::json triangles = nlohmann::json::array();
   for (size_t level = 0; level < lods.size(); ++level) {
@@ -304,12 +372,19 @@ Status run_hierarchy(const nlohmann::json& o, const std::string& input, const By
         },
         out);
   }
-  LoadedMesh loaded;
+  std::shared_ptr<const LoadedMesh> loaded;
   LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_options(o), &loaded, out));
-  loaded.mesh.normals = MeshAttribute();
-  loaded.mesh.texcoords = MeshAttribute();
-  LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt built, build_hierarchy_sections(request, loaded.mesh));
-  meta.input = meta_input(input, loaded);
+  // The hierarchy is of positions only (as lodbake-hierarchy): a copy
+  // without the attributes when there are any.
+  const TriangleMesh* mesh = &loaded->mesh;
+  TriangleMesh positions;
+  if (mesh->normals.present() || mesh->texcoords.present()) {
+    positions.positions = mesh->positions;
+    positions.triangles = mesh->triangles;
+    mesh = &positions;
+  }
+  LODBAKE_ASSIGN_OR_RETURN(HierarchyBuilt built, build_hierarchy_sections(request, *mesh));
+  meta.input = meta_input(input, *loaded);
   meta.counts = built.counts;
   LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
   ContainerWriter writer;
@@ -348,11 +423,11 @@ Status run_fan(const nlohmann::json& o, const std::string& input, const Bytes& b
         },
         out);
   }
-  LoadedMesh loaded;
+  std::shared_ptr<const LoadedMesh> loaded;
   LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_options(o), &loaded, out));
-  LODBAKE_ASSIGN_OR_RETURN(FanBuilt built, build_fan(request.options, loaded.mesh));
+  LODBAKE_ASSIGN_OR_RETURN(FanBuilt built, build_fan(request.options, loaded->mesh));
   MetaSection meta = fan_meta(request);
-  meta.input = meta_input(input, loaded);
+  meta.input = meta_input(input, *loaded);
   meta.counts = built.counts;
   LODBAKE_ASSIGN_OR_RETURN(Bytes meta_bytes, encode_meta(meta));
   ContainerWriter writer;
@@ -389,16 +464,19 @@ Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes
         out);
   }
   LoadOptions load_with = load_options(o);
-  // Without strips_only the simplification records a progressive mesh.
-  load_with.per_vertex_attributes = !request.strips_only;
-  LoadedMesh loaded;
+  std::optional<SimplifyAsk> ask = strips_ask(o);
+  if (ask) load_with = ask->load;
+  std::shared_ptr<const LoadedMesh> loaded;
   LODBAKE_RETURN_IF_ERROR(load(meshes, input, bytes, load_with, &loaded, out));
   StripsInput in;
-  in.meta = meta_input(input, loaded);
+  in.meta = meta_input(input, *loaded);
   if (request.strips_only) {
-    in.mesh = std::move(loaded.mesh);
+    in.mesh = loaded->mesh;
   } else {
-    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(loaded.mesh, nullptr));
+    LODBAKE_ASSIGN_OR_RETURN(std::shared_ptr<const SimplifyResult> simplified,
+                             meshes->simplified(loaded->mesh, ask->load, ask->options));
+    if (!simplified->pm) return runtime_error("the simplification recorded no progressive mesh");
+    in.pm = std::shared_ptr<const ProgressiveMesh>(simplified, &*simplified->pm);
   }
   LODBAKE_ASSIGN_OR_RETURN(StripsBuilt built, build_strips(request, in));
   out->report["strips"] = built.strip_stats.strips;
@@ -409,15 +487,18 @@ Status run_strips(const nlohmann::json& o, const std::string& input, const Bytes
 
 // lodbake-pack's repack of the earlier steps' containers, with its META
 // options (tools/pack/main.cpp).
-Status run_package(const StepPlan& step, const std::map<std::string, std::vector<Bytes>>& earlier,
+// The files are taken from `earlier`, not copied: a large mesh's four
+// containers are the bake's largest buffers.
+Status run_package(const StepPlan& step, std::map<std::string, std::vector<Bytes>>* earlier,
                    StepResult* out) {
   const nlohmann::json& o = step.options;
   std::vector<PackInput> inputs;
   for (const nlohmann::json& from : o["from"]) {
-    auto found = earlier.find(from.get<std::string>());
-    if (found == earlier.end() || found->second.empty())
+    auto found = earlier ? earlier->find(from.get<std::string>())
+                         : std::map<std::string, std::vector<Bytes>>::iterator();
+    if (!earlier || found == earlier->end() || found->second.empty())
       return runtime_error("steps.package: step '" + from.get<std::string>() + "' made no file");
-    inputs.push_back({from.get<std::string>(), found->second.front()});
+    inputs.push_back({from.get<std::string>(), std::move(found->second.front())});
   }
   RepackOptions options;
   options.quantize_bits = o["quantize"].get<int>();
@@ -446,14 +527,42 @@ Status run_package(const StepPlan& step, const std::map<std::string, std::vector
 
 }  // namespace
 
-Status InputMeshes::load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
-                         LoadedMesh* loaded) {
+InputMeshes::InputMeshes(const std::vector<StepPlan>& steps) {
+  for (const StepPlan& step : steps) {
+    if (step.step != "package") ++loads_left_;
+    const std::optional<SimplifyAsk> ask = step_ask(step);
+    const std::string options_key = ask ? simplify_key(ask->options) : "";
+    if (options_key.empty()) continue;
+    std::unique_ptr<Simplification>& slot =
+        simplifications_[load_key(ask->load) + " " + options_key];
+    if (!slot) slot = std::make_unique<Simplification>();
+    ++slot->askers;
+  }
+}
+
+Result<std::shared_ptr<const LoadedMesh>> InputMeshes::parse(const std::string& input,
+                                                             const Bytes& bytes) {
+  std::lock_guard<std::mutex> lock(parse_mutex_);
+  if (!parsed_status_.is_ok()) return parsed_status_;
+  if (!parsed_) {
+    // First, or asked for once more than planned after the release.
+    auto parsed = std::make_shared<LoadedMesh>();
+    parsed_status_ = parse_mesh_bytes(input, bytes, parsed.get());
+    if (!parsed_status_.is_ok()) return parsed_status_;
+    per_corner_ = has_per_corner_attributes(parsed->mesh);
+    parsed_ = std::move(parsed);
+  }
+  return parsed_;
+}
+
+Result<std::shared_ptr<const LoadedMesh>> InputMeshes::load(const std::string& input,
+                                                            const Bytes& bytes,
+                                                            const LoadOptions& options) {
   // Parsed once; checked and repaired once per set of the options a step
   // can vary. The seam split changes nothing on a mesh without per-corner
   // attributes (a scan), so there the steps with and without it share one.
-  std::call_once(parsed_once_, [&] { parsed_status_ = parse_mesh_bytes(input, bytes, &parsed_); });
-  if (!parsed_status_.is_ok()) return parsed_status_;
-  const bool split = options.per_vertex_attributes && has_per_corner_attributes(parsed_.mesh);
+  LODBAKE_ASSIGN_OR_RETURN(std::shared_ptr<const LoadedMesh> parsed, parse(input, bytes));
+  const bool split = options.per_vertex_attributes && per_corner_;
   const std::string key = std::to_string(options.repair) + std::to_string(options.strict) +
                           std::to_string(split) + std::to_string(options.drop_unreferenced);
   Entry* entry = nullptr;
@@ -464,16 +573,65 @@ Status InputMeshes::load(const std::string& input, const Bytes& bytes, const Loa
     entry = slot.get();
   }
   std::call_once(entry->once, [&] {
-    entry->loaded = parsed_;
-    entry->status = prepare_mesh(options, &entry->loaded);
+    auto prepared = std::make_shared<LoadedMesh>(*parsed);
+    entry->status = prepare_mesh(options, prepared.get());
+    entry->loaded = std::move(prepared);
+  });
+  parsed.reset();
+  {
+    // Every step has its mesh: the parse is of no more use.
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (loads_left_ > 0 && --loads_left_ == 0) {
+      std::lock_guard<std::mutex> parse_lock(parse_mutex_);
+      parsed_.reset();
+    }
+  }
+  if (!entry->status.is_ok()) return entry->status;
+  return entry->loaded;
+}
+
+Result<std::shared_ptr<const SimplifyResult>> InputMeshes::simplified(
+    const TriangleMesh& mesh, const LoadOptions& load_options, const SimplifyOptions& options) {
+  auto run = [&]() -> Result<std::shared_ptr<const SimplifyResult>> {
+    LODBAKE_ASSIGN_OR_RETURN(SimplifyResult result, simplify(mesh, options));
+    return std::make_shared<const SimplifyResult>(std::move(result));
+  };
+  const std::string options_key = simplify_key(options);
+  if (options_key.empty()) return run();
+  Simplification* entry = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_ptr<Simplification>& slot =
+        simplifications_[load_key(load_options) + " " + options_key];
+    if (!slot) slot = std::make_unique<Simplification>();
+    entry = slot.get();
+  }
+  // The simplifier's parallel loops are isolated (lib/core/parallel.cpp):
+  // a thread waiting in them never takes up another step, which could ask
+  // for this same result inside this call_once.
+  std::call_once(entry->once, [&] {
+    Result<std::shared_ptr<const SimplifyResult>> made = run();
+    if (made.is_ok()) {
+      entry->result = std::move(made).value();
+    } else {
+      entry->status = made.status();
+    }
   });
   if (!entry->status.is_ok()) return entry->status;
-  *loaded = entry->loaded;
-  return Status::ok();
+  std::shared_ptr<const SimplifyResult> result;
+  {
+    // The last step that asks takes the only reference left: the result
+    // goes with its step, not with the input.
+    std::lock_guard<std::mutex> lock(mutex_);
+    result = entry->result;
+    if (entry->askers > 0 && --entry->askers == 0) entry->result.reset();
+  }
+  if (!result) return run();  // asked once more than planned, after its release
+  return result;
 }
 
 Result<StepResult> run_bake_step(const StepPlan& step, const std::string& input, const Bytes& bytes,
-                                 const std::map<std::string, std::vector<Bytes>>& earlier,
+                                 std::map<std::string, std::vector<Bytes>>* earlier,
                                  InputMeshes* meshes) {
   StepResult out;
   const nlohmann::json& o = step.options;

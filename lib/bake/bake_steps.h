@@ -17,6 +17,7 @@
 #include "formats/support/status.h"
 #include "lib/bake/recipe.h"
 #include "lib/ingest/load_mesh.h"
+#include "lib/simplify/simplify.h"
 
 namespace lodbake {
 
@@ -27,34 +28,63 @@ struct StepResult {
 };
 
 // The meshes one input's steps load. The input is parsed once and checked
-// and repaired once per set of load options that can give another mesh;
-// every step gets a copy: parsing, checking and repairing a large scan
-// costs as much as some steps. Safe to use from steps running side by
-// side; a failed load fails every step that asks for it, with its status.
+// and repaired once per set of load options that can give another mesh,
+// and the steps share that mesh: parsing, checking and repairing a large
+// scan costs as much as some steps, and each copy 24 bytes per triangle. A
+// simplification of such a mesh is run once for every step asking with the
+// same options (the simplify step's progressive mesh is the strips step's
+// on a default recipe). Safe to use from steps running side by side; a
+// failed load or simplification fails every step that asks for it, with
+// its status.
 class InputMeshes {
  public:
-  Status load(const std::string& input, const Bytes& bytes, const LoadOptions& options,
-              LoadedMesh* loaded);
+  InputMeshes() = default;
+  // `steps`: the steps that will ask, each loading once. The parse is
+  // released once every step has loaded, a simplification once the last
+  // step that needs it has taken it (without `steps`, both are kept).
+  explicit InputMeshes(const std::vector<StepPlan>& steps);
+
+  Result<std::shared_ptr<const LoadedMesh>> load(const std::string& input, const Bytes& bytes,
+                                                 const LoadOptions& options);
+
+  // simplify(mesh, options), `mesh` being what load() gave for
+  // `load_options`: the same result as a run of its own, byte for byte.
+  Result<std::shared_ptr<const SimplifyResult>> simplified(const TriangleMesh& mesh,
+                                                           const LoadOptions& load_options,
+                                                           const SimplifyOptions& options);
 
  private:
   struct Entry {
     std::once_flag once;
     Status status = Status::ok();
-    LoadedMesh loaded;
+    std::shared_ptr<const LoadedMesh> loaded;
   };
-  std::once_flag parsed_once_;
+  struct Simplification {
+    std::once_flag once;
+    Status status = Status::ok();
+    std::shared_ptr<const SimplifyResult> result;
+    size_t askers = 0;  // steps still to take it; 0: unknown, kept
+  };
+  Result<std::shared_ptr<const LoadedMesh>> parse(const std::string& input, const Bytes& bytes);
+
+  std::mutex parse_mutex_;
   Status parsed_status_ = Status::ok();
-  LoadedMesh parsed_;  // as parsed, before any check
+  std::shared_ptr<const LoadedMesh> parsed_;  // as parsed, before any check; null once released
+  bool per_corner_ = false;                   // the parse has per-corner attributes
   std::mutex mutex_;
+  size_t loads_left_ = 0;  // before the parse is released; 0: unknown, kept
   std::map<std::string, std::unique_ptr<Entry>> entries_;  // by the options that matter
+  std::map<std::string, std::unique_ptr<Simplification>> simplifications_;  // simplify_key()
 };
 
 // Runs `step` on `input` (its content `bytes`; referenced buffers and
 // images are read next to it). `earlier` holds the files of the input's
-// earlier steps by step name (package merges them); `meshes` the input's
-// loaded meshes. Deterministic; fails with the status the tool would print.
+// earlier steps by step name (package merges them and takes them: it may
+// be null for the other steps); `meshes` the input's loaded meshes (may be
+// null for package). Deterministic; fails with the status the tool would
+// print.
 Result<StepResult> run_bake_step(const StepPlan& step, const std::string& input, const Bytes& bytes,
-                                 const std::map<std::string, std::vector<Bytes>>& earlier,
+                                 std::map<std::string, std::vector<Bytes>>* earlier,
                                  InputMeshes* meshes);
 
 }  // namespace lodbake

@@ -87,6 +87,15 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
   // DAGE and VTRE describe a progressive mesh: the hierarchy's own, so they
   // share BASE with VHIE (a greedy PM given as input has another base mesh).
   ProgressiveMesh& pm = out.pm;
+  // Once its progressive mesh is made, only the hierarchy's base mesh is
+  // read again: the rest is freed before the DAG and the vertex trees.
+  bool released = false;
+  auto release_hierarchy = [&] {
+    if (released) return;
+    out.base = std::move(built.hierarchy.base);
+    built.hierarchy = VertexHierarchy();
+    released = true;
+  };
   auto build_dag = [&]() -> Status {
     const Clock::time_point began = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(VsplitDag dag, build_vsplit_dag(pm));
@@ -121,6 +130,7 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
     const Clock::time_point began = Clock::now();
     LODBAKE_ASSIGN_OR_RETURN(pm, hierarchy_to_progressive_mesh(h));
     pm_seconds = seconds_since(began);
+    release_hierarchy();
     LODBAKE_ASSIGN_OR_RETURN(vspl, encode_vspl(pm, VsplEncodeOptions()));
     std::vector<std::function<void()>> after;
     if (request.dage) after.emplace_back([&] { dag_made = build_dag(); });
@@ -155,8 +165,9 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
     out.build_seconds.emplace_back("vertex_trees", vtre_seconds);
     sections.push_back({kVtreTag, std::move(vtre), "node", vtre_nodes});
   }
+  release_hierarchy();
   out.counts = {
-      {"vertices", h.base.vertex_count()},     {"triangles", h.base.triangle_count()},
+      {"vertices", out.base.vertex_count()},   {"triangles", out.base.triangle_count()},
       {"hierarchy_nodes", shape.nodes},        {"hierarchy_depth", shape.depth},
       {"input_vertices", mesh.vertex_count()}, {"input_triangles", mesh.triangle_count()}};
   if (request.dage || request.vtre) {
@@ -164,9 +175,8 @@ Result<HierarchyBuilt> build_hierarchy_sections(const HierarchyStepOptions& requ
     out.counts["full_vertices"] = pm.full_vertex_count();
     out.counts["full_triangles"] = full_triangle_count(pm.base.triangle_count(), pm.splits);
   }
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(h.base, BaseEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base_bytes, encode_base(out.base, BaseEncodeOptions()));
   sections.insert(sections.begin(), {kBaseTag, std::move(base_bytes), nullptr, 0});
-  out.base = std::move(built.hierarchy.base);
   return out;
 }
 

@@ -30,12 +30,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
-                                  unsigned threads) {
+SimplifyOptions strips_pm_options(unsigned threads) {
   SimplifyOptions options;
   options.threads = threads;
   options.record_pm = true;
   options.placement = Placement::kHalf;
+  return options;
+}
+
+Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
+                                  unsigned threads) {
+  SimplifyOptions options = strips_pm_options(threads);
   options.progress = std::move(progress);
   Result<SimplifyResult> simplified = simplify(mesh, options);
   if (!simplified.is_ok()) return simplified.status();
@@ -66,6 +71,9 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
   StripifyStats& strip_stats = out.strip_stats;
   auto start = std::chrono::steady_clock::now();
   LODBAKE_ASSIGN_OR_RETURN(TriangleStrips strips, stripify(*stripped, &strip_stats));
+  // Each step's input is freed as soon as it is used: the SETS graph is the
+  // tool's peak, and the full mesh (rebuilt from the PM) is no part of it.
+  full = TriangleMesh();
   out.report["strips"] = strip_stats_json(strip_stats);
   out.report["strips"]["seconds"] = seconds_since(start);
 
@@ -86,9 +94,9 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
   start = std::chrono::steady_clock::now();
   LODBAKE_ASSIGN_OR_RETURN(SetsGraph g, build_sets(strips, pm, &sets_stats, request.threads));
   const double build_seconds = seconds_since(start);
-  LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
-  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
+  strips = TriangleStrips();
   LODBAKE_ASSIGN_OR_RETURN(Bytes sets, encode_sets(g));
+  const uint32_t lod_count = g.lod_count;
   out.report["sets"] = {{"lods", g.lod_count},
                         {"nodes", g.node_count()},
                         {"arcs", g.arc_count()},
@@ -99,6 +107,9 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
                         {"emptied_strips", sets_stats.emptied_strips},
                         {"seconds", build_seconds},
                         {"bytes", sets.size()}};
+  g = SetsGraph();  // encoded: free it before BASE and VSPL are
+  LODBAKE_ASSIGN_OR_RETURN(Bytes base, encode_base(pm.base, BaseEncodeOptions()));
+  LODBAKE_ASSIGN_OR_RETURN(Bytes vspl, encode_vspl(pm, VsplEncodeOptions()));
   nlohmann::json paper = nlohmann::json::array();
   for (const PaperFigure& f : kPaperFigures)
     paper.push_back({{"model", f.model}, {"triangles", f.triangles}, {"megabytes", f.megabytes}});
@@ -113,7 +124,7 @@ Result<StripsBuilt> build_strips(const StripsStepOptions& request, const StripsI
                 {"full_vertices", pm.full_vertex_count()},
                 {"full_triangles", full_triangle_count(pm.base.triangle_count(), pm.splits)},
                 {"strips", strip_stats.strips},
-                {"lods", g.lod_count}};
+                {"lods", lod_count}};
   return out;
 }
 
@@ -143,7 +154,8 @@ Result<MeshSections> strips_mesh_sections(const StripsStepOptions& request,
   if (request.strips_only) {
     in.mesh = mesh;
   } else {
-    LODBAKE_ASSIGN_OR_RETURN(in.pm, record_pm(mesh, nullptr, request.threads));
+    LODBAKE_ASSIGN_OR_RETURN(ProgressiveMesh pm, record_pm(mesh, nullptr, request.threads));
+    in.pm = std::make_shared<const ProgressiveMesh>(std::move(pm));
   }
   LODBAKE_ASSIGN_OR_RETURN(StripsBuilt b, build_strips(request, in));
   MeshSections out;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "formats/support/status.h"
 #include "lib/bake/asset_pm_wedges.h"
 #include "lib/scene/asset_build.h"
+#include "lib/simplify/simplify.h"
 #include "lib/strips/stripify.h"
 
 namespace lodbake {
@@ -37,8 +39,8 @@ struct StripsStepOptions {
 // What the input gives: a mesh (strips-only), or a progressive mesh.
 struct StripsInput {
   MetaInput meta;
-  TriangleMesh mesh;                  // strips-only: the mesh the strips index
-  std::optional<ProgressiveMesh> pm;  // full mode
+  TriangleMesh mesh;                          // strips-only: the mesh the strips index
+  std::shared_ptr<const ProgressiveMesh> pm;  // full mode (a bake shares it with simplify)
   nlohmann::json report;
 };
 
@@ -52,8 +54,11 @@ struct StripsBuilt {
   uint64_t stripped_vertices = 0, stripped_triangles = 0;
 };
 
-// The progressive mesh the strips' graph follows: QEM half-edge collapses
-// as far as legal.
+// The simplification whose progressive mesh the strips' graph follows: QEM
+// half-edge collapses as far as legal.
+SimplifyOptions strips_pm_options(unsigned threads);
+
+// That progressive mesh.
 Result<ProgressiveMesh> record_pm(const TriangleMesh& mesh, std::function<void(double)> progress,
                                   unsigned threads = 0);
 

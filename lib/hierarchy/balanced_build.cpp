@@ -113,27 +113,36 @@ class Builder {
       : mesh_(mesh), options_(options), ordering_(ordering), threads_(&threads) {}
 
   Status setup() {
-    simplify_internal::MeshTopology topology;
-    LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(mesh_, &topology));
     const size_t n = mesh_.positions.size();
+    {
+      // Freed before the quadrics and nodes are made (it was held through
+      // setup: the 3.49M-triangle mesh's peak, 133 MB of it).
+      simplify_internal::MeshTopology topology;
+      LODBAKE_RETURN_IF_ERROR(simplify_internal::build_topology(mesh_, &topology));
+      std::vector<simplify_internal::FanCorner>().swap(topology.corners);
+      vertex_faces_.resize(n);
+      for (size_t v = 0; v < n; ++v) {
+        vertex_faces_[v].assign(topology.faces.begin() + topology.face_start[v],
+                                topology.faces.begin() + topology.face_start[v + 1]);
+      }
+      boundary_ = std::move(topology.boundary);
+    }
     tris_ = mesh_.triangles;
     face_alive_.assign(tris_.size(), 1);
-    vertex_faces_.resize(n);
-    for (size_t v = 0; v < n; ++v) {
-      vertex_faces_[v].assign(topology.faces.begin() + topology.face_start[v],
-                              topology.faces.begin() + topology.face_start[v + 1]);
-    }
-    boundary_ = topology.boundary;
     cos_limit_ = std::cos(options_.max_normal_change_degrees * kPi / 180.0);
     setup_quadrics();
+    // A node per vertex and at most one per collapse, reserved whole: the
+    // pages are touched only as nodes are made, and growing by doubling in
+    // round 1 held the old and the new array at once (the build's peak).
+    nodes_.reserve(2 * n);
     nodes_.resize(n);
     node_of_.resize(n);
     for (uint32_t v = 0; v < n; ++v) {
       node_of_[v] = v;
       nodes_[v].survivor = v;
     }
-    used_.assign(n, 0);
-    near_.assign(n, 0);
+    stamp_.assign(n, RoundStamp());
+    ring_mark_.assign(n, 0);
     removed_.assign(n, 0);
     for (uint32_t v = 0; v < n; ++v) {
       if (!vertex_faces_[v].empty()) live_.push_back(v);
@@ -147,7 +156,69 @@ class Builder {
   }
 
   void set_ordering(int ordering) { ordering_ = ordering; }
-  Result<BalancedHierarchy> result() const { return pack(); }
+
+  // The shape pack() would give (hierarchy_shape()), from the nodes: every
+  // node is kept, a tree's levels are its root's height + 1.
+  Result<HierarchyShape> shape() const {
+    HierarchyShape s;
+    s.nodes = nodes_.size();
+    for (const TempNode& nd : nodes_) {
+      if (nd.parent != kNone) continue;
+      ++s.roots;
+      s.depth = std::max(s.depth, nd.height + 1);
+    }
+    // pack() refuses a tree deeper than 64 levels.
+    if (s.depth > 64) return runtime_error("a tree of the hierarchy is deeper than 64 levels");
+    s.splits = (s.nodes - s.roots) / 2;
+    s.leaves = s.roots + s.splits;
+    s.tree_bits = bits_for_count(s.roots);
+    s.id_bits = s.tree_bits + static_cast<int>(s.depth);
+    s.id_bytes = s.id_bits <= 32 ? 4 : 8;
+    return s;
+  }
+
+  // What an ordering made after the checkpoint: all pack() reads of it.
+  struct Ending {
+    std::vector<TempNode> tail;
+    std::vector<uint64_t> level_vertices;
+  };
+  Ending ending() const {
+    Ending e;
+    e.tail.assign(nodes_.begin() + static_cast<std::ptrdiff_t>(checkpoint_.node_count),
+                  nodes_.end());
+    e.level_vertices = level_vertices_;
+    return e;
+  }
+  // The nodes and levels as `e`'s ordering left them (the rest of the state
+  // is not rewound: only pack() follows).
+  void adopt(const Ending& e) {
+    for (uint32_t node : checkpoint_.node_of)
+      nodes_[node].parent = kNone;
+    nodes_.resize(checkpoint_.node_count);
+    nodes_.insert(nodes_.end(), e.tail.begin(), e.tail.end());
+    for (size_t i = checkpoint_.node_count; i < nodes_.size(); ++i) {
+      nodes_[nodes_[i].left].parent = static_cast<uint32_t>(i);
+      nodes_[nodes_[i].right].parent = static_cast<uint32_t>(i);
+    }
+    level_vertices_ = e.level_vertices;
+  }
+
+  // The hierarchy, packed once the build's state but the nodes is freed
+  // (packing beside it was the build's peak).
+  Result<BalancedHierarchy> result() {
+    tris_ = std::vector<Triangle>();
+    face_alive_ = std::vector<uint8_t>();
+    vertex_faces_ = std::vector<std::vector<uint32_t>>();
+    boundary_ = std::vector<uint8_t>();
+    quadric_ = std::vector<Quadric>();
+    node_of_ = std::vector<uint32_t>();
+    removed_ = std::vector<uint8_t>();
+    stamp_ = std::vector<RoundStamp>();
+    ring_mark_ = std::vector<uint32_t>();
+    live_ = std::vector<uint32_t>();
+    checkpoint_ = Checkpoint();
+    return pack();
+  }
 
   // What the rounds after this point change, so that restore() can rewind
   // the build to it: the orderings finish one after the other on one state
@@ -181,10 +252,10 @@ class Builder {
   void restore() {
     const Checkpoint& c = checkpoint_;
     // Stamps of the rewound rounds would match the rounds run again.
-    for (uint32_t& r : used_)
-      if (r >= c.round) r = 0;
-    for (uint32_t& r : near_)
-      if (r >= c.round) r = 0;
+    for (RoundStamp& r : stamp_) {
+      if (r.used >= c.round) r.used = 0;
+      if (r.near >= c.round) r.near = 0;
+    }
     // Only a live vertex's faces, quadric and node change after the
     // checkpoint; vertices removed since are live there.
     for (size_t i = 0; i < c.live.size(); ++i) {
@@ -275,15 +346,32 @@ class Builder {
     return static_cast<float>(e);
   }
 
-  // The candidates of live vertices [begin, end) in vertex order; sets
-  // *capped when the height cap held one back.
-  void list_candidates(size_t begin, size_t end, std::vector<Candidate>* out, bool* capped) const {
+  // The candidate u -> t (u's ring has `valence` vertices); false when the
+  // height cap holds it back.
+  bool make_candidate(uint32_t u, uint32_t hu, uint32_t t, uint32_t valence, Candidate* c) const {
+    const uint32_t ht = nodes_[node_of_[t]].height;
+    const uint32_t h = std::max(hu, ht) + 1;
+    if (h > cap_) return false;
+    // Low-valence vertices first: each removal blocks its neighbours for
+    // the level, so they leave the largest independent set.
+    const uint32_t shorter = std::min(hu, ht);
+    const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
+                         : ordering_ == 1 ? valence
+                                          : shorter;
+    *c = {h, sec, cost(u, t), u, t};
+    return true;
+  }
+
+  // The candidates of live vertices [begin, end) in vertex order, or with
+  // `best_only` each vertex's least one; sets *capped when the height cap
+  // held one back and *nan when a cost is NaN.
+  void list_candidates(size_t begin, size_t end, bool best_only, std::vector<Candidate>* out,
+                       bool* capped, bool* nan) const {
     // A manifold vertex has at most one neighbour more than faces: the list
-    // is reserved once instead of doubling (round 1's is the largest block
-    // the build holds).
+    // is reserved once instead of doubling.
     size_t bound = 0;
     for (size_t i = begin; i < end; ++i)
-      bound += vertex_faces_[live_[i]].size() + 1;
+      bound += best_only ? 1 : vertex_faces_[live_[i]].size() + 1;
     out->reserve(out->size() + bound);
     std::vector<uint32_t> ring;
     for (size_t i = begin; i < end; ++i) {
@@ -295,23 +383,47 @@ class Builder {
         continue;
       }
       neighbours(u, &ring);
+      const auto valence = static_cast<uint32_t>(ring.size());
+      Candidate best{};
+      bool found = false;
       for (uint32_t t : ring) {
-        const uint32_t h = std::max(hu, nodes_[node_of_[t]].height) + 1;
-        if (h > cap_) {
+        Candidate c;
+        if (!make_candidate(u, hu, t, valence, &c)) {
           *capped = true;
           continue;
         }
-        // Low-valence vertices first: each removal blocks its neighbours
-        // for the level, so they leave the largest independent set.
-        const uint32_t ht = nodes_[node_of_[t]].height;
-        const auto valence = static_cast<uint32_t>(ring.size());
-        const uint32_t shorter = std::min(hu, ht);
-        const uint32_t sec = ordering_ == 0   ? valence * 64 + shorter
-                             : ordering_ == 1 ? valence
-                                              : shorter;
-        out->push_back({h, sec, cost(u, t), u, t});
+        if (std::isnan(c.cost)) *nan = true;
+        if (!best_only) {
+          out->push_back(c);
+        } else if (!found || c < best) {
+          best = c;
+          found = true;
+        }
+      }
+      if (found) out->push_back(best);
+    }
+  }
+
+  // u's least candidate after `after` (u = after.u), in the state of the
+  // walk. Valid for the walk because u is neither used nor near: its
+  // faces, ring, quadric and height are as listed, and so is the key of
+  // every t not used yet (a used t's key may differ, but its candidate is
+  // refused wherever it falls).
+  bool next_candidate(const Candidate& after, Candidate* next) {
+    const uint32_t u = after.u;
+    const uint32_t hu = nodes_[node_of_[u]].height;
+    neighbours(u, &ring_);
+    const auto valence = static_cast<uint32_t>(ring_.size());
+    bool found = false;
+    for (uint32_t t : ring_) {
+      Candidate c;
+      if (!make_candidate(u, hu, t, valence, &c) || !(after < c)) continue;
+      if (!found || c < *next) {
+        *next = c;
+        found = true;
       }
     }
+    return found;
   }
 
   void drop_removed() {
@@ -320,25 +432,28 @@ class Builder {
                 live_.end());
   }
 
-  uint64_t run_round(uint32_t round) {
-    // The live vertices, in vertex order: the same list as all vertices
-    // with the removed ones skipped, without visiting them every round.
-    drop_removed();
+  // The listing of one round (in parts when there are threads): each live
+  // vertex's candidates in vertex order, or its least one.
+  std::vector<Candidate> list_round(bool best_only, bool* nan) {
     const size_t n = live_.size();
     const size_t parts = threads_->parts(n, kMinListPart);
     std::vector<Candidate> candidates;
     if (parts == 1) {
       bool held_back = false;
-      list_candidates(0, n, &candidates, &held_back);
+      list_candidates(0, n, best_only, &candidates, &held_back, nan);
       capped_ = capped_ || held_back;
+      return candidates;
     }
-    std::vector<std::vector<Candidate>> listed(parts == 1 ? 0 : parts);
+    std::vector<std::vector<Candidate>> listed(parts);
     std::vector<uint8_t> capped(parts, 0);
+    std::vector<uint8_t> nans(parts, 0);
     threads_->for_each_part(listed.size(), [&](size_t p) {
       const IndexRange range = part_range(n, parts, p);
       bool part_capped = false;
-      list_candidates(range.begin, range.end, &listed[p], &part_capped);
+      bool part_nan = false;
+      list_candidates(range.begin, range.end, best_only, &listed[p], &part_capped, &part_nan);
       capped[p] = part_capped ? 1 : 0;
+      nans[p] = part_nan ? 1 : 0;
     });
     size_t total = 0;
     for (const std::vector<Candidate>& part : listed)
@@ -348,60 +463,125 @@ class Builder {
       candidates.insert(candidates.end(), listed[p].begin(), listed[p].end());
       std::vector<Candidate>().swap(listed[p]);
       if (capped[p]) capped_ = true;
+      if (nans[p]) *nan = true;
     }
+    return candidates;
+  }
+
+  enum class Taken { kYes, kUBlocked, kRefused };
+
+  Taken take(const Candidate& c, uint32_t round) {
+    const RoundStamp& su = stamp_[c.u];
+    if (su.used == round || su.near == round) return Taken::kUBlocked;
+    if (stamp_[c.t].used == round) return Taken::kRefused;
+    uint32_t vl = kNone;
+    uint32_t vr = kNone;
+    if (!legal(c.u, c.t, &vl, &vr)) return Taken::kRefused;
+    // u's ring, before the collapse moves its faces.
+    for (uint32_t f : vertex_faces_[c.u]) {
+      const Triangle& tri = tris_[f];
+      for (uint32_t w : tri)
+        if (w != c.u) stamp_[w].near = round;
+    }
+    stamp_[c.u].used = stamp_[c.t].used = round;
+    collapse(c.u, c.t, vl, round, c.cost);
+    return Taken::kYes;
+  }
+
+  // The walk's time goes to cache misses on the stamps of vertices far
+  // apart: a candidate's are fetched well before the walk reaches it.
+  void prefetch(const Candidate& c) const {
+    __builtin_prefetch(&stamp_[c.u]);
+    __builtin_prefetch(&stamp_[c.t]);
+  }
+
+  uint64_t run_round(uint32_t round) {
+    // The live vertices, in vertex order: the same list as all vertices
+    // with the removed ones skipped, without visiting them every round.
+    drop_removed();
     uint64_t made = 0;
-    auto take = [&](const Candidate& c) {
-      if (used_[c.u] == round || used_[c.t] == round || near_[c.u] == round) return;
-      uint32_t vl = kNone;
-      uint32_t vr = kNone;
-      if (!legal(c.u, c.t, &vl, &vr)) return;
-      for (uint32_t w : ring_u_)  // u's ring, as legal() left it
-        near_[w] = round;
-      used_[c.u] = used_[c.t] = round;
-      collapse(c.u, c.t, vl, round, c.cost);
-      ++made;
-    };
+    bool nan = false;
     // Without a NaN cost the key is a strict total order ((u, t) is listed
-    // once), so the sorted order is the one there is: the sorted chunks are
-    // merged on the fly as the walk reads them, without the merge's copy of
-    // the list. A NaN cost keeps sort_in_chunks' merge, whose order the
-    // comparisons fix.
-    const bool strict = std::none_of(candidates.begin(), candidates.end(),
-                                     [](const Candidate& c) { return std::isnan(c.cost); });
-    if (!strict || candidates.size() <= kSortChunk) {
+    // once), so the walk's order is the one there is, and a vertex's next
+    // candidate can wait until its last one is refused: the round lists
+    // each vertex's least candidate only (a sixth of the list) and a heap
+    // holds the next ones. A NaN cost keeps the whole list and
+    // sort_in_chunks' merge, whose order the comparisons fix.
+    std::vector<Candidate> candidates = list_round(true, &nan);
+    if (nan) {
+      candidates = std::vector<Candidate>();
+      candidates = list_round(false, &nan);
       sort_in_chunks(*threads_, &candidates, kSortChunk, std::less<Candidate>());
       for (const Candidate& c : candidates)
-        take(c);
+        if (take(c, round) == Taken::kYes) ++made;
+      return made;
+    }
+    auto greater = [](const Candidate& a, const Candidate& b) { return b < a; };
+    std::vector<Candidate> later;  // min-heap of refused vertices' next candidates
+    auto visit = [&](const Candidate& c) {
+      const Taken taken = take(c, round);
+      if (taken == Taken::kYes) ++made;
+      if (taken != Taken::kRefused) return;
+      Candidate next;
+      if (!next_candidate(c, &next)) return;
+      prefetch(next);
+      later.push_back(next);
+      std::push_heap(later.begin(), later.end(), greater);
+    };
+    // Visits the waiting candidates that come before *c (all without c).
+    auto walk_to = [&](const Candidate* c) {
+      while (!later.empty() && (c == nullptr || later.front() < *c)) {
+        std::pop_heap(later.begin(), later.end(), greater);
+        const Candidate next = later.back();
+        later.pop_back();
+        visit(next);
+      }
+    };
+    if (candidates.size() <= kSortChunk) {
+      std::sort(candidates.begin(), candidates.end());
+      constexpr size_t kAhead = 16;
+      for (size_t i = 0; i < candidates.size(); ++i) {
+        if (i + kAhead < candidates.size()) prefetch(candidates[i + kAhead]);
+        walk_to(&candidates[i]);
+        visit(candidates[i]);
+      }
+      walk_to(nullptr);
       return made;
     }
     threads_->for_each_chunk(candidates.size(), kSortChunk, [&](size_t, IndexRange range) {
       std::sort(candidates.begin() + static_cast<std::ptrdiff_t>(range.begin),
                 candidates.begin() + static_cast<std::ptrdiff_t>(range.end));
     });
-    // A min-heap of each chunk's next candidate.
+    // A min-heap of each chunk's next candidate: the chunks merged on the
+    // fly as the walk reads them, without a merged copy of the list.
     struct Head {
       Candidate c;
       size_t next;
       size_t end;
     };
-    auto later = [](const Head& a, const Head& b) { return b.c < a.c; };
+    auto later_head = [](const Head& a, const Head& b) { return b.c < a.c; };
     std::vector<Head> heads;
     for (size_t begin = 0; begin < candidates.size(); begin += kSortChunk) {
       const size_t end = std::min(candidates.size(), begin + kSortChunk);
       heads.push_back({candidates[begin], begin + 1, end});
     }
-    std::make_heap(heads.begin(), heads.end(), later);
+    std::make_heap(heads.begin(), heads.end(), later_head);
     while (!heads.empty()) {
-      std::pop_heap(heads.begin(), heads.end(), later);
+      std::pop_heap(heads.begin(), heads.end(), later_head);
       Head& h = heads.back();
-      take(h.c);
+      const Candidate c = h.c;
       if (h.next == h.end) {
         heads.pop_back();
-        continue;
+      } else {
+        h.c = candidates[h.next++];
+        // Walked after about one candidate of every other chunk.
+        prefetch(h.c);
+        std::push_heap(heads.begin(), heads.end(), later_head);
       }
-      h.c = candidates[h.next++];
-      std::push_heap(heads.begin(), heads.end(), later);
+      walk_to(&c);
+      visit(c);
     }
+    walk_to(nullptr);
     return made;
   }
 
@@ -429,11 +609,21 @@ class Builder {
     for (uint32_t w : {*vl, *vr}) {
       if (w != kNone && vertex_faces_[w].size() - 1 < (boundary_[w] ? 1u : 3u)) return false;
     }
-    neighbours(u, &ring_u_);
-    neighbours(t, &ring_t_);
-    for (uint32_t w : ring_u_) {
-      if (w == t || w == *vl || w == *vr) continue;
-      if (std::binary_search(ring_t_.begin(), ring_t_.end(), w)) return false;
+    // Link condition: u and t share no neighbour but the wings. t's ring
+    // is marked with a fresh stamp (sorting both rings cost more).
+    if (++ring_stamp_ == 0) {
+      std::fill(ring_mark_.begin(), ring_mark_.end(), 0);
+      ring_stamp_ = 1;
+    }
+    for (uint32_t f : vertex_faces_[t]) {
+      for (uint32_t w : tris_[f])
+        ring_mark_[w] = ring_stamp_;
+    }
+    for (uint32_t f : vertex_faces_[u]) {
+      for (uint32_t w : tris_[f]) {
+        if (w == u || w == t || w == *vl || w == *vr) continue;
+        if (ring_mark_[w] == ring_stamp_) return false;
+      }
     }
     // Faces of u not containing t move to t's position.
     const Vec3d p = to_d(mesh_.positions[t]);
@@ -587,8 +777,16 @@ class Builder {
   std::vector<TempNode> nodes_;
   std::vector<uint32_t> node_of_;
   std::vector<uint8_t> removed_;
-  std::vector<uint32_t> used_;
-  std::vector<uint32_t> near_;
+  // Per vertex, the last round in which it took part in a collapse (used)
+  // and in which a neighbour was removed (near): side by side, as the walk
+  // reads both of u.
+  struct RoundStamp {
+    uint32_t used = 0;
+    uint32_t near = 0;
+  };
+  std::vector<RoundStamp> stamp_;
+  std::vector<uint32_t> ring_mark_;  // == ring_stamp_: in t's ring (legal())
+  uint32_t ring_stamp_ = 0;
   std::vector<uint32_t> live_;  // vertices with faces, ascending, and some removed
   struct Checkpoint {
     std::vector<uint32_t> live;
@@ -602,8 +800,7 @@ class Builder {
     uint32_t cap = 0;
     std::vector<uint64_t> level_vertices;
   } checkpoint_;
-  std::vector<uint32_t> ring_u_;
-  std::vector<uint32_t> ring_t_;
+  std::vector<uint32_t> ring_;  // next_candidate()'s
   std::vector<uint64_t> level_vertices_;
 };
 
@@ -629,23 +826,30 @@ Result<BalancedHierarchy> build_balanced_hierarchy(const TriangleMesh& mesh,
     // so far is kept (fewest id bits, then shallower, then fewer roots, then
     // the first). The listing and sorting of each round stay parallel.
     if (orderings > 1) shared.checkpoint();
-    std::optional<BalancedHierarchy> best;
+    // Each ordering's shape is read from its nodes; only the best's nodes
+    // after the shared point are kept, and the hierarchy is packed once.
+    std::optional<Builder::Ending> best;
+    int best_ordering = -1;
     HierarchyShape best_shape;
     for (int ordering = 0; ordering < orderings; ++ordering) {
       if (ordering > 0) shared.restore();
       shared.set_ordering(ordering);
       shared.build_until(0);
-      LODBAKE_ASSIGN_OR_RETURN(BalancedHierarchy one, shared.result());
-      const HierarchyShape shape = hierarchy_shape(one.hierarchy);
-      if (!best || shape.id_bits < best_shape.id_bits ||
+      LODBAKE_ASSIGN_OR_RETURN(const HierarchyShape shape, shared.shape());
+      if (best_ordering < 0 || shape.id_bits < best_shape.id_bits ||
           (shape.id_bits == best_shape.id_bits &&
            (shape.depth < best_shape.depth ||
             (shape.depth == best_shape.depth && shape.roots < best_shape.roots)))) {
-        best = std::move(one);
+        best_ordering = ordering;
         best_shape = shape;
+        // The last ordering's ending is the state itself.
+        best.reset();
+        if (ordering + 1 < orderings) best = shared.ending();
       }
     }
-    return std::move(*best);
+    if (best) shared.adopt(*best);
+    best.reset();
+    return shared.result();
   } catch (const std::bad_alloc&) {
     return runtime_error("out of memory building the balanced hierarchy");
   }

@@ -28,14 +28,14 @@ Result<ProgressiveMesh> hierarchy_to_progressive_mesh(const VertexHierarchy& h,
     std::vector<uint32_t> order;
     order.reserve((n - roots) / 2);
     {
-      LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner first, SelectiveRefiner::create(h));
+      LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner first, SelectiveRefiner::create_by_index(h));
       for (uint32_t s = 0; s < n; ++s) {
         if (h.is_leaf(s) || !first.is_active(s)) continue;
         LODBAKE_RETURN_IF_ERROR(first.split_with_dependencies(s, &order));
       }
     }
     // Created once the first refiner is gone: one refiner at a time.
-    LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner replay, SelectiveRefiner::create(h));
+    LODBAKE_ASSIGN_OR_RETURN(SelectiveRefiner replay, SelectiveRefiner::create_by_index(h));
     pm.splits.reserve(order.size());
     for (uint32_t s : order) {
       const uint32_t left = h.first_child[s];

@@ -65,39 +65,48 @@ Result<std::vector<NodeRefinement>> compute_refinement_data(const VertexHierarch
       return invalid_input("mesh has " + std::to_string(fine.positions.size()) +
                            " vertices, the hierarchy " + std::to_string(leaves) + " leaves");
     }
+    auto face_normal = [&](const Triangle& t) {
+      const V3 p0 = to_d(fine.positions[t[0]]);
+      return cross(sub(to_d(fine.positions[t[1]]), p0), sub(to_d(fine.positions[t[2]]), p0));
+    };
     std::vector<V3> normal_sum(n, V3{0, 0, 0});
-    std::vector<double> leaf_angle(n, 0);
-    std::vector<std::vector<V3>> leaf_normals(n);
+    std::vector<uint8_t> has_face(n, 0);
     for (const Triangle& t : fine.triangles) {
       for (uint32_t v : t) {
         if (v >= fine.positions.size()) return invalid_input("triangle index out of range");
       }
-      const V3 p0 = to_d(fine.positions[t[0]]);
-      const V3 nrm =
-          cross(sub(to_d(fine.positions[t[1]]), p0), sub(to_d(fine.positions[t[2]]), p0));
+      const V3 nrm = face_normal(t);
       for (uint32_t v : t) {
         const uint32_t leaf = leaf_of[v];
         for (int k = 0; k < 3; ++k)
           normal_sum[leaf][k] += nrm[k];
-        leaf_normals[leaf].push_back(nrm);
+        has_face[leaf] = 1;
+      }
+    }
+    // A leaf's cone: its faces' normals against its axis, in a second pass
+    // over the faces instead of a list of normals per leaf (a heap block
+    // per vertex, the largest part of this step's peak). The maximum skips
+    // NaN angles either way, so the order of the faces does not matter.
+    std::vector<double> leaf_angle(n, 0);
+    for (const Triangle& t : fine.triangles) {
+      const V3 nrm = face_normal(t);
+      for (uint32_t v : t) {
+        const uint32_t leaf = leaf_of[v];
+        leaf_angle[leaf] = std::max(leaf_angle[leaf], angle(normal_sum[leaf], nrm));
       }
     }
     std::vector<NodeRefinement> out(n);
-    std::vector<V3> axis(n);
+    // The cone axis is the normal sum itself: no copy of it.
+    const std::vector<V3>& axis = normal_sum;
     // Children have larger indices than parents: one backward sweep is bottom-up.
     for (size_t i = n; i-- > 0;) {
       if (h.is_leaf(static_cast<uint32_t>(i))) {
-        axis[i] = normal_sum[i];
-        double a = 0;
-        for (const V3& fn : leaf_normals[i])
-          a = std::max(a, angle(axis[i], fn));
-        leaf_angle[i] = leaf_normals[i].empty() || !(len(axis[i]) > 0) ? kPi : a;
+        if (!has_face[i] || !(len(axis[i]) > 0)) leaf_angle[i] = kPi;
         continue;
       }
       const uint32_t c0 = h.first_child[i];
       for (int k = 0; k < 3; ++k)
         normal_sum[i][k] = normal_sum[c0][k] + normal_sum[c0 + 1][k];
-      axis[i] = normal_sum[i];
       double a = 0, r = 0, mu = h.error[i];
       for (uint32_t c : {c0, c0 + 1}) {
         a = std::max(a, angle(axis[i], axis[c]) + leaf_angle[c]);
@@ -117,7 +126,10 @@ Result<std::vector<NodeRefinement>> compute_refinement_data(const VertexHierarch
       out[i].cone_half_angle = static_cast<float>(leaf_angle[i]);
     }
     // delta: each leaf against every ancestor's tangent plane (depth <= 64).
-    std::vector<double> delta(n, 0);
+    std::vector<V3>().swap(normal_sum);
+    std::vector<uint8_t>().swap(has_face);
+    std::vector<double> delta = std::move(leaf_angle);
+    std::fill(delta.begin(), delta.end(), 0.0);
     for (uint32_t leaf = 0; leaf < n; ++leaf) {
       if (!h.is_leaf(leaf)) continue;
       const V3 q = to_d(h.position[leaf]);

@@ -41,6 +41,14 @@ Result<SelectiveRefiner> SelectiveRefiner::create(const VertexHierarchy& h) {
   return r;
 }
 
+Result<SelectiveRefiner> SelectiveRefiner::create_by_index(const VertexHierarchy& h) {
+  const std::vector<std::string> problems = validate_hierarchy(h);
+  if (!problems.empty()) return invalid_input("vertex hierarchy: " + problems.front());
+  SelectiveRefiner r(h);
+  LODBAKE_RETURN_IF_ERROR(r.start_at_base());
+  return r;
+}
+
 Result<SelectiveRefiner> SelectiveRefiner::create_growing(const VertexHierarchy& h) {
   const size_t n = h.node_count();
   if (n < h.root_count() || h.first_child.size() != n || h.cut_left.size() != n ||

@@ -21,6 +21,11 @@ class SelectiveRefiner {
   /// not pass validate_hierarchy() (formats/sections/vhie.h) or its base
   /// mesh has an out-of-range or repeated index. `h` must outlive the refiner.
   static Result<SelectiveRefiner> create(const VertexHierarchy& h);
+  /// create() without the <tree-id, node-id> lookups: id_of(), node_of()
+  /// and active_ancestor_id() must not be called. For a caller that works on
+  /// node indices (hierarchy_to_progressive_mesh()), without the ids and
+  /// their sorted index (40 bytes a node).
+  static Result<SelectiveRefiner> create_by_index(const VertexHierarchy& h);
   /// A refiner over a hierarchy that grows while it is refined: a streaming
   /// client's partial hierarchy (lib/replay/stream_client.h). Only the base
   /// mesh and the array sizes are checked. Nodes the owner appends to `h`

@@ -58,6 +58,14 @@
 #include <limits>
 #include <memory>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+#ifdef __linux__
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
 #include "lib/simplify/face_quadrics.h"
 #include "lib/simplify/quadric.h"
 #include "lib/simplify/vec_math.h"
@@ -65,6 +73,23 @@
 namespace lodbake {
 namespace simplify_internal {
 namespace {
+
+// Gives the pages of v's storage past its size back to the system, keeping
+// the capacity (a page touched again reads as zeros, and every element is
+// written before it is read): the per-pass lists shrink in place, and their
+// first pass's pages would otherwise stay resident to the end.
+template <typename T>
+void release_tail(std::vector<T>* v) {
+#ifdef __linux__
+  const auto page = static_cast<uintptr_t>(sysconf(_SC_PAGESIZE));
+  const uintptr_t begin =
+      (reinterpret_cast<uintptr_t>(v->data() + v->size()) + page - 1) & ~(page - 1);
+  const uintptr_t end = reinterpret_cast<uintptr_t>(v->data() + v->capacity()) & ~(page - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+#else
+  (void)v;
+#endif
+}
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
@@ -95,11 +120,23 @@ constexpr size_t kParallelQuadrics = 8192;
 // 1.75 times as long without it.
 constexpr size_t kPrefetchWalkVertices = size_t{1} << 16;
 
-// One edge listed for a pass, in its cheaper direction: vt into vs.
+// One edge listed for a pass, in its cheaper direction, in 8 bytes rather
+// than 12 (a cost and both vertex ids: 6 bytes per input triangle of the
+// engine's peak): the half-edge it was listed as, whose vertices the walk
+// reads from the triangle (the triangles do not change during a pass), and
+// the cost's float bits with the direction in the sign bit (costs are never
+// negative, so the bit is free).
 struct Candidate {
-  float cost;
-  uint32_t vt;
-  uint32_t vs;
+  static constexpr uint32_t kReversed = 0x80000000u;  // vt is the half-edge's end
+  uint32_t bits;                                      // the cost's float bits, kReversed or'ed in
+  uint32_t half_edge;  // 3 * face + k: from the face's corner k to corner k + 1
+
+  float cost() const {
+    const uint32_t b = bits & ~kReversed;
+    float f;
+    std::memcpy(&f, &b, sizeof f);
+    return f;
+  }
 };
 
 // The candidates of a pass, sorted by cost on demand. The order is that of
@@ -108,23 +145,22 @@ struct Candidate {
 // listing order, which is deterministic. The 10 lowest mantissa bits are
 // left out: costs within a relative 2^-13 of each other keep their listing
 // order. Of the remaining bits, the upper 11 are sorted for the whole list
-// at the pass start (counted while listing, then one scattering sweep); the
-// lower 11 of each upper bucket only when the walk reaches it. A pass walks
-// about a third of its candidates, so most of the second scattering sweep
-// of a full sort was never read. The result is the same as sorting by
-// (upper digit, lower digit, listing order) in one go.
+// at the pass start; the lower 11 of each upper bucket only when the walk
+// reaches it. A pass walks about a third of its candidates, so most of the
+// second step of a full sort was never needed.
 //
-// The candidates stay where they were listed; the sort permutes their
-// indices (4 bytes each) instead of the 12-byte candidates. A sort of the
-// candidates themselves needed a second array as large as the list, which
-// was 18 bytes per input triangle of the engine's peak; the indices take 6,
-// and the walk's reads through them are prefetched with the rest.
+// The listing order is the order of the candidates' half-edges (3 * face +
+// corner: the live triangles are listed in increasing order, in parts that
+// are consecutive ranges of them), and no two candidates share a half-edge.
+// So sorting by (key, half-edge) with any sort gives the stable sort's
+// order, and the sort works in place: an American flag sort of the upper
+// digit over the whole list, std::sort of each bucket by (key, half-edge).
+// The stable sort it replaces permuted a 4-byte index per candidate (6
+// bytes per input triangle of the peak) and the walk read the candidates
+// through them at random; now it reads them in order.
 //
-// The listing comes in parts (consecutive ranges of the live triangles),
-// each with its own region of items_ and its own upper-digit counts, so that
-// the threads list and scatter at once. The regions lie in part order, so
-// an index's order is the listing order of one thread whatever the number
-// of parts, and a stable sort of the indices keeps it among ties.
+// The listing comes in parts, each with its own region of items_, so that
+// the threads list at once; sort_upper() joins the regions.
 class CandidateList {
  public:
   // Empties the list for at most `max_count[p]` candidates in part p.
@@ -132,8 +168,6 @@ class CandidateList {
     const size_t parts = max_count.size();
     part_start_.resize(parts);
     part_size_.assign(parts, 0);
-    part_counts_.assign(parts * kBuckets, 0u);
-    part_fill_.resize(parts * kBuckets);
     size_t total = 0;
     for (size_t p = 0; p < parts; ++p) {
       part_start_[p] = total;
@@ -154,55 +188,45 @@ class CandidateList {
   size_t size() const { return size_; }
   void release() {
     items_ = Buffer<Candidate>();
-    order_ = Buffer<uint32_t>();
-    bucket_scratch_ = std::vector<uint32_t>();
     size_ = 0;
   }
 
-  // Groups the candidates' indices by the upper digit and leaves each group
-  // in listing order.
-  void sort_upper(const ParallelScope& threads) {
-    const size_t parts = part_size_.size();
+  // Joins the parts' regions and groups the candidates by the upper digit,
+  // in place.
+  void sort_upper() {
+    Candidate* items = items_.data.get();
     size_t listed = 0;
-    for (size_t n : part_size_)
-      listed += n;
-    reserve(&order_, listed);
-    // The parts are the listing's; a short list is counted and scattered
-    // on the calling thread.
-    const size_t run_parts = listed >= kParallelScatter ? parts : 1;
-    auto each_part = [&](const std::function<void(size_t)>& job) {
-      threads.for_each_part(run_parts, [&](size_t r) {
-        const IndexRange range = part_range(parts, run_parts, r);
-        for (size_t p = range.begin; p < range.end; ++p)
-          job(p);
-      });
-    };
-    each_part([this](size_t p) {
-      uint32_t* counts = &part_counts_[p * kBuckets];
-      const Candidate* src = items_.data.get() + part_start_[p];
-      for (size_t i = 0, n = part_size_[p]; i < n; ++i)
-        ++counts[upper(src[i])];
-    });
+    for (size_t p = 0; p < part_size_.size(); ++p) {
+      if (part_start_[p] != listed) {
+        std::copy(items + part_start_[p], items + part_start_[p] + part_size_[p], items + listed);
+      }
+      listed += part_size_[p];
+    }
+    size_ = listed;
+    uint32_t count[kBuckets] = {};
+    for (size_t i = 0; i < listed; ++i)
+      ++count[upper(items[i])];
     uint32_t sum = 0;
     for (uint32_t b = 0; b < kBuckets; ++b) {
       bucket_end_[b] = sum;
-      for (size_t p = 0; p < parts; ++p) {
-        part_fill_[p * kBuckets + b] = sum;
-        sum += part_counts_[p * kBuckets + b];
-      }
+      sum += count[b];
     }
     bucket_end_[kBuckets] = sum;
-    size_ = sum;
-    each_part([this](size_t p) {
-      uint32_t* fill = &part_fill_[p * kBuckets];
-      const Candidate* src = items_.data.get();
-      uint32_t* dst = order_.data.get();
-      const auto first = static_cast<uint32_t>(part_start_[p]);
-      const auto last = static_cast<uint32_t>(part_start_[p] + part_size_[p]);
-      for (uint32_t i = first; i < last; ++i)
-        dst[fill[upper(src[i])]++] = i;
-    });
     // bucket_end_[b] now is the start of bucket b, bucket_end_[b + 1] its end.
+    uint32_t next[kBuckets];
+    std::copy(bucket_end_, bucket_end_ + kBuckets, next);
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      const uint32_t end = bucket_end_[b + 1];
+      while (next[b] < end) {
+        Candidate c = items[next[b]];
+        uint32_t d = upper(c);
+        while (d != b) {
+          std::swap(c, items[next[d]++]);
+          d = upper(c);
+        }
+        items[next[b]++] = c;
+      }
+    }
     next_bucket_ = 0;
     sorted_end_ = 0;
   }
@@ -211,25 +235,18 @@ class CandidateList {
   const Candidate& operator[](size_t i) {
     while (i >= sorted_end_)
       sort_next_bucket();
-    return items_.data[order_.data[i]];
+    return items_.data[i];
   }
 
-  // Asks for the i-th candidate in cost order when it is sorted already
-  // (the walk's look-ahead: the candidates lie in listing order).
+  // Asks for the i-th candidate in cost order (the walk's look-ahead).
   void prefetch(size_t i) const {
-    if (i < sorted_end_) __builtin_prefetch(&items_.data[order_.data[i]]);
+    if (i < size_) __builtin_prefetch(&items_.data[i]);
   }
 
  private:
   static constexpr int kIgnoredBits = 10;
   static constexpr int kDigitBits = 11;
   static constexpr uint32_t kBuckets = 1u << kDigitBits;
-  // Below this size a bucket is sorted by insertion (stable) rather than
-  // by counting, whose histogram would dominate.
-  static constexpr uint32_t kSmallBucket = 64;
-  // Below this many candidates one thread scatters faster than two can be
-  // started.
-  static constexpr size_t kParallelScatter = 16384;
 
   // A buffer that is only grown, never value-initialised: every element is
   // written before it is read.
@@ -238,9 +255,8 @@ class CandidateList {
     std::unique_ptr<T[]> data;
     size_t capacity = 0;
   };
-  // A buffer more than twice too large is replaced: the pages the first
-  // passes wrote would otherwise stay resident to the end, when the log is
-  // largest (the candidates fall with the live triangles, pass by pass).
+  // A buffer more than twice too large is replaced, so that its unused
+  // pages do not stay resident.
   template <typename T>
   static void reserve(Buffer<T>* buffer, size_t count) {
     if (buffer->capacity >= count && buffer->capacity / 2 <= count) return;
@@ -250,59 +266,26 @@ class CandidateList {
   }
 
   static uint32_t key(const Candidate& c) {
-    uint32_t bits;
-    std::memcpy(&bits, &c.cost, sizeof bits);
-    return bits >> kIgnoredBits;
+    return (c.bits & ~Candidate::kReversed) >> kIgnoredBits;
   }
   static uint32_t upper(const Candidate& c) { return (key(c) >> kDigitBits) & (kBuckets - 1); }
-  static uint32_t lower(const Candidate& c) { return key(c) & (kBuckets - 1); }
+  // The full order: key, then listing order (the half-edge).
+  static uint64_t rank(const Candidate& c) { return uint64_t{key(c)} << 32 | c.half_edge; }
 
-  // Sorts the next upper bucket's indices by the lower digit, in place
-  // (through bucket_scratch_ when counting).
+  // Sorts the next upper bucket in place.
   void sort_next_bucket() {
     const uint32_t begin = bucket_end_[next_bucket_];
     const uint32_t end = bucket_end_[next_bucket_ + 1];
     ++next_bucket_;
-    const Candidate* items = items_.data.get();
-    uint32_t* order = order_.data.get();
-    if (end - begin <= kSmallBucket) {
-      for (uint32_t i = begin + 1; i < end; ++i) {
-        const uint32_t index = order[i];
-        const uint32_t k = lower(items[index]);
-        uint32_t j = i;
-        while (j > begin && lower(items[order[j - 1]]) > k) {
-          order[j] = order[j - 1];
-          --j;
-        }
-        order[j] = index;
-      }
-    } else {
-      // The lower digits are gathered once: the candidates lie in listing
-      // order, so each read of one is a cache miss.
-      bucket_scratch_.resize(2 * size_t{end - begin});
-      uint32_t* digits = bucket_scratch_.data();
-      uint32_t* sorted = digits + (end - begin);
-      uint32_t count[kBuckets + 1] = {};
-      for (uint32_t i = begin; i < end; ++i) {
-        digits[i - begin] = lower(items[order[i]]);
-        ++count[digits[i - begin] + 1];
-      }
-      for (uint32_t b = 0; b < kBuckets; ++b)
-        count[b + 1] += count[b];
-      for (uint32_t i = begin; i < end; ++i)
-        sorted[count[digits[i - begin]]++] = order[i];
-      std::copy(sorted, sorted + (end - begin), order + begin);
-    }
+    Candidate* items = items_.data.get();
+    std::sort(items + begin, items + end,
+              [](const Candidate& a, const Candidate& b) { return rank(a) < rank(b); });
     sorted_end_ = end;
   }
 
   std::vector<size_t> part_start_;  // each part's region of items_ while listing
   std::vector<size_t> part_size_;
-  std::vector<uint32_t> part_counts_;     // kBuckets per part
-  std::vector<uint32_t> part_fill_;       // kBuckets per part
-  Buffer<Candidate> items_;               // the parts' listings, in their regions
-  Buffer<uint32_t> order_;                // indices into items_, sorted bucket by bucket
-  std::vector<uint32_t> bucket_scratch_;  // sort_next_bucket()'s digits and sorted indices
+  Buffer<Candidate> items_;  // the parts' listings, then the sorted list
   size_t size_ = 0;
   uint32_t bucket_end_[kBuckets + 1] = {};
   uint32_t next_bucket_ = 0;
@@ -411,12 +394,8 @@ class Engine {
     for (uint32_t v = 0; v < n; ++v)
       alias_[v] = v;
     locked_.assign(n, 0);
-    live_triangles_.resize(state_.triangles.size());
-    for (uint32_t f = 0; f < live_triangles_.size(); ++f)
-      live_triangles_[f] = f;
-    for (uint32_t v = 0; v < n; ++v) {
-      if (vinfo_[v].count > 0) live_vertices_.push_back(v);
-    }
+    // live_triangles_ and live_vertices_ stay empty until the first
+    // finish_pass() (lists_made_): every triangle is live until then.
 
     setup_locks(topology);
     // The first pass's corner lists are the topology's.
@@ -427,6 +406,15 @@ class Engine {
     // back once the walk's arrays are gone, so that the two copies never
     // coexist with them (6 bytes per triangle of the peak).
     state_.positions = std::vector<Vec3f>();
+    topology.face_start = std::vector<uint32_t>();
+    topology.boundary = std::vector<uint8_t>();
+    // The import's and the set-up's freed heap (the input mesh, the
+    // renumbering, the adjacency's offsets, the positions) stays resident
+    // otherwise: glibc returns only the heap's top, and the walk's arrays
+    // are too large to reuse it (25 MiB of the peak of a 3.5M-triangle mesh).
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
     // The walk stops at the first listed cost above max_cost; in optimal
     // placement a cost is an error times a weight, so only try_collapse()
     // can tell, and every candidate is tried.
@@ -446,8 +434,13 @@ class Engine {
     while (triangle_count_ > target) {
       if (pass_ > 0) finish_pass(/*rebuild=*/true);
       list_candidates();
-      candidates_.sort_upper(threads_);
-      if (run_pass() == 0) break;
+      candidates_.sort_upper();
+      const uint64_t collapses = run_pass();
+      // The next pass lists fewer edges: the buffers are made afresh, so
+      // that the pages of this pass's list are not resident with the next
+      // pass's corner lists and the log (the peak was the third pass's start).
+      candidates_.release();
+      if (collapses == 0) break;
     }
     finish_pass(/*rebuild=*/false);
     state_.stats.output_triangles = triangle_count_;
@@ -465,9 +458,32 @@ class Engine {
   }
 
  private:
-  bool is_set(uint32_t v, uint32_t flag) const { return (vinfo_[v].flags & flag) != 0; }
+  bool is_set(uint32_t v, uint32_t flag) const {
+    return (vinfo_[v].flags & flag) != 0;
+  }
+
+  size_t live_triangle_count() const {
+    return lists_made_ ? live_triangles_.size() : state_.triangles.size();
+  }
+  uint32_t live_triangle(size_t i) const {
+    return lists_made_ ? live_triangles_[i] : static_cast<uint32_t>(i);
+  }
+
+  // A candidate's vertices, from its half-edge's triangle.
+  struct Ends {
+    uint32_t vt, vs;
+  };
+  Ends ends(const Candidate& c) const {
+    const Triangle& t = state_.triangles[c.half_edge / 3];
+    const uint32_t k = c.half_edge % 3;
+    const uint32_t a = t[k];
+    const uint32_t b = t[k == 2 ? 0 : k + 1];
+    return (c.bits & Candidate::kReversed) != 0 ? Ends{b, a} : Ends{a, b};
+  }
   // Vertex order for ties: the input's.
-  bool precedes(uint32_t a, uint32_t b) const { return vinfo_[a].input_id < vinfo_[b].input_id; }
+  bool precedes(uint32_t a, uint32_t b) const {
+    return vinfo_[a].input_id < vinfo_[b].input_id;
+  }
 
   // The arrays only the walk reads, freed before the state's positions are
   // written back: the peak is then the walk's, not the walk's plus them.
@@ -616,7 +632,7 @@ class Engine {
   // edge). In parts, consecutive ranges of the live triangles, listed at
   // once (everything they read is constant during the listing).
   void list_candidates() {
-    const size_t live = live_triangles_.size();
+    const size_t live = live_triangle_count();
     const size_t parts = threads_.parts(live, kParallelListing / 2);
     std::vector<size_t> max_count(parts);
     for (size_t p = 0; p < parts; ++p) {
@@ -640,6 +656,7 @@ class Engine {
   void list_candidates(size_t part, size_t begin, size_t end) {
     struct Edge {
       uint32_t a, b;
+      uint32_t half_edge;
       bool boundary;
     };
     constexpr size_t kBatch = 64;
@@ -649,13 +666,14 @@ class Engine {
       size_t count = 0;
       for (size_t i = batch; i < batch_end; ++i) {
         if (i + kListAhead < end) {
-          for (uint32_t v : state_.triangles[live_triangles_[i + kListAhead]]) {
+          for (uint32_t v : state_.triangles[live_triangle(i + kListAhead)]) {
             __builtin_prefetch(&vinfo_[v]);
             prefetch_quadric(v);
           }
         }
-        const Triangle& t = state_.triangles[live_triangles_[i]];
-        for (int k = 0; k < 3; ++k) {
+        const uint32_t f = live_triangle(i);
+        const Triangle& t = state_.triangles[f];
+        for (uint32_t k = 0; k < 3; ++k) {
           const uint32_t a = t[k];
           const uint32_t b = t[k == 2 ? 0 : k + 1];
           const bool both_boundary = (vinfo_[a].flags & vinfo_[b].flags & kBoundary) != 0;
@@ -665,12 +683,12 @@ class Engine {
           // only be the survivor (meshoptimizer's collapse table: a border
           // vertex moves only along the border).
           const bool stands = boundary_edge | precedes(a, b);
-          edges[count] = {a, b, boundary_edge};
+          edges[count] = {a, b, 3 * f + k, boundary_edge};
           count += stands & (boundary_edge | !both_boundary);
         }
       }
       for (size_t j = 0; j < count; ++j)
-        add_candidate(part, edges[j].a, edges[j].b, edges[j].boundary);
+        add_candidate(part, edges[j].a, edges[j].b, edges[j].half_edge, edges[j].boundary);
     }
   }
 
@@ -704,15 +722,15 @@ class Engine {
   // so every list is in triangle order for any number of parts.
   void finish_pass(bool rebuild) {
     const bool faces = rebuild && !seam_attrs_.empty();
-    const size_t live = live_triangles_.size();
-    const size_t live_v = live_vertices_.size();
+    const size_t live = live_triangle_count();
+    const size_t live_v = lists_made_ ? live_vertices_.size() : vinfo_.size();
     const size_t parts = threads_.parts(live, kParallelListing / 2);
     std::vector<size_t> kept_triangles(parts);
     threads_.for_each_part(parts, [&](size_t p) {
       if (rebuild) {
         const IndexRange vertices = part_range(live_v, parts, p);
         for (size_t i = vertices.begin; i < vertices.end; ++i) {
-          const uint32_t v = live_vertices_[i];
+          const auto v = static_cast<uint32_t>(lists_made_ ? live_vertices_[i] : i);
           if (!locked_[v]) continue;
           if (alias_[v] != v) quadric_[alias_[v]].add(quadric_[v].q);
           locked_[v] = 0;
@@ -723,31 +741,67 @@ class Engine {
     });
     size_t kept_total = kept_triangles[0];
     for (size_t p = 1; p < parts; ++p) {
+      if (!lists_made_) {
+        kept_total += kept_triangles[p];
+        continue;
+      }
       const auto from =
           live_triangles_.begin() + static_cast<std::ptrdiff_t>(part_range(live, parts, p).begin);
       std::copy(from, from + static_cast<std::ptrdiff_t>(kept_triangles[p]),
                 live_triangles_.begin() + static_cast<std::ptrdiff_t>(kept_total));
       kept_total += kept_triangles[p];
     }
+    if (!lists_made_) {
+      // The first list, sized to the survivors of the first pass.
+      live_triangles_.reserve(kept_total);
+      for (uint32_t f = 0; f < state_.triangles.size(); ++f) {
+        if (state_.triangle_alive[f]) live_triangles_.push_back(f);
+      }
+    }
     live_triangles_.resize(kept_total);
-    if (!rebuild) return;
+    release_tail(&live_triangles_);
+    if (!rebuild) {
+      lists_made_ = true;
+      return;
+    }
 
     // Only the vertices that had faces at the pass start: the others are
     // never read again (at 1 % the last passes would sweep 100 times as
     // many records as they use).
     uint32_t sum = 0;
     size_t kept = 0;
-    for (const uint32_t v : live_vertices_) {
+    auto place = [this, &sum](uint32_t v) {
       VertexInfo& info = vinfo_[v];
-      if (info.count == 0) continue;
-      live_vertices_[kept++] = v;
+      if (info.count == 0) return false;
       info.start = sum;
       info.size = 0;  // counts the corners filled in below, up to `count`
       sum += info.count;
+      return true;
+    };
+    if (lists_made_) {
+      for (const uint32_t v : live_vertices_) {
+        if (place(v)) live_vertices_[kept++] = v;
+      }
+      live_vertices_.resize(kept);
+      release_tail(&live_vertices_);
+    } else {
+      // The first list, sized to the vertices with faces (a vertex never
+      // gains its first face).
+      for (const VertexInfo& info : vinfo_)
+        kept += info.count > 0 ? 1 : 0;
+      live_vertices_.reserve(kept);
+      for (uint32_t v = 0; v < vinfo_.size(); ++v) {
+        if (place(v)) live_vertices_.push_back(v);
+      }
+      lists_made_ = true;
     }
-    live_vertices_.resize(kept);
+    // The lists shrink pass by pass: their unused pages go back.
     corners_.resize(sum);
-    if (faces) faces_.resize(sum);
+    release_tail(&corners_);
+    if (faces) {
+      faces_.resize(sum);
+      release_tail(&faces_);
+    }
     // live_vertices_ is in id order, so a range of it is a range of ids.
     threads_.for_each_part(parts, [&](size_t p) {
       const IndexRange owned = part_range(kept, parts, p);
@@ -769,13 +823,14 @@ class Engine {
   }
 
   // Rewrites live_triangles_[begin, end) through alias_, drops the faces
+  // (before the lists are made: triangles begin to end, only counted)
   // that died in the pass and keeps the others at the front of the range;
   // returns how many it kept.
   size_t rewrite_triangles(size_t begin, size_t end) {
     std::vector<Triangle>& tris = state_.triangles;
     size_t live = begin;
     for (size_t i = begin; i < end; ++i) {
-      const uint32_t f = live_triangles_[i];
+      const uint32_t f = live_triangle(i);
       Triangle& t = tris[f];
       const Triangle old = t;
       for (uint32_t& v : t)
@@ -784,7 +839,8 @@ class Engine {
         state_.triangle_alive[f] = 0;
         continue;
       }
-      live_triangles_[live++] = f;
+      if (lists_made_) live_triangles_[live] = f;
+      ++live;
       if (seam_attrs_.empty() || options_.permissive || t == old) continue;
       // Corners moved from vt take vs's (unique) value, so no new seam appears.
       for (int k = 0; k < 3; ++k) {
@@ -807,7 +863,7 @@ class Engine {
     // once the pass has its minimum share (below).
     size_t goal_index = goal / 2;
     auto limit = [&] {
-      return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost
+      return goal_index < candidates_.size() ? kPassLimitFactor * candidates_[goal_index].cost()
                                              : kInfinity;
     };
     const uint64_t before = triangle_count_;
@@ -815,11 +871,13 @@ class Engine {
     height_scale_ = 0;
     for (size_t i = 0; i < candidates_.size(); ++i) {
       if (prefetch_walk_) prefetch_candidate(i);
-      const Candidate& c = candidates_[i];
-      if (triangle_count_ <= target || c.cost > max_cost_float_) break;
+      const Candidate& candidate = candidates_[i];
+      const float listed_cost = candidate.cost();
+      if (triangle_count_ <= target || listed_cost > max_cost_float_) break;
       const bool past_limit = before - triangle_count_ > goal / kMinPassShare;
       const double pass_limit = limit();
-      if (c.cost > pass_limit && past_limit) break;
+      if (listed_cost > pass_limit && past_limit) break;
+      const Ends c = ends(candidate);
       if (locked_[c.vt] | locked_[c.vs]) continue;
       // The guard's scale follows the limit; once refusals have moved the
       // limit past the list's end it keeps the last finite one, and a pass
@@ -850,19 +908,23 @@ class Engine {
   }
 
   // The walk visits the mesh in cost order, i.e. at random: ask for the data
-  // of the candidates a few steps ahead in four stages (each needs what the
-  // one before fetched; the first, the candidate itself, lies in listing
-  // order). Candidates already locked will be skipped: locks are only set
-  // during a pass, so they are left out.
+  // of the candidates a few steps ahead in five stages (each needs what the
+  // one before fetched; the first, the candidate itself, lies in order, the
+  // second, its triangle, holds its vertices). Candidates already locked
+  // will be skipped: locks are only set during a pass, so they are left out.
   void prefetch_candidate(size_t i) {
     constexpr size_t kCandidate = 40;
+    constexpr size_t kTriangle = 32;
     constexpr size_t kFar = 24;
     constexpr size_t kMid = 12;
     constexpr size_t kNear = 6;
     const size_t size = candidates_.size();
     if (i + kCandidate < size) candidates_.prefetch(i + kCandidate);
+    if (i + kTriangle < size) {
+      __builtin_prefetch(&state_.triangles[candidates_[i + kTriangle].half_edge / 3]);
+    }
     if (i + kFar < size) {
-      const Candidate& c = candidates_[i + kFar];
+      const Ends c = ends(candidates_[i + kFar]);
       if (!(locked_[c.vt] | locked_[c.vs])) {
         __builtin_prefetch(&vinfo_[c.vt]);
         __builtin_prefetch(&vinfo_[c.vs]);
@@ -872,7 +934,7 @@ class Engine {
       }
     }
     if (i + kMid < size) {
-      const Candidate& c = candidates_[i + kMid];
+      const Ends c = ends(candidates_[i + kMid]);
       if (!(locked_[c.vt] | locked_[c.vs])) {
         for (uint32_t v : {c.vt, c.vs}) {
           const char* list = reinterpret_cast<const char*>(&corners_[vinfo_[v].start]);
@@ -882,7 +944,7 @@ class Engine {
       }
     }
     if (i + kNear < size) {
-      const Candidate& c = candidates_[i + kNear];
+      const Ends c = ends(candidates_[i + kNear]);
       if (!(locked_[c.vt] | locked_[c.vs])) {
         const VertexInfo& info = vinfo_[c.vt];
         for (uint32_t k = info.start, end = info.start + info.size; k < end; ++k)
@@ -1031,9 +1093,10 @@ class Engine {
     return with_crack_floor(tv, ps, q.q.evaluate(ps) * q.inverse_weight);
   }
 
-  void add_candidate(size_t part, uint32_t a, uint32_t b, bool boundary_edge) {
+  // The half-edge a->b, listed as `half_edge` (Candidate).
+  void add_candidate(size_t part, uint32_t a, uint32_t b, uint32_t half_edge, bool boundary_edge) {
     if (options_.placement == Placement::kHalf) {
-      add_half_candidate(part, a, b, boundary_edge);
+      add_half_candidate(part, a, b, half_edge, boundary_edge);
       return;
     }
     // removing a, keeping b
@@ -1055,14 +1118,18 @@ class Engine {
       const double lb = dot(db, db);
       remove_a = lb < la || (lb == la && precedes(b, a));
     }
-    candidates_.push_back(part, remove_a ? Candidate{fab, a, b} : Candidate{fba, b, a});
+    uint32_t bits;
+    std::memcpy(&bits, remove_a ? &fab : &fba, sizeof bits);
+    candidates_.push_back(part,
+                          Candidate{bits | (remove_a ? 0u : Candidate::kReversed), half_edge});
   }
 
   // add_candidate() in half placement, with the same result, but choosing
   // the direction by selects rather than branches: the two costs compare at
   // random, and a branch on them would be mispredicted half the time. Costs
   // are never negative, so their float bits order like unsigned integers.
-  void add_half_candidate(int part, uint32_t a, uint32_t b, bool boundary_edge) {
+  void add_half_candidate(int part, uint32_t a, uint32_t b, uint32_t half_edge,
+                          bool boundary_edge) {
     const VertexInfo& ia = vinfo_[a];
     const VertexInfo& ib = vinfo_[b];
     const double ab = half_cost(a, ia, ib);
@@ -1085,11 +1152,7 @@ class Engine {
                                static_cast<uint32_t>(ib.input_id < ia.input_id));
     const uint32_t mask = 0u - remove_a;
     const uint32_t bits = (bits_ab & mask) | (bits_ba & ~mask);
-    Candidate c;
-    std::memcpy(&c.cost, &bits, sizeof bits);
-    c.vt = (a & mask) | (b & ~mask);
-    c.vs = (b & mask) | (a & ~mask);
-    candidates_.push_back(part, c);
+    candidates_.push_back(part, Candidate{bits | (~mask & Candidate::kReversed), half_edge});
   }
 
   // ---- legality ----
@@ -1300,6 +1363,10 @@ class Engine {
   uint32_t shared_ = 0;
   std::vector<uint32_t> live_triangles_;  // a superset, filtered at each listing
   std::vector<uint32_t> live_vertices_;   // those with faces, in order, filtered by finish_pass()
+  // False until the first finish_pass(): every triangle and vertex is live,
+  // and the two lists above, the identity then, are not made (6 bytes per
+  // triangle of the first pass's peak).
+  bool lists_made_ = false;
   const ParallelScope& threads_;
   CandidateList candidates_;
   uint32_t pass_ = 0;

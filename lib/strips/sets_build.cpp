@@ -28,19 +28,41 @@
 //   by strip. So consecutive ranges of strips are built apart (each replays
 //   every contraction on its own strips) and their graphs joined in strip
 //   order: the same graph for any number of ranges.
+// - Memory: the nodes, arcs and successors are the peak of lodbake-strips;
+//   they sit in chunked arrays (no doubling slack, no copy while growing),
+//   an arc's successor count is the gap to the next arc's start in
+//   successors_, and the replay's state is freed before the graph is
+//   assembled, each record array as soon as the graph holds its content.
 #include "lib/strips/sets_build.h"
 
 #include <algorithm>
 #include <new>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "lib/core/parallel.h"
+#include "lib/strips/chunked_array.h"
 #include "lib/strips/strip_compaction.h"
 
 namespace lodbake {
 namespace {
+
+using strips_internal::ChunkedArray;
+
+// Hands the heap's free pages back to the system. The record arrays are
+// freed in chunks between live ones, so the allocator keeps them resident,
+// and the graph assembled next is allocated beside them: without this the
+// resident peak is the freed arrays plus the graph (glibc only; elsewhere
+// the allocator decides).
+void return_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
 
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 // In a sequence, the node a contraction's kept vertex gets if it survives.
@@ -80,12 +102,15 @@ class Builder {
     stats_->contractions = splits;
     for (uint32_t size : sequence_size_)
       stats_->emptied_strips += size == 0;
+    release_replay();
+    return_free_memory();
     return assemble(splits + 1);
   }
 
  private:
+  // Its successors are successors_[succ_begin, the next arc's succ_begin).
   struct Arc {
-    uint32_t node, start, succ_begin, succ_count;
+    uint32_t node, start, succ_begin;
   };
   // A strip's current sequence in pool_.
   struct Sequence {
@@ -109,29 +134,34 @@ class Builder {
   };
 
   uint32_t node_of(uint32_t strip, uint32_t vertex) {
-    for (const auto& [s, node] : vertex_nodes_[vertex])
-      if (s == strip) return node;
-    const uint32_t node = static_cast<uint32_t>(node_strip_.size());
-    node_strip_.push_back(strip);
+    const uint32_t found = find_node(strip, vertex);
+    if (found != kNone) return found;
+    const uint32_t node = static_cast<uint32_t>(node_link_.size());
+    node_link_.push_back({strip, kNone});
     node_vertex_.push_back(vertex);
     node_.push_back(Node());
     selected_.push_back(0);
-    vertex_nodes_[vertex].push_back({strip, node});
+    VertexNodes& list = vertex_nodes_[vertex];
+    (list.first == kNone ? list.first : node_link_[list.last].next) = node;
+    list.last = node;
     return node;
   }
 
   // b's node in strip s, or kNone when b has none there yet.
   uint32_t find_node(uint32_t strip, uint32_t vertex) const {
-    for (const auto& [s, node] : vertex_nodes_[vertex])
-      if (s == strip) return node;
+    for (uint32_t n = vertex_nodes_[vertex].first; n != kNone; n = node_link_[n].next)
+      if (node_link_[n].strip == strip) return n;
     return kNone;
   }
 
   void contract(uint32_t lod, uint32_t a, uint32_t b) {
-    // The list is moved out: a never appears again, and b's list grows.
-    std::vector<std::pair<uint32_t, uint32_t>> entries = std::move(vertex_nodes_[a]);
-    vertex_nodes_[a] = {};
-    for (const auto& [s, from] : entries) {
+    // a's list is taken: a never appears again, and b's list grows.
+    uint32_t next = vertex_nodes_[a].first;
+    vertex_nodes_[a] = VertexNodes();
+    while (next != kNone) {
+      const uint32_t from = next;
+      const uint32_t s = node_link_[from].strip;
+      next = node_link_[from].next;
       const Sequence q = sequence(s);
       // b's node is created only if b survives the compaction (as the first
       // record of b in this strip would); until then kNewNode stands for it.
@@ -191,16 +221,42 @@ class Builder {
       const uint32_t* run = runs_.data() + (nd.offset - count);
       nd.count = 0;
       if (nd.last_count == count && run[0] == nd.last_head[0] &&
-          (count == 1 || run[1] == nd.last_head[1]) &&
-          (count <= 2 || std::equal(run + 2, run + count, successors_.begin() + nd.last_succ + 2)))
+          (count == 1 || run[1] == nd.last_head[1]) && same_tail(run, count, nd.last_succ))
         continue;
       nd.last_count = count;
       nd.last_succ = static_cast<uint32_t>(successors_.size());
       nd.last_head[0] = run[0];
       nd.last_head[1] = count > 1 ? run[1] : kNone;
-      arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size()), count});
-      successors_.insert(successors_.end(), run, run + count);
+      arcs_.push_back({node, lod, static_cast<uint32_t>(successors_.size())});
+      for (uint32_t i = 0; i < count; ++i)
+        successors_.push_back(run[i]);
     }
+  }
+
+  // Whether run[2, count) equals the stored successors from at + 2.
+  bool same_tail(const uint32_t* run, uint32_t count, uint32_t at) const {
+    for (uint32_t i = 2; i < count; ++i)
+      if (run[i] != successors_[at + i]) return false;
+    return true;
+  }
+
+  uint32_t succ_end(size_t arc) const {
+    return static_cast<uint32_t>(arc + 1 < arcs_.size() ? arcs_[arc + 1].succ_begin
+                                                        : successors_.size());
+  }
+
+  // The replay's state, not needed to assemble the graph.
+  void release_replay() {
+    std::vector<uint32_t>().swap(pool_);
+    std::vector<uint32_t>().swap(sequence_first_);
+    std::vector<uint32_t>().swap(sequence_size_);
+    std::vector<uint32_t>().swap(last_beginning_);
+    std::vector<VertexNodes>().swap(vertex_nodes_);
+    node_.release();
+    selected_.release();
+    std::vector<uint32_t>().swap(runs_);
+    std::vector<uint32_t>().swap(touched_);
+    std::vector<uint32_t>().swap(changed_);
   }
 
   // The successor runs of q's nodes that pass `wanted`: touched_ lists them
@@ -231,46 +287,55 @@ class Builder {
     g.vertex_count = static_cast<uint32_t>(pm_.full_vertex_count());
     g.lod_count = lod_count;
     // Nodes grouped by strip, in creation order.
+    const size_t nodes = node_link_.size();
     g.node_first.assign(strip_count + 1, 0);
-    for (uint32_t s : node_strip_)
-      ++g.node_first[s + 1];
+    for (size_t n = 0; n < nodes; ++n)
+      ++g.node_first[node_link_[n].strip + 1];
     for (size_t s = 0; s < strip_count; ++s)
       g.node_first[s + 1] += g.node_first[s];
     std::vector<uint32_t> fill(g.node_first.begin(), g.node_first.end() - 1);
-    std::vector<uint32_t> new_id(node_strip_.size());
-    for (size_t n = 0; n < node_strip_.size(); ++n)
-      new_id[n] = fill[node_strip_[n]]++;
+    std::vector<uint32_t> new_id(nodes);
+    for (size_t n = 0; n < nodes; ++n)
+      new_id[n] = fill[node_link_[n].strip]++;
+    node_link_.release();
     auto remap = [&](uint32_t node) { return node == kNone ? kSetsEnd : new_id[node]; };
-    g.node_vertex.resize(node_strip_.size());
-    for (size_t n = 0; n < node_strip_.size(); ++n)
+    g.node_vertex.resize(nodes);
+    for (size_t n = 0; n < nodes; ++n)
       g.node_vertex[new_id[n]] = node_vertex_[n];
+    node_vertex_.release();
     // Arcs grouped by node, in LoD order (they were appended in LoD order).
-    const size_t nodes = node_strip_.size();
     g.arc_first.assign(nodes + 1, 0);
-    for (const Arc& arc : arcs_)
-      ++g.arc_first[new_id[arc.node] + 1];
+    for (size_t a = 0; a < arcs_.size(); ++a)
+      ++g.arc_first[new_id[arcs_[a].node] + 1];
     for (size_t n = 0; n < nodes; ++n)
       g.arc_first[n + 1] += g.arc_first[n];
-    std::vector<uint32_t> order(arcs_.size());
+    // Each arc goes to its node's next slot k; an arc's label is the next
+    // arc's start - 1. Its node is not needed after this: it keeps k.
     fill.assign(g.arc_first.begin(), g.arc_first.end() - 1);
-    for (size_t a = 0; a < arcs_.size(); ++a)
-      order[fill[new_id[arcs_[a].node]]++] = a;
-    g.arc_lod.resize(arcs_.size());
-    g.successor_first.reserve(arcs_.size() + 1);
-    g.successors.reserve(successors_.size());
-    for (size_t n = 0; n < nodes; ++n) {
-      for (uint32_t k = g.arc_first[n]; k < g.arc_first[n + 1]; ++k) {
-        const Arc& arc = arcs_[order[k]];
-        g.arc_lod[k] = k + 1 < g.arc_first[n + 1] ? arcs_[order[k + 1]].start - 1 : lod_count - 1;
-        for (uint32_t i = 0; i < arc.succ_count; ++i)
-          g.successors.push_back(remap(successors_[arc.succ_begin + i]));
-        g.successor_first.push_back(static_cast<uint32_t>(g.successors.size()));
-      }
+    g.arc_lod.assign(arcs_.size(), lod_count - 1);
+    g.successor_first.assign(arcs_.size() + 1, 0);
+    for (size_t a = 0; a < arcs_.size(); ++a) {
+      const uint32_t n = new_id[arcs_[a].node];
+      const uint32_t k = fill[n]++;
+      if (k > g.arc_first[n]) g.arc_lod[k - 1] = arcs_[a].start - 1;
+      g.successor_first[k + 1] = succ_end(a) - arcs_[a].succ_begin;
+      arcs_[a].node = k;
     }
+    for (size_t k = 0; k < arcs_.size(); ++k)
+      g.successor_first[k + 1] += g.successor_first[k];
+    g.successors.resize(successors_.size());
+    for (size_t a = 0; a < arcs_.size(); ++a) {
+      uint32_t* out = g.successors.data() + g.successor_first[arcs_[a].node];
+      for (uint32_t i = arcs_[a].succ_begin, end = succ_end(a); i < end; ++i)
+        *out++ = remap(successors_[i]);
+    }
+    arcs_.release();
+    successors_.release();
+    return_free_memory();
     // Beginnings grouped by strip, in LoD order.
     g.beginning_first.assign(strip_count + 1, 0);
-    for (const Beginning& b : beginnings_)
-      ++g.beginning_first[b.strip + 1];
+    for (size_t i = 0; i < beginnings_.size(); ++i)
+      ++g.beginning_first[beginnings_[i].strip + 1];
     for (size_t s = 0; s < strip_count; ++s)
       g.beginning_first[s + 1] += g.beginning_first[s];
     std::vector<uint32_t> border(beginnings_.size());
@@ -300,16 +365,27 @@ class Builder {
   std::vector<uint32_t> pool_;  // the strips' sequences (node ids)
   std::vector<uint32_t> sequence_first_, sequence_size_;
   std::vector<uint32_t> last_beginning_;
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> vertex_nodes_;  // (strip, node)
-  std::vector<uint32_t> node_strip_, node_vertex_;
-  std::vector<Node> node_;
+  // A vertex's nodes, one per strip it is in, in order of creation: a list
+  // threaded through the nodes (8 bytes a node and a vertex, where a vector
+  // per vertex took a header, a heap block and its slack).
+  struct VertexNodes {
+    uint32_t first = kNone, last = kNone;
+  };
+  struct NodeLink {
+    uint32_t strip;
+    uint32_t next;  // the vertex's next node, kNone at the end
+  };
+  std::vector<VertexNodes> vertex_nodes_;
+  ChunkedArray<NodeLink> node_link_;
+  ChunkedArray<uint32_t> node_vertex_;
+  ChunkedArray<Node> node_;
   // Per node, scratch zero between records: one byte, as it is read for
   // every index of a changed strip.
-  std::vector<uint8_t> selected_;
+  ChunkedArray<uint8_t> selected_;
   std::vector<uint32_t> runs_, touched_, changed_;
-  std::vector<Arc> arcs_;
-  std::vector<uint32_t> successors_;
-  std::vector<Beginning> beginnings_;
+  ChunkedArray<Arc> arcs_;
+  ChunkedArray<uint32_t> successors_;
+  ChunkedArray<Beginning> beginnings_;
 };
 
 // Appends `part`, the graph of the strips after `all`'s, to `all`.
@@ -365,6 +441,23 @@ SetsGraph build_graph(const TriangleStrips& strips, const ProgressiveMesh& pm, u
   });
   SetsGraph graph = std::move(graphs[0]);
   *stats = part_stats[0];
+  // Joined into exact capacities: growing by doubling would hold up to
+  // three times the graph while it grows.
+  auto reserve = [&](std::vector<uint32_t>* all, auto member, bool offsets) {
+    size_t total = all->size();
+    for (size_t p = 1; p < parts; ++p)
+      total += (graphs[p].*member).size() - (offsets ? 1 : 0);
+    all->reserve(total);
+  };
+  reserve(&graph.beginning_first, &SetsGraph::beginning_first, true);
+  reserve(&graph.beginning_lod, &SetsGraph::beginning_lod, false);
+  reserve(&graph.beginning_node, &SetsGraph::beginning_node, false);
+  reserve(&graph.node_first, &SetsGraph::node_first, true);
+  reserve(&graph.node_vertex, &SetsGraph::node_vertex, false);
+  reserve(&graph.arc_first, &SetsGraph::arc_first, true);
+  reserve(&graph.arc_lod, &SetsGraph::arc_lod, false);
+  reserve(&graph.successor_first, &SetsGraph::successor_first, true);
+  reserve(&graph.successors, &SetsGraph::successors, false);
   for (size_t p = 1; p < parts; ++p) {
     join(&graph, graphs[p]);
     graphs[p] = SetsGraph();

@@ -7,6 +7,7 @@
 
 #include "lib/bake/bake_run.h"
 #include "lib/bake/bake_steps.h"
+#include "lib/bake/strips_step.h"
 #include "tests/unit/test_support.h"
 
 namespace lodbake {
@@ -28,21 +29,43 @@ TEST(InputMeshes, TheInputIsParsedOnceAndPreparedPerSetOfOptions) {
   InputMeshes meshes;
   LoadOptions options;
   options.drop_unreferenced = true;
-  LoadedMesh first;
-  ASSERT_TRUE(meshes.load(kMesh, bytes_of(kMesh), options, &first).is_ok());
-  ASSERT_GT(first.mesh.triangle_count(), 0u);
-  // Later steps' bytes are never parsed: the first parse is shared.
-  LoadedMesh second;
-  ASSERT_TRUE(meshes.load(kMesh, Bytes{'x'}, options, &second).is_ok());
-  EXPECT_EQ(second.mesh.positions, first.mesh.positions);
-  EXPECT_EQ(second.mesh.triangles, first.mesh.triangles);
-  EXPECT_EQ(second.sha256, first.sha256);
+  Result<std::shared_ptr<const LoadedMesh>> first = meshes.load(kMesh, bytes_of(kMesh), options);
+  ASSERT_TRUE(first.is_ok());
+  ASSERT_GT(first.value()->mesh.triangle_count(), 0u);
+  // Later steps' bytes are never parsed: the first parse is shared, and so
+  // is the mesh prepared with the same options.
+  Result<std::shared_ptr<const LoadedMesh>> second = meshes.load(kMesh, Bytes{'x'}, options);
+  ASSERT_TRUE(second.is_ok());
+  EXPECT_EQ(second.value().get(), first.value().get());
   // Other options prepare that parse again: --repair repairs it.
-  EXPECT_FALSE(first.repair.has_value());
+  EXPECT_FALSE(first.value()->repair.has_value());
   options.repair = true;
-  LoadedMesh repaired;
-  ASSERT_TRUE(meshes.load(kMesh, Bytes{'x'}, options, &repaired).is_ok());
-  EXPECT_TRUE(repaired.repair.has_value());
+  Result<std::shared_ptr<const LoadedMesh>> repaired = meshes.load(kMesh, Bytes{'x'}, options);
+  ASSERT_TRUE(repaired.is_ok());
+  EXPECT_TRUE(repaired.value()->repair.has_value());
+  EXPECT_EQ(repaired.value()->sha256, first.value()->sha256);
+}
+
+TEST(InputMeshes, TheParseIsReleasedOnceEveryStepHasLoaded) {
+  // Two steps: after both have loaded, a third load (one more than
+  // planned) with new options parses the input again, from its bytes.
+  const std::string kMesh = mesh_path();
+  std::vector<StepPlan> steps(2);
+  steps[0].step = "fan";
+  steps[1].step = "hierarchy";
+  InputMeshes meshes(steps);
+  LoadOptions options;
+  ASSERT_TRUE(meshes.load(kMesh, bytes_of(kMesh), options).is_ok());
+  ASSERT_TRUE(meshes.load(kMesh, Bytes{'x'}, options).is_ok());
+  options.repair = true;
+  EXPECT_FALSE(meshes.load(kMesh, Bytes{'O', 'F', 'F', '\n', '9'}, options).is_ok());
+  // Without a plan the parse is kept.
+  InputMeshes kept;
+  options.repair = false;
+  ASSERT_TRUE(kept.load(kMesh, bytes_of(kMesh), options).is_ok());
+  ASSERT_TRUE(kept.load(kMesh, Bytes{'x'}, options).is_ok());
+  options.repair = true;
+  EXPECT_TRUE(kept.load(kMesh, Bytes{'x'}, options).is_ok());
 }
 
 TEST(InputMeshes, TheSeamSplitIsOnlyAPreparationOfItsOwnWhereItSplits) {
@@ -50,29 +73,31 @@ TEST(InputMeshes, TheSeamSplitIsOnlyAPreparationOfItsOwnWhereItSplits) {
   const std::string spot = env_or_fail("LODBAKE_SHARED_DATA") + "/meshes/c3d_spot.obj";
   InputMeshes meshes;
   LoadOptions options;
-  LoadedMesh corners, split;
-  ASSERT_TRUE(meshes.load(spot, bytes_of(spot), options, &corners).is_ok());
+  Result<std::shared_ptr<const LoadedMesh>> corners = meshes.load(spot, bytes_of(spot), options);
   options.per_vertex_attributes = true;
-  ASSERT_TRUE(meshes.load(spot, Bytes{}, options, &split).is_ok());
-  EXPECT_EQ(corners.seam_vertices, 0u);
-  EXPECT_GT(split.seam_vertices, 0u);
-  EXPECT_GT(split.mesh.positions.size(), corners.mesh.positions.size());
+  Result<std::shared_ptr<const LoadedMesh>> split = meshes.load(spot, Bytes{}, options);
+  ASSERT_TRUE(corners.is_ok());
+  ASSERT_TRUE(split.is_ok());
+  EXPECT_EQ(corners.value()->seam_vertices, 0u);
+  EXPECT_GT(split.value()->seam_vertices, 0u);
+  EXPECT_GT(split.value()->mesh.positions.size(), corners.value()->mesh.positions.size());
   // Each is what load_mesh_bytes() makes with the same options.
   LoadedMesh direct;
   ASSERT_TRUE(load_mesh_bytes(spot, bytes_of(spot), options, &direct).is_ok());
-  EXPECT_EQ(direct.mesh.positions, split.mesh.positions);
-  EXPECT_EQ(direct.mesh.triangles, split.mesh.triangles);
+  EXPECT_EQ(direct.mesh.positions, split.value()->mesh.positions);
+  EXPECT_EQ(direct.mesh.triangles, split.value()->mesh.triangles);
 }
 
 TEST(InputMeshes, AFailedImportFailsEveryStepThatAsks) {
   InputMeshes meshes;
   LoadOptions options;
-  LoadedMesh loaded;
-  Status first = meshes.load("broken.off", Bytes{'O', 'F', 'F', '\n', '9'}, options, &loaded);
+  Result<std::shared_ptr<const LoadedMesh>> first =
+      meshes.load("broken.off", Bytes{'O', 'F', 'F', '\n', '9'}, options);
   ASSERT_FALSE(first.is_ok());
-  Status second = meshes.load("broken.off", bytes_of(mesh_path()), options, &loaded);
-  EXPECT_EQ(second.kind(), first.kind());
-  EXPECT_EQ(second.message(), first.message());
+  Result<std::shared_ptr<const LoadedMesh>> second =
+      meshes.load("broken.off", bytes_of(mesh_path()), options);
+  EXPECT_EQ(second.status().kind(), first.status().kind());
+  EXPECT_EQ(second.status().message(), first.status().message());
 }
 
 std::vector<InputPlan> plans_for(const std::string& input, const std::string& steps) {
@@ -136,6 +161,62 @@ TEST(BakeInput, AFailedStepFailsItsInputAndSkipsPackage) {
   }
   EXPECT_EQ(reports[0].steps[3].step, "package");
   EXPECT_EQ(reports[0].steps[3].status, "skipped");
+  std::filesystem::remove_all(out);
+}
+
+TEST(InputMeshes, OneSimplificationServesEveryStepAskingWithTheSameOptions) {
+  const std::string kMesh = mesh_path();
+  std::vector<InputPlan> plans = plans_for(kMesh, "[steps.simplify]\n[steps.strips]\n");
+  InputMeshes meshes(plans[0].steps);
+  LoadOptions load;
+  load.drop_unreferenced = true;
+  load.per_vertex_attributes = true;
+  SimplifyOptions options = strips_pm_options(0);
+  Result<std::shared_ptr<const LoadedMesh>> loaded = meshes.load(kMesh, bytes_of(kMesh), load);
+  ASSERT_TRUE(loaded.is_ok());
+  const TriangleMesh& mesh = loaded.value()->mesh;
+  Result<std::shared_ptr<const SimplifyResult>> first = meshes.simplified(mesh, load, options);
+  ASSERT_TRUE(first.is_ok()) << first.status().message();
+  options.threads = 3;  // cannot change the result: the same run
+  Result<std::shared_ptr<const SimplifyResult>> second = meshes.simplified(mesh, load, options);
+  ASSERT_TRUE(second.is_ok());
+  EXPECT_EQ(first.value().get(), second.value().get());
+  // Any option that can change the result is a run of its own.
+  options.placement = Placement::kOptimal;
+  Result<std::shared_ptr<const SimplifyResult>> other = meshes.simplified(mesh, load, options);
+  ASSERT_TRUE(other.is_ok());
+  EXPECT_NE(other.value().get(), first.value().get());
+  EXPECT_FALSE(*other.value()->pm == *first.value()->pm);
+  // The shared one is what a run of its own gives.
+  LoadedMesh direct;
+  ASSERT_TRUE(load_mesh_bytes(kMesh, bytes_of(kMesh), load, &direct).is_ok());
+  Result<ProgressiveMesh> own = record_pm(direct.mesh, nullptr, 1);
+  ASSERT_TRUE(own.is_ok());
+  EXPECT_EQ(*first.value()->pm, own.value());
+}
+
+TEST(BakeInput, TheStripsOfASharedProgressiveMeshAreThoseOfTheirOwn) {
+  // simplify and strips on the same mesh share one simplification; strips
+  // alone (--step) runs its own: the same files.
+  const std::string out = testing::TempDir() + "/bake_run_shared_pm";
+  std::filesystem::remove_all(out);
+  std::vector<InputPlan> plans = plans_for(mesh_path(), "[steps.simplify]\n[steps.strips]\n");
+  BakeOptions options;
+  options.out_dir = out + "/together";
+  options.jobs = 2;
+  std::vector<InputReport> together = run_bake(plans, options, {});
+  ASSERT_EQ(together[0].status, "ok");
+  options.out_dir = out + "/alone";
+  for (const char* step : {"simplify", "strips"}) {
+    options.only_step = step;
+    ASSERT_EQ(run_bake(plans, options, {})[0].status, "ok") << step;
+  }
+  for (const StepPlan& step : plans[0].steps) {
+    ASSERT_EQ(step.outputs.size(), 1u);
+    const Bytes shared = bytes_of(output_path(out + "/together", step.outputs[0]));
+    EXPECT_FALSE(shared.empty());
+    EXPECT_EQ(shared, bytes_of(output_path(out + "/alone", step.outputs[0]))) << step.step;
+  }
   std::filesystem::remove_all(out);
 }
 

@@ -163,6 +163,27 @@ TEST(Container, WritesAreDeterministic) {
   EXPECT_EQ(first.value(), second.value());
 }
 
+TEST(Container, FinishAndClearGivesTheSameBytesAndEmptiesTheWriter) {
+  ContainerWriter writer;
+  ASSERT_TRUE(writer.add_section("META", text_bytes("{\"tool\":\"x\"}\n"), false).is_ok());
+  ASSERT_TRUE(writer.add_section("BASE", Bytes(29, 7), true).is_ok());
+  ASSERT_TRUE(writer.add_section("XTRA", {}, false).is_ok());
+  ASSERT_TRUE(writer.add_section("MORE", text_bytes("abc"), false, 1).is_ok());
+  Result<Bytes> kept = writer.finish();
+  Result<Bytes> cleared = writer.finish_and_clear();
+  ASSERT_TRUE(kept.is_ok() && cleared.is_ok());
+  EXPECT_EQ(kept.value(), cleared.value());
+  EXPECT_EQ(writer.section_count(), 0u);
+  // Cleared, so the same tags can be added again and give the same file.
+  ASSERT_TRUE(writer.add_section("META", text_bytes("{\"tool\":\"x\"}\n"), false).is_ok());
+  ASSERT_TRUE(writer.add_section("BASE", Bytes(29, 7), true).is_ok());
+  ASSERT_TRUE(writer.add_section("XTRA", {}, false).is_ok());
+  ASSERT_TRUE(writer.add_section("MORE", text_bytes("abc"), false, 1).is_ok());
+  Result<Bytes> again = writer.finish_and_clear();
+  ASSERT_TRUE(again.is_ok());
+  EXPECT_EQ(again.value(), kept.value());
+}
+
 TEST(Container, WriterRefusesBadAndDuplicateTags) {
   ContainerWriter writer;
   Status bad = writer.add_section("AB C", {}, false);

@@ -180,6 +180,28 @@ TEST_P(HierarchyOnMesh, RandomSplitOrdersEndAtTheInput) {
   }
 }
 
+TEST_P(HierarchyOnMesh, RefinerByIndexMakesTheSameSplitsAsWithIds) {
+  const TriangleMesh input = load(GetParam());
+  const VertexHierarchy h = build(input);
+  Result<SelectiveRefiner> with_ids = SelectiveRefiner::create(h);
+  Result<SelectiveRefiner> by_index = SelectiveRefiner::create_by_index(h);
+  ASSERT_TRUE(with_ids.is_ok() && by_index.is_ok());
+  std::vector<uint32_t> made_with_ids, made_by_index;
+  for (uint32_t s = 0; s < h.node_count(); ++s) {
+    if (h.is_leaf(s)) continue;
+    if (with_ids.value().is_active(s)) {
+      ASSERT_TRUE(with_ids.value().split_with_dependencies(s, &made_with_ids).is_ok());
+    }
+    if (by_index.value().is_active(s)) {
+      ASSERT_TRUE(by_index.value().split_with_dependencies(s, &made_by_index).is_ok());
+    }
+  }
+  EXPECT_FALSE(made_by_index.empty());
+  EXPECT_EQ(made_by_index, made_with_ids);
+  EXPECT_EQ(by_index.value().triangles(), with_ids.value().triangles());
+  EXPECT_EQ(by_index.value().front_size(), input.positions.size());
+}
+
 TEST_P(HierarchyOnMesh, RandomWalksStayValidAndCollapseToTheBase) {
   const TriangleMesh input = load(GetParam());
   const VertexHierarchy h = build(input);

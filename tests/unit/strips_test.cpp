@@ -14,6 +14,7 @@
 #include "formats/sections/strp.h"
 #include "lib/simplify/pm_replay.h"
 #include "lib/simplify/simplify.h"
+#include "lib/strips/chunked_array.h"
 #include "lib/strips/sets_build.h"
 #include "lib/strips/sets_recovery.h"
 #include "lib/strips/strip_compaction.h"
@@ -387,4 +388,26 @@ TEST(FormatExamples, StrpAndSetsBytesOfTheSpecification) {
 }
 
 }  // namespace
+
+// The SETS builder's record arrays: values written across chunk boundaries
+// read back, and an array refills after release().
+TEST(ChunkedArray, KeepsValuesAcrossChunksAndAfterRelease) {
+  using strips_internal::ChunkedArray;
+  ChunkedArray<uint32_t> a;
+  const size_t n = 3 * ChunkedArray<uint32_t>::kChunk + 7;
+  for (size_t i = 0; i < n; ++i)
+    a.push_back(static_cast<uint32_t>(i * 2654435761u));
+  ASSERT_EQ(a.size(), n);
+  for (size_t i = 0; i < n; ++i)
+    ASSERT_EQ(a[i], static_cast<uint32_t>(i * 2654435761u)) << i;
+  a[ChunkedArray<uint32_t>::kChunk] = 5;
+  EXPECT_EQ(a[ChunkedArray<uint32_t>::kChunk], 5u);
+  EXPECT_EQ(a.back(), static_cast<uint32_t>((n - 1) * 2654435761u));
+  a.release();
+  EXPECT_TRUE(a.empty());
+  a.push_back(9);
+  EXPECT_EQ(a.size(), 1u);
+  EXPECT_EQ(a[0], 9u);
+}
+
 }  // namespace lodbake

@@ -128,6 +128,13 @@ int run(const Tool& tool, const Request& request) {
   Result<HierarchyBuilt> made = build_hierarchy_sections(request, in.mesh);
   if (!made.is_ok()) return tool.fail(request.input, made.status());
   HierarchyBuilt& b = made.value();
+  // Neither the input mesh nor the hierarchy's progressive mesh (kept for an
+  // asset's wedges) is read again: freed before the container is assembled,
+  // the largest block of the run's end.
+  const size_t input_vertices = in.mesh.vertex_count();
+  const size_t input_triangles = in.mesh.triangle_count();
+  in.mesh = TriangleMesh();
+  b.pm = ProgressiveMesh();
   const HierarchyShape& shape = b.shape;
   std::vector<HierarchySection>& sections = b.sections;
   const std::vector<std::pair<std::string, double>>& build_seconds = b.build_seconds;
@@ -167,7 +174,7 @@ int run(const Tool& tool, const Request& request) {
     Status added = writer.add_known_section(w.tag, std::move(w.bytes));
     if (!added.is_ok()) return tool.fail(request.output, added);
   }
-  Result<Bytes> container = writer.finish();
+  Result<Bytes> container = writer.finish_and_clear();
   if (!container.is_ok()) return tool.fail(request.output, container.status());
   Status written = write_file_atomic(request.output, container.value());
   if (!written.is_ok()) return tool.fail(request.output, written);
@@ -182,8 +189,7 @@ int run(const Tool& tool, const Request& request) {
       {"schema", kHierarchySchema},
       {"input", request.input},
       {"source", in.source},
-      {"input_counts",
-       {{"vertices", in.mesh.vertex_count()}, {"triangles", in.mesh.triangle_count()}}},
+      {"input_counts", {{"vertices", input_vertices}, {"triangles", input_triangles}}},
       {"base_counts", {{"vertices", base.vertex_count()}, {"triangles", base.triangle_count()}}},
       {"nodes", shape.nodes},
       {"roots", shape.roots},
@@ -205,9 +211,8 @@ int run(const Tool& tool, const Request& request) {
     tool.print_json(report);
     return 0;
   }
-  std::cout << "input       " << request.input << " (" << in.source
-            << "): " << in.mesh.vertex_count() << " vertices, " << in.mesh.triangle_count()
-            << " triangles\n";
+  std::cout << "input       " << request.input << " (" << in.source << "): " << input_vertices
+            << " vertices, " << input_triangles << " triangles\n";
   std::cout << "hierarchy   " << shape.nodes << " nodes, " << shape.roots << " roots, "
             << shape.splits << " splits, depth " << shape.depth << "\n";
   std::cout << "ids         <tree-id, node-id> = <" << shape.tree_bits << ", " << shape.depth

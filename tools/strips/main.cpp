@@ -6,6 +6,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "formats/container/container_writer.h"
@@ -72,7 +73,7 @@ int load_container_input(const Tool& tool, const Request& request, Input* in) {
       decode_progressive_mesh(base->data, base->size, vspl->data, vspl->size);
   if (!pm.is_ok()) return tool.fail(request.input, pm.status());
   in->report = {{"kind", "progressive mesh"}, {"splits", pm.value().splits.size()}};
-  in->pm = std::move(pm).value();
+  in->pm = std::make_shared<const ProgressiveMesh>(std::move(pm).value());
   return 0;
 }
 
@@ -98,7 +99,7 @@ int load_mesh_input(const Tool& tool, const Request& request, Input* in) {
       loaded.mesh, [&](double fraction) { progress.update(fraction); }, request.threads);
   if (!pm.is_ok()) return tool.fail(request.input, pm.status());
   in->report["simplify_seconds"] = seconds_since(start);
-  in->pm = std::move(pm).value();
+  in->pm = std::make_shared<const ProgressiveMesh>(std::move(pm).value());
   return 0;
 }
 
