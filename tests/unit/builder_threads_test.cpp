@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -72,7 +73,8 @@ StripsBuilt strips_with(const TriangleMesh& mesh, unsigned threads) {
   StripsStepOptions request;
   request.threads = threads;
   StripsInput in;
-  in.pm = take(record_pm(mesh, nullptr, threads), "progressive mesh");
+  in.pm = std::make_shared<const ProgressiveMesh>(
+      take(record_pm(mesh, nullptr, threads), "progressive mesh"));
   return take(build_strips(request, in), "strips and SETS");
 }
 
