@@ -1,11 +1,11 @@
 #include "lib/meshio/ply_stream_reader.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include "lib/meshio/text_scanner.h"
 
 namespace lodbake {
 namespace {
@@ -31,10 +31,17 @@ class StreamSource {
         *out = static_cast<double>(i);
         return true;
       }
-      char* end = nullptr;
-      errno = 0;
-      *out = std::strtod(token_.c_str(), &end);
-      return end != token_.c_str() && *end == '\0';
+      // The in-memory reader's parsers (lib/meshio/text_scanner.h), so that
+      // both read the same values: a float32 value rounded once to float
+      // (not through double), and no spelling one takes that the other
+      // refuses (strtod took hex).
+      if (type == PlyType::kFloat32) {
+        float f = 0;
+        if (parse_float(token_, &f) != NumberStatus::kOk) return false;
+        *out = f;
+        return true;
+      }
+      return parse_double(token_, out) == NumberStatus::kOk;
     }
     switch (type) {
       case PlyType::kFloat32: {
@@ -143,10 +150,8 @@ class StreamSource {
   }
 
   bool token_int(PlyType type, int64_t* out) const {
-    char* end = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(token_.c_str(), &end, 10);
-    if (end == token_.c_str() || *end != '\0' || errno == ERANGE) return false;
+    int64_t v = 0;
+    if (parse_int64(token_, &v) != NumberStatus::kOk) return false;
     int64_t lo = 0, hi = 0;
     switch (type) {
       case PlyType::kInt8:

@@ -12,6 +12,7 @@
 
 #include "formats/support/file_io.h"
 #include "lib/meshio/ply_stream_reader.h"
+#include "lib/meshio/text_scanner.h"
 #include "lib/outofcore/block_mesh.h"
 #include "lib/outofcore/block_partition.h"
 #include "lib/outofcore/memory_size.h"
@@ -270,6 +271,42 @@ TEST(PlyStreamReader, RefusesBadBodies) {
   r = stream(huge);
   ASSERT_FALSE(r.is_ok());
   EXPECT_EQ(r.status().kind(), ErrorKind::kInvalidInput);
+}
+
+// The streaming reader reads ASCII values as the in-memory reader does
+// (text_scanner.h): a float32 rounded once, not through double, and no hex.
+TEST(PlyStreamReader, AsciiValuesAreTheInMemoryReadersValues) {
+  const std::string text = grid_ply(3, false);
+  const size_t first = text.find("end_header\n") + 11;
+  // Just above the midpoint between 1 and the next float: rounded once it
+  // is the next float; rounded to double first it is the midpoint, which
+  // ties to 1.
+  const std::string above_midpoint = "1.0000000596046447753906250001";
+  float once = 0;
+  ASSERT_EQ(parse_float(above_midpoint, &once), NumberStatus::kOk);
+  ASSERT_EQ(once, std::nextafter(1.0f, 2.0f));
+  ASSERT_EQ(static_cast<float>(std::stod(above_midpoint)), 1.0f);
+  std::string fine = text;
+  fine.replace(first, 1, above_midpoint);
+  Result<Streamed> r = stream(fine);
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  EXPECT_EQ(r.value().positions[0][0], once);
+
+  std::string plus = text;
+  plus.replace(first, 1, "+2");
+  r = stream(plus);
+  ASSERT_TRUE(r.is_ok()) << r.status().message();
+  EXPECT_EQ(r.value().positions[0][0], 2.0f);
+
+  std::string hex = text;
+  hex.replace(first, 1, "0x1p0");
+  float ignored = 0;
+  ASSERT_EQ(parse_float("0x1p0", &ignored), NumberStatus::kMalformed);
+  EXPECT_FALSE(stream(hex).is_ok());
+
+  std::string hex_index = text;
+  hex_index.replace(hex_index.rfind("\n3 ") + 3, 1, "0x0");
+  EXPECT_FALSE(stream(hex_index).is_ok());
 }
 
 class OutOfCoreStages : public ::testing::Test {
