@@ -139,6 +139,7 @@ class ObjStreamReader::Pass {
     uint64_t line = 1;
     size_t checked = 0;  // bytes of the buffer checked for NUL
     bool first = true, eof = false;
+    size_t bom = 0;  // bytes of a UTF-8 BOM not yet skipped
     while (!eof || have != 0) {
       if (!eof) {
         if (have == buffer.size()) {
@@ -155,13 +156,12 @@ class ObjStreamReader::Pass {
         eof = in_->eof();
         have += got;
       }
-      size_t skip = 0;
       if (first) {
         if (!eof && have < 3) continue;
         if (have >= 2 &&
             ((buffer[0] == 0xfe && buffer[1] == 0xff) || (buffer[0] == 0xff && buffer[1] == 0xfe)))
           return unsupported("UTF-16 text: --memory-limit reads OBJ files in UTF-8 or ASCII");
-        if (have >= 3 && buffer[0] == 0xef && buffer[1] == 0xbb && buffer[2] == 0xbf) skip = 3;
+        if (have >= 3 && buffer[0] == 0xef && buffer[1] == 0xbb && buffer[2] == 0xbf) bom = 3;
         first = false;
       }
       if (checked < have) {
@@ -174,6 +174,10 @@ class ObjStreamReader::Pass {
       }
       const size_t cut = eof ? have : cut_point(buffer.data(), have);
       if (cut == 0) continue;  // no whole statement yet: read more
+      // The BOM is skipped by the first scan, which may come several reads
+      // after the first one when the first statement is long.
+      const size_t skip = bom;
+      bom = 0;
       TextScanner scanner(buffer.data() + skip, cut - skip);
       scanner.set_line_continuation(true);
       scanner.set_line(line);

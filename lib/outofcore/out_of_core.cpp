@@ -146,8 +146,13 @@ Result<OutOfCorePlan> split(const std::string& input, const std::string& work,
   } else {
     // No count ahead: stop as soon as the vertices read pass the limit.
     LODBAKE_RETURN_IF_ERROR(obj->for_each_vertex([&](uint64_t, const float* xyz) -> Status {
-      if ((positions.size() + 1) * sizeof(Vec3f) > limit / 2)
-        return too_many_vertices(positions.size() + 1);
+      const uint64_t most = limit / 2 / sizeof(Vec3f);
+      if (positions.size() + 1 > most) return too_many_vertices(positions.size() + 1);
+      // Grown by hand: the block never passes the half of the limit the
+      // positions may take (push_back's doubling could reserve twice it).
+      if (positions.size() == positions.capacity())
+        positions.reserve(static_cast<size_t>(
+            std::min<uint64_t>(std::max<uint64_t>(2 * positions.capacity(), 1024), most)));
       positions.push_back({xyz[0], xyz[1], xyz[2]});
       return Status::ok();
     }));

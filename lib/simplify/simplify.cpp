@@ -152,6 +152,11 @@ TriangleMesh assemble_mesh(const EngineState& state, std::vector<uint32_t>* sour
 Result<SimplifyResult> simplify_impl(const TriangleMesh& input, TriangleMesh* owned,
                                      const SimplifyOptions& options) {
   LODBAKE_RETURN_IF_ERROR(check_options(options));
+  // The engine names a half-edge 3 * triangle + corner in 32 bits.
+  if (input.triangles.size() > kMaxSimplifyTriangles)
+    return unsupported(std::to_string(input.triangles.size()) +
+                       " triangles, more than the in-core simplifier takes (" +
+                       std::to_string(kMaxSimplifyTriangles) + "); use --memory-limit");
   if (!options.locked_vertices.empty() && options.locked_vertices.size() != input.positions.size())
     return invalid_input("locked_vertices has " + std::to_string(options.locked_vertices.size()) +
                          " flags for " + std::to_string(input.positions.size()) + " vertices");

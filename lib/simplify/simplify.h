@@ -31,6 +31,10 @@ inline bool is_valid_height_guard_factor(double factor) {
 // them distorts the texture (docs/lab/seam-release.md).
 constexpr double kDefaultSeamRelease = 0.01;
 
+// The most triangles simplify() takes (its engine names a half-edge by
+// 3 * triangle + corner in 32 bits); more is kUnsupported.
+constexpr uint64_t kMaxSimplifyTriangles = 0xffffffffu / 3;
+
 struct SimplifyOptions {
   Placement placement = Placement::kHalf;
   // Stop criteria: simplification stops at the first one reached. With none

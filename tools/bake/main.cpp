@@ -2,8 +2,10 @@
 // step in-process with the code its tool runs. Thin: parsing, planning,
 // steps and the run live in lib/bake; this file reads options, draws
 // progress and prints the reports.
-#include <malloc.h>
 #include <unistd.h>
+#if defined(__GLIBC__)  // set by <unistd.h>'s <features.h>
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
