@@ -96,7 +96,7 @@ test-sanitize: deps
 # and the CLI cases through CTest: cases that need the codec are left out,
 # the nodraco_ ones (exit code 5 for Draco sections) run instead.
 NODRACO_TOOLS := lodbake-inspect lodbake-pack lodbake-simplify lodbake-hierarchy lodbake-fan \
-  lodbake-strips lodbake-replay lodbake_man_pages lodbake-bake
+  lodbake-strips lodbake-replay lodbake_man_pages lodbake-bake dragon_data
 test-nodraco: deps
 	@cmake -S . -B $(NODRACO_BUILD) $(CMAKE_FLAGS) -DLODBAKE_DRACO_CODEC=OFF -DLODBAKE_BENCHMARKS=OFF \
 	  > $(NODRACO_BUILD).configure.log 2>&1 || { cat $(NODRACO_BUILD).configure.log; exit 1; }
@@ -192,7 +192,7 @@ bench: bench-deps build npm-deps
 # Loop-subdivided SCALING_LEVELS times (0: 0.9M triangles, 1: 3.5M, 2: 14M,
 # 3: 56M), made once into $(BUILD)/tests/bench/scaling; e.g. make
 # bench-scaling SCALING_LEVELS=0,1. Level 3 is left out by default: its
-# hierarchy run needs about 24 GB (docs/benchmarks.md, "Scaling").
+# runs take about 12 GB and two hours (docs/benchmarks.md, "Scaling").
 SCALING_LEVELS ?= 0,1,2
 bench-scaling: bench-deps build
 	cmake --build $(BUILD) --target dragon_data bench_simplify
