@@ -192,7 +192,8 @@ bench: bench-deps build npm-deps
 # Loop-subdivided SCALING_LEVELS times (0: 0.9M triangles, 1: 3.5M, 2: 14M,
 # 3: 56M), made once into $(BUILD)/tests/bench/scaling; e.g. make
 # bench-scaling SCALING_LEVELS=0,1. Level 3 is left out by default: its
-# runs take about 12 GB and two hours (docs/benchmarks.md, "Scaling").
+# hierarchy run alone takes about 10 GB and half an hour (docs/benchmarks.md,
+# "Scaling").
 SCALING_LEVELS ?= 0,1,2
 bench-scaling: bench-deps build
 	cmake --build $(BUILD) --target dragon_data bench_simplify
